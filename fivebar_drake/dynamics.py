@@ -1,0 +1,147 @@
+"""Motor torques of the 5-bar leg: the seed's model as written and the physically consistent one.
+
+Both have the form tau = M(q) q_ddot [+ c(q, q_dot)] + G(q), tau = [tau_A, tau_B] in N*m, with
+M = sum_i m_i Jv_i^T Jv_i + Izz_i Jw_i^T Jw_i over the links AC, BD, CE, DE (seed 000 eq. 7) and
+the weight share m_leg at the foot: the ground pushes the foot up with m_leg g, which the motors
+resist with m_leg g J_F^T [0, -1]^T. The models differ (SPEC.md section 3) in
+- the link weights: the seed writes m_i g Jv_i^T [0, -1]^T; holding a link up against gravity
+  needs +m_i g Jv_i^T [0, 1]^T (G = dV/dq with V = sum m_i g y_i);
+- Coriolis/centrifugal terms c = sum m_i Jv_i^T (Jv_i' q_dot) + Izz_i Jw_i^T (Jw_i' q_dot),
+  dropped by the seed;
+- Izz of AC: the seed's "~0" is used as 0 in the seed model and as a thin rod in the full one.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .jacobians import bias_accelerations, link_jacobians
+from .kinematics import LegPose
+from .params import LINK_NAMES, Params
+
+
+def physical_izz(params: Params) -> tuple[float, ...]:
+    """Izz about each link's COM (kg*m^2); a zero ("~0" in the seed) becomes the thin-rod
+    estimate m L^2 / 12 with L the link's length."""
+    return tuple(link.izz_kg_m2 if link.izz_kg_m2 > 0
+                 else link.mass_kg * params.leg.link_length(name) ** 2 / 12.0
+                 for name, link in ((n, params.links[n]) for n in LINK_NAMES))
+
+
+@dataclass(frozen=True)
+class DynamicsModel:
+    """One reading of the seed's torque model.
+
+    izz: Izz per link (kg*m^2); link_weight_sign: +1 for G_links = +m g Jv^T [0, 1]^T (physical),
+    -1 for the seed's m g Jv^T [0, -1]^T; coriolis: include c(q, q_dot); foot_load_N: upward
+    ground force on the foot (N), a number or one per sample."""
+
+    name: str
+    description: str
+    izz: tuple[float, ...]
+    link_weight_sign: float
+    coriolis: bool
+    foot_load_N: float | np.ndarray
+
+
+def seed_model(params: Params) -> DynamicsModel:
+    """Seed 000 eqs. 6-8 as written: no Coriolis, [0, -1] for link weights, Izz_AC = 0."""
+    return DynamicsModel(
+        name="seed",
+        description="seed 000 as written: tau = M q'' + G, G with [0, -1] for the link weights "
+                    "and the foot load, Coriolis dropped, Izz of AC = 0",
+        izz=tuple(params.links[n].izz_kg_m2 for n in LINK_NAMES),
+        link_weight_sign=-1.0, coriolis=False,
+        foot_load_N=params.robot.weight_share_kg * params.robot.gravity_m_s2)
+
+
+def full_model(params: Params) -> DynamicsModel:
+    """Physically consistent: link weights held up (+[0, 1]), Coriolis kept, Izz_AC thin rod."""
+    return DynamicsModel(
+        name="full",
+        description="physically consistent: tau = M q'' + c(q, q') + G, link weights held up "
+                    "(+[0, 1]), foot load m_leg g J_F^T [0, -1], Izz of AC = thin rod m L^2/12",
+        izz=physical_izz(params),
+        link_weight_sign=1.0, coriolis=True,
+        foot_load_N=params.robot.weight_share_kg * params.robot.gravity_m_s2)
+
+
+def trot_model(params: Params, foot) -> DynamicsModel:
+    """The full model under trot loading: a stance foot (below y_home) carries half the robot's
+    weight (two feet on the ground), a swing foot carries nothing. foot: (N, 2) targets in m."""
+    stance = np.asarray(foot)[..., 1] < params.gait.y_home_m - 1e-12
+    body_weight = params.robot.total_mass_kg * params.robot.gravity_m_s2
+    return DynamicsModel(
+        name="full_trot",
+        description="full model, trot loading: half the robot's weight on a stance foot "
+                    "(lower half of the ellipse), none in swing",
+        izz=physical_izz(params), link_weight_sign=1.0, coriolis=True,
+        foot_load_N=np.where(stance, body_weight / 2.0, 0.0))
+
+
+@dataclass(frozen=True)
+class TorqueBreakdown:
+    """Motor torque components (..., 2) in N*m, [tau_A, tau_B]."""
+
+    inertial: np.ndarray       # M(q) q_ddot
+    coriolis: np.ndarray       # c(q, q_dot), zero where the model drops it
+    link_weight: np.ndarray    # gravity on the four links
+    foot_load: np.ndarray      # the weight share carried at the foot
+
+    @property
+    def static(self) -> np.ndarray:
+        """Torque that holds the pose without motion under the same loads (q_dot = q_ddot = 0)."""
+        return self.link_weight + self.foot_load
+
+    @property
+    def total(self) -> np.ndarray:
+        return self.inertial + self.coriolis + self.static
+
+
+def _t(jac):
+    return np.swapaxes(jac, -1, -2)
+
+
+def _mv(mat, vec):
+    return np.einsum("...ij,...j->...i", mat, vec)
+
+
+def mass_matrix(params: Params, izz, pose: LegPose) -> np.ndarray:
+    """M(q) (..., 2, 2) in kg*m^2 = sum_i m_i Jv_i^T Jv_i + Izz_i Jw_i^T Jw_i."""
+    lj = link_jacobians(params.leg, params.links, pose)
+    return _mass_matrix(params, izz, lj)
+
+
+def _masses(params: Params) -> np.ndarray:
+    return np.array([params.links[n].mass_kg for n in LINK_NAMES])
+
+
+def _mass_matrix(params, izz, lj):
+    return (np.einsum("k,...kij,...kil->...jl", _masses(params), lj.jv, lj.jv)
+            + np.einsum("k,...kj,...kl->...jl", np.asarray(izz), lj.jw, lj.jw))
+
+
+def coriolis(params: Params, izz, pose: LegPose, qd) -> np.ndarray:
+    """c(q, q_dot) (..., 2) in N*m: sum_i m_i Jv_i^T a_i + Izz_i Jw_i^T alpha_i with a_i, alpha_i
+    the velocity-product accelerations of link i."""
+    lj = link_jacobians(params.leg, params.links, pose)
+    av, aw, _ = bias_accelerations(params.leg, params.links, pose, qd)
+    return (np.einsum("k,...kij,...ki->...j", _masses(params), lj.jv, av)
+            + np.einsum("k,...kj,...k->...j", np.asarray(izz), lj.jw, aw))
+
+
+def torques(params: Params, model: DynamicsModel, pose: LegPose, qd, qdd) -> TorqueBreakdown:
+    """Motor torques (N*m) for poses with motor rates qd (rad/s) and accelerations qdd (rad/s^2)."""
+    lj = link_jacobians(params.leg, params.links, pose)
+    g = params.robot.gravity_m_s2
+    up = np.array([0.0, 1.0])
+    link_weight = (model.link_weight_sign * g
+                   * np.einsum("k,...kij,i->...j", _masses(params), lj.jv, up))
+    foot_load = -np.asarray(model.foot_load_N)[..., None] * _mv(_t(lj.jf), up)
+    inertial = _mv(_mass_matrix(params, model.izz, lj), np.asarray(qdd, dtype=float))
+    cor = (coriolis(params, model.izz, pose, qd) if model.coriolis
+           else np.zeros_like(inertial))
+    return TorqueBreakdown(inertial=inertial, coriolis=cor, link_weight=link_weight,
+                           foot_load=foot_load)

@@ -1,0 +1,77 @@
+"""The seed's elliptical gait (seed 000 section 3) sampled over one cycle, the IK mode tracking
+along it (seed 000 appendix B) and periodic central differences (seed 000 section 5)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .kinematics import ALL_MODES, KNEES_OUT, LegPose, inverse
+from .params import Gait, LegGeometry
+
+
+def foot_path(gait: Gait, t=None):
+    """Times t (s) and foot targets (..., 2) in m: x = x_c + a cos(wt), y = y_home + b sin(wt).
+    t None gives the N samples t_k = k T / N of one cycle."""
+    if t is None:
+        t = np.arange(gait.samples) * (gait.period_s / gait.samples)
+    t = np.asarray(t, dtype=float)
+    w = 2.0 * np.pi * gait.frequency_hz
+    foot = np.stack([gait.x_center_m + gait.a_m * np.cos(w * t),
+                     gait.y_home_m + gait.b_m * np.sin(w * t)], axis=-1)
+    return t, foot
+
+
+def wrap(angle):
+    """Angle(s) wrapped to [-pi, pi)."""
+    return (np.asarray(angle) + np.pi) % (2.0 * np.pi) - np.pi
+
+
+def track_modes(leg: LegGeometry, foot, start_mode=KNEES_OUT) -> tuple[LegPose, np.ndarray]:
+    """IK along a path of foot targets (N, 2): the first sample in start_mode, then at each sample
+    the solution nearest the previous one in wrap-aware angular distance
+    sum_j min(|dq_j|, 2 pi - |dq_j|). Returns the poses and the chosen mode index (into
+    ALL_MODES) per sample."""
+    foot = np.asarray(foot, dtype=float)
+    order = [start_mode] + [m for m in ALL_MODES if m != start_mode]
+    solutions = [inverse(leg, foot, mode, strict=(mode == start_mode)) for mode in order]
+    q_all = np.stack([s.q for s in solutions])                     # (modes, N, 2)
+    choice = np.zeros(len(foot), dtype=int)
+    for k in range(1, len(foot)):
+        dist = np.abs(wrap(q_all[:, k] - q_all[choice[k - 1], k - 1])).sum(-1)
+        choice[k] = int(np.nanargmin(dist))
+    pick = lambda attr: np.stack([getattr(s, attr) for s in solutions])[choice, np.arange(len(foot))]
+    pose = LegPose(q=pick("q"), c=pick("c"), d=pick("d"), e=pick("e"), f=foot)
+    mode_index = np.array([ALL_MODES.index(order[c]) for c in choice])
+    return pose, mode_index
+
+
+def periodic_derivatives(q, dt: float):
+    """Central differences over one periodic cycle of samples q (N, ...) spaced dt (s):
+    q_dot = (q[i+1] - q[i-1]) / (2 dt), q_ddot = (q[i+1] - 2 q[i] + q[i-1]) / dt^2, with angle
+    differences wrapped so a turn through +-pi is not a jump."""
+    fwd = wrap(np.roll(q, -1, axis=0) - q)
+    bwd = wrap(q - np.roll(q, 1, axis=0))
+    return (fwd + bwd) / (2.0 * dt), (fwd - bwd) / dt**2
+
+
+@dataclass(frozen=True)
+class GaitSamples:
+    """One gait cycle: times t (N,) s, foot targets (N, 2) m, poses, motor rates qd (N, 2) rad/s
+    and accelerations qdd (N, 2) rad/s^2 by central differences, IK mode index per sample."""
+
+    t: np.ndarray
+    foot: np.ndarray
+    pose: LegPose
+    qd: np.ndarray
+    qdd: np.ndarray
+    mode_index: np.ndarray
+
+
+def sample_gait(leg: LegGeometry, gait: Gait) -> GaitSamples:
+    """Sample one cycle of the gait, solve IK with mode tracking and differentiate."""
+    t, foot = foot_path(gait)
+    pose, mode_index = track_modes(leg, foot)
+    qd, qdd = periodic_derivatives(pose.q, gait.period_s / gait.samples)
+    return GaitSamples(t=t, foot=foot, pose=pose, qd=qd, qdd=qdd, mode_index=mode_index)

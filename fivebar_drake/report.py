@@ -1,0 +1,125 @@
+"""report.md and report.json of the torque analysis: the seed's Tables 3-5 filled for each model."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from .analysis import MOTORS, Analysis
+from .dynamics import physical_izz
+from .params import LINK_NAMES
+
+SIDE_BY_SIDE = ("seed", "full")
+
+
+def assumptions(analysis: Analysis) -> list[str]:
+    p = analysis.params
+    izz = dict(zip(LINK_NAMES, physical_izz(p)))
+    return [
+        f"Weight share m_leg = {p.robot.total_mass_kg:.2f} kg / {p.robot.legs} legs = "
+        f"{p.robot.weight_share_kg:.4f} kg acts at the foot for the whole cycle, swing included "
+        "(seed 000 eq. 8), in the `seed` and `full` models; `full_trot` is the trot reading.",
+        "Static torque of a pose: the torque that holds it with q' = q'' = 0 under the same "
+        "loads (link weights + foot load); its peak over the cycle is reported.",
+        f"Izz values are about each link's COM, axis along the hinges. The seed's '~0' for AC is "
+        f"0 in the `seed` model and the thin-rod estimate m L^2/12 = {izz['AC']:.3g} kg m^2 in "
+        "the `full` models.",
+        f"The {p.motor.peak_torque_Nm:g} N m motor torque is taken at the gearbox output "
+        f"(gear {p.motor.gear_ratio:g}:1); {p.motor.no_load_speed_rad_s:.2f} rad/s (120 RPM) is "
+        "taken as the no-load output speed of a linear torque-speed line.",
+        "Joint rates and accelerations are periodic central differences over the N samples "
+        "(seed 000 section 5); the IK mode follows seed 000 appendix B from the knees-out mode.",
+        "Safety factor = motor torque / peak dynamic torque; verdict: SF >= "
+        f"{p.checks.sf_pass:g} pass, {p.checks.sf_warn:g} <= SF < {p.checks.sf_pass:g} warn, "
+        "else fail.",
+    ]
+
+
+def _where(at: dict) -> str:
+    x, y = (v * 1e3 for v in at["foot_m"])
+    return f"t = {at['time_s']:.3f} s (sample {at['sample']}), F = ({x:.1f}, {y:.1f}) mm"
+
+
+def markdown(analysis: Analysis) -> str:
+    r = analysis.results["results"]
+    p = analysis.params
+    g = p.gait
+    lines = [
+        "# 5-bar leg: dynamic torque analysis over the elliptical gait",
+        "",
+        f"Gait: x = {g.x_center_m * 1e3:g} + {g.a_m * 1e3:g} cos(wt) mm, "
+        f"y = {g.y_home_m * 1e3:g} + {g.b_m * 1e3:g} sin(wt) mm, f = {g.frequency_hz:g} Hz, "
+        f"N = {g.samples} samples. Motor: {p.motor.peak_torque_Nm:g} N m, "
+        f"{p.motor.no_load_speed_rad_s:.2f} rad/s.",
+        "",
+        "Models, side by side (SPEC.md section 3):",
+        "",
+    ]
+    lines += [f"- **{name}**: {text}" for name, text in analysis.results["models"].items()]
+    lines += ["", "## Table 3: peak dynamic torque", "",
+              "| motor | model | peak torque (N m) | where in the cycle |", "|---|---|---|---|"]
+    for motor in MOTORS:
+        for model in SIDE_BY_SIDE:
+            m = r[model][motor]
+            lines.append(f"| {motor} | {model} | {m['peak_torque_Nm']:.3f} | "
+                         f"{_where(m['peak_at'])} |")
+    lines += ["", "## Table 4: static vs dynamic torque", "",
+              "| motor | model | static torque (N m) | peak dynamic torque (N m) | dynamic/static "
+              "| static peak at |", "|---|---|---|---|---|---|"]
+    for motor in MOTORS:
+        for model in SIDE_BY_SIDE:
+            m = r[model][motor]
+            lines.append(f"| {motor} | {model} | {m['static_torque_Nm']:.3f} | "
+                         f"{m['peak_torque_Nm']:.3f} | {m['dynamic_to_static_ratio']:.4f}x | "
+                         f"{_where(m['static_peak_at'])} |")
+    lines += ["", f"## Table 5: safety factor against {p.motor.peak_torque_Nm:g} N m", "",
+              "| motor | model | peak torque (N m) | safety factor | verdict |",
+              "|---|---|---|---|---|"]
+    for motor in MOTORS:
+        for model in SIDE_BY_SIDE:
+            m = r[model][motor]
+            lines.append(f"| {motor} | {model} | {m['peak_torque_Nm']:.3f} | "
+                         f"{m['safety_factor']:.2f}x | {m['verdict'].upper()} |")
+    lines += ["", f"## Speed check (limit {p.motor.no_load_speed_rad_s:.2f} rad/s)", "",
+              "| motor | peak speed (rad/s) | where | within limit | peak accel (rad/s^2) "
+              "| torque-speed margin (seed / full) |", "|---|---|---|---|---|---|"]
+    for motor in MOTORS:
+        m = r["full"][motor]
+        lines.append(f"| {motor} | {m['peak_speed_rad_s']:.3f} | {_where(m['peak_speed_at'])} | "
+                     f"{'yes' if m['speed_ok'] else 'NO'} | {m['peak_acceleration_rad_s2']:.2f} | "
+                     f"{r['seed'][motor]['torque_speed_margin']:.2f}x / "
+                     f"{m['torque_speed_margin']:.2f}x |")
+    lines += ["", "Torque-speed margin: the least ratio, over the cycle, of the torque the motor "
+              "can give at that sample's speed (linear torque-speed line) to the torque needed.",
+              "", "## Trot loading (the other reading of the weight share)", "",
+              "| motor | peak torque (N m) | static (N m) | safety factor | verdict |",
+              "|---|---|---|---|---|"]
+    for motor in MOTORS:
+        m = r["full_trot"][motor]
+        lines.append(f"| {motor} | {m['peak_torque_Nm']:.3f} | {m['static_torque_Nm']:.3f} | "
+                     f"{m['safety_factor']:.2f}x | {m['verdict'].upper()} |")
+    path = analysis.results["path"]
+    angles = ", ".join(f"{j} {a:.1f} deg" for j, a in path["min_transmission_angle_deg"].items())
+    lines += ["", "## Along the path", "",
+              f"- assembly modes used (index into kinematics.ALL_MODES): "
+              f"{path['assembly_modes_used']}",
+              f"- smallest transmission angle from in-line: {angles}",
+              f"- largest condition number of J_F: {path['max_cond_jf']:.2f}; smallest |det J_F|: "
+              f"{path['min_abs_det_jf_m2']:.3e} m^2", "", "## Assumptions", ""]
+    lines += [f"- {a}" for a in assumptions(analysis)]
+    lines += ["", "## Plots", ""]
+    lines += [f"![{name}]({name}.png)" for name in PLOT_NAMES]
+    return "\n".join(lines) + "\n"
+
+
+PLOT_NAMES = ("joint_angles", "joint_rates", "torque_components", "total_torque", "workspace")
+
+
+def write_report(analysis: Analysis, out_dir: Path) -> list[Path]:
+    """Write report.md and report.json into out_dir; returns their paths."""
+    out_dir.mkdir(parents=True, exist_ok=True)
+    md, js = out_dir / "report.md", out_dir / "report.json"
+    md.write_text(markdown(analysis))
+    data = dict(analysis.results, assumptions=assumptions(analysis))
+    js.write_text(json.dumps(data, indent=2, allow_nan=False) + "\n")
+    return [md, js]
