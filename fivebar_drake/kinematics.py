@@ -91,7 +91,7 @@ def forward(leg: LegGeometry, q, e_branch=None) -> LegPose:
     ex, ey = _circle_intersection(
         cx, cy, leg.ce_m, dx, dy, leg.de_m, side,
         lambda i: f"motor angles {np.degrees(q.reshape(-1, 2)[i]).round(3).tolist()} deg "
-                  f"cannot close the lower links: knee distance |CD")
+                  f"cannot close the lower links: knee distance |CD|")
     fx, fy = _foot(leg, ex, ey, dx, dy)
     c, d, e, f = _points((cx, cy), (dx, dy), (ex, ey), (fx, fy))
     return LegPose(q=q, c=c, d=d, e=e, f=f)

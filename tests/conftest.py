@@ -1,0 +1,14 @@
+import numpy as np
+import pytest
+
+from fivebar_drake.params import load_params
+
+
+@pytest.fixture(scope="session")
+def params():
+    return load_params()
+
+
+@pytest.fixture()
+def rng():
+    return np.random.default_rng(20261121)
