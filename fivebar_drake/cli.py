@@ -12,6 +12,9 @@ from .params import ParameterError, load_params
 
 
 def _analyze(args) -> int:
+    import matplotlib
+
+    matplotlib.use("Agg")  # files only, never a window
     from .analysis import analyze
     from .plots import write_plots
     from .report import write_report

@@ -4,14 +4,11 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import matplotlib
+import matplotlib.pyplot as plt
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-from .analysis import MOTORS, Analysis  # noqa: E402
-from .singularity import workspace  # noqa: E402
+from .analysis import MOTORS, Analysis
+from .singularity import workspace
 
 MODEL_STYLE = {"seed": "--", "full": "-", "full_trot": ":"}
 COMPONENTS = (("inertial", "inertial M q''"), ("coriolis", "Coriolis c(q, q')"),
@@ -19,14 +16,13 @@ COMPONENTS = (("inertial", "inertial M q''"), ("coriolis", "Coriolis c(q, q')"),
               ("total", "total"))
 
 
-def _finish(fig, path: Path) -> Path:
-    fig.tight_layout()
+def _save(fig, path: Path) -> Path:
     fig.savefig(path, dpi=120)
     plt.close(fig)
     return path
 
 
-def joint_angles(an: Analysis, path: Path) -> Path:
+def joint_angles(an: Analysis) -> plt.Figure:
     fig, ax = plt.subplots(figsize=(8, 4))
     for j, motor in enumerate(MOTORS):
         ax.plot(an.samples.t, np.degrees(an.samples.pose.q[:, j]), "o-", ms=3,
@@ -34,10 +30,11 @@ def joint_angles(an: Analysis, path: Path) -> Path:
     ax.set(xlabel="time (s)", ylabel="motor angle (deg)", title="Joint angles over one gait cycle")
     ax.grid(alpha=0.3)
     ax.legend()
-    return _finish(fig, path)
+    fig.tight_layout()
+    return fig
 
 
-def joint_rates(an: Analysis, path: Path) -> Path:
+def joint_rates(an: Analysis) -> plt.Figure:
     fig, (av, aa) = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
     limit = an.params.motor.no_load_speed_rad_s
     for j, motor in enumerate(MOTORS):
@@ -50,10 +47,11 @@ def joint_rates(an: Analysis, path: Path) -> Path:
     for ax in (av, aa):
         ax.grid(alpha=0.3)
         ax.legend(loc="upper right", fontsize=8)
-    return _finish(fig, path)
+    fig.tight_layout()
+    return fig
 
 
-def torque_components(an: Analysis, path: Path) -> Path:
+def torque_components(an: Analysis) -> plt.Figure:
     names = ("seed", "full")
     fig, axes = plt.subplots(2, len(names), figsize=(11, 7), sharex=True, sharey="row")
     for col, name in enumerate(names):
@@ -69,10 +67,11 @@ def torque_components(an: Analysis, path: Path) -> Path:
         ax.set_xlabel("time (s)")
     axes[0, -1].legend(fontsize=8, loc="best")
     fig.suptitle("Torque components: inertial vs gravity")
-    return _finish(fig, path)
+    fig.tight_layout()
+    return fig
 
 
-def total_torque(an: Analysis, path: Path) -> Path:
+def total_torque(an: Analysis) -> plt.Figure:
     p = an.params
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.5), sharey=True)
     limit = p.motor.peak_torque_Nm
@@ -91,10 +90,11 @@ def total_torque(an: Analysis, path: Path) -> Path:
         ax.grid(alpha=0.3)
     axes[1].legend(fontsize=7, loc="center left", bbox_to_anchor=(1.0, 0.5))
     fig.suptitle("Total motor torque with the motor limit")
-    return _finish(fig, path)
+    fig.tight_layout()
+    return fig
 
 
-def workspace_map(an: Analysis, path: Path) -> Path:
+def workspace_map(an: Analysis) -> plt.Figure:
     leg = an.params.leg
     reach = leg.ac_m + leg.ce_m + leg.ef_m + abs(leg.motor_b_m[0] - leg.motor_a_m[0])
     ws = workspace(leg, np.linspace(-reach, reach, 241), np.linspace(-reach, 0.4 * reach, 161))
@@ -112,14 +112,16 @@ def workspace_map(an: Analysis, path: Path) -> Path:
     ax.set(xlabel="x (mm)", ylabel="y (mm)", aspect="equal",
            title="Foot workspace (knees-out mode) and conditioning")
     ax.legend(loc="upper right", fontsize=8)
-    return _finish(fig, path)
+    fig.tight_layout()
+    return fig
 
 
 def write_plots(an: Analysis, out_dir: Path) -> list[Path]:
     """Write every plot of the analysis into out_dir as PNG; returns the paths."""
     out_dir.mkdir(parents=True, exist_ok=True)
-    return [joint_angles(an, out_dir / "joint_angles.png"),
-            joint_rates(an, out_dir / "joint_rates.png"),
-            torque_components(an, out_dir / "torque_components.png"),
-            total_torque(an, out_dir / "total_torque.png"),
-            workspace_map(an, out_dir / "workspace.png")]
+    return [_save(figure(an), out_dir / f"{name}.png") for name, figure in FIGURES.items()]
+
+
+FIGURES = {"joint_angles": joint_angles, "joint_rates": joint_rates,
+           "torque_components": torque_components, "total_torque": total_torque,
+           "workspace": workspace_map}

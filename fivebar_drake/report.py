@@ -8,6 +8,7 @@ from pathlib import Path
 from .analysis import MOTORS, Analysis
 from .dynamics import physical_izz
 from .params import LINK_NAMES
+from .plots import FIGURES
 
 SIDE_BY_SIDE = ("seed", "full")
 
@@ -108,11 +109,8 @@ def markdown(analysis: Analysis) -> str:
               f"{path['min_abs_det_jf_m2']:.3e} m^2", "", "## Assumptions", ""]
     lines += [f"- {a}" for a in assumptions(analysis)]
     lines += ["", "## Plots", ""]
-    lines += [f"![{name}]({name}.png)" for name in PLOT_NAMES]
+    lines += [f"![{name}]({name}.png)" for name in FIGURES]
     return "\n".join(lines) + "\n"
-
-
-PLOT_NAMES = ("joint_angles", "joint_rates", "torque_components", "total_torque", "workspace")
 
 
 def write_report(analysis: Analysis, out_dir: Path) -> list[Path]:

@@ -1,0 +1,50 @@
+import json
+import math
+import subprocess
+import sys
+
+from fivebar_drake.cli import main
+from fivebar_drake.params import DEFAULT_PATH
+
+KEYS = ("peak_torque_Nm", "static_torque_Nm", "dynamic_to_static_ratio", "safety_factor",
+        "verdict", "peak_speed_rad_s", "peak_time_s")
+
+
+def test_analyze_end_to_end(tmp_path, capsys):
+    assert main(["analyze", "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert str(tmp_path.resolve()) in out
+    for name in ("report.md", "report.json", "joint_angles.png", "joint_rates.png",
+                 "torque_components.png", "total_torque.png", "workspace.png"):
+        path = tmp_path / name
+        assert path.stat().st_size > 1000, name
+    assert (tmp_path / "joint_angles.png").read_bytes()[:4] == b"\x89PNG"
+    data = json.loads((tmp_path / "report.json").read_text())
+    for model in ("seed", "full"):
+        for motor in ("A", "B"):
+            r = data["results"][model][motor]
+            for key in KEYS:
+                assert key in r, (model, motor, key)
+            for key in KEYS:
+                if key != "verdict":
+                    assert math.isfinite(r[key]) and r[key] >= 0
+            assert r["verdict"] in ("pass", "warn", "fail")
+            # safety factor and verdict follow from the peak, independently of the code
+            assert r["safety_factor"] * r["peak_torque_Nm"] == 5.0 or \
+                abs(r["safety_factor"] * r["peak_torque_Nm"] - 5.0) < 1e-12
+            expect = "pass" if r["safety_factor"] >= 2 else "warn" if r["safety_factor"] >= 1.5 else "fail"
+            assert r["verdict"] == expect
+    assert data["parameters"]["gait"]["samples"] == 60
+    md = (tmp_path / "report.md").read_text()
+    assert "TBD" not in md and "Table 5" in md and "| A | full |" in md
+
+
+def test_module_entry_point_and_bad_config(tmp_path):
+    bad = tmp_path / "bad.toml"
+    bad.write_text(DEFAULT_PATH.read_text().replace("ce_m = 0.145", "ce_m = 0.0"))
+    run = subprocess.run([sys.executable, "-m", "fivebar_drake", "analyze", "--config", str(bad),
+                          "--out", str(tmp_path / "o")], capture_output=True, text=True)
+    assert run.returncode == 2
+    assert "leg.ce_m = 0.0: must be > 0" in run.stderr
+    assert "Traceback" not in run.stderr
+    assert not (tmp_path / "o").exists()
