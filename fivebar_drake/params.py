@@ -138,9 +138,44 @@ class Motor:
     peak_torque_Nm: float
     gear_ratio: float
     no_load_speed_rad_s: float
+    rotor_inertia_kg_m2: float
+    coulomb_friction_Nm: float
+    viscous_friction_Nm_s: float
 
     def __post_init__(self):
-        _positive("motor", self)
+        for f in ("peak_torque_Nm", "gear_ratio", "no_load_speed_rad_s"):
+            value = getattr(self, f)
+            _require(math.isfinite(value) and value > 0, f"motor.{f}", value, "must be > 0")
+        for f in ("rotor_inertia_kg_m2", "coulomb_friction_Nm", "viscous_friction_Nm_s"):
+            value = getattr(self, f)
+            _require(math.isfinite(value) and value >= 0, f"motor.{f}", value, "must be >= 0")
+
+    @property
+    def reflected_inertia_kg_m2(self) -> float:
+        """Rotor inertia seen at the output, N^2 J_rotor."""
+        return self.gear_ratio**2 * self.rotor_inertia_kg_m2
+
+
+@dataclass(frozen=True)
+class Body:
+    """Body box (m), hip placement of the leg planes (m), link width (m), foot sphere radius (m)
+    and its friction coefficient. Assumptions: the seeds give no body dimensions."""
+
+    length_m: float
+    width_m: float
+    height_m: float
+    hip_x_m: float
+    hip_y_m: float
+    hip_z_m: float
+    link_width_m: float
+    foot_radius_m: float
+    foot_friction: float
+
+    def __post_init__(self):
+        for f in dataclasses.fields(self):
+            if f.name != "hip_z_m":
+                value = getattr(self, f.name)
+                _require(math.isfinite(value) and value > 0, f"body.{f.name}", value, "must be > 0")
 
 
 @dataclass(frozen=True)
@@ -164,6 +199,7 @@ class Params:
     gait: Gait
     motor: Motor
     checks: Checks
+    body: Body
 
     def __post_init__(self):
         _require(sorted(self.links) == sorted(LINK_NAMES), "links", sorted(self.links),
@@ -217,7 +253,7 @@ def _build(cls, table: dict, section: str):
 
 def params_from_dict(data: dict) -> Params:
     """Build and validate Params from the nested dict of a parameter file."""
-    sections = {"leg", "links", "robot", "gait", "motor", "checks"}
+    sections = {"leg", "links", "robot", "gait", "motor", "checks", "body"}
     unknown, missing = sorted(set(data) - sections), sorted(sections - set(data))
     if unknown or missing:
         raise ParameterError(f"parameter file sections: unknown {unknown}, missing {missing}; "
@@ -230,6 +266,7 @@ def params_from_dict(data: dict) -> Params:
         gait=_build(Gait, data["gait"], "gait"),
         motor=_build(Motor, data["motor"], "motor"),
         checks=_build(Checks, data["checks"], "checks"),
+        body=_build(Body, data["body"], "body"),
     )
     check_gait_reachable(params)
     return params
