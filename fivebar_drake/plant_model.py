@@ -1,0 +1,74 @@
+"""Drake MultibodyPlant of the leg or the quadruped, built from the generated SDF, and the maps
+between the seed's motor angles and the plant's tree coordinates.
+
+Tree coordinates of one leg: x = [theta_A, theta_B, phi_C, phi_D] (rad), phi_C = angle(CE) -
+theta_A and phi_D = angle(DE) - theta_B are the passive knee angles.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from pydrake.multibody.parsing import Parser
+from pydrake.multibody.plant import MultibodyPlant
+
+from .gait import wrap
+from .kinematics import LegPose
+from .params import Params
+from .sdf_model import LEGS, Bushing, quadruped_sdf, single_leg_sdf
+
+CLOSURES = ("bushing", "ball")
+JOINTS = ("A", "B", "C", "D")
+
+
+def check_closure(closure: str) -> None:
+    if closure not in CLOSURES:
+        raise ValueError(f"closure = {closure!r}: allowed {list(CLOSURES)}")
+
+
+def add_model(plant: MultibodyPlant, params: Params, model: str, closure: str,
+              bushing: Bushing | None = None):
+    """Parse the generated SDF ("leg": one fixed-hip leg named "leg"; "quadruped": body + legs
+    FL, FR, RL, RR) into plant and close each loop. Returns (model instance, leg names)."""
+    check_closure(closure)
+    if closure == "bushing" and bushing is None:
+        raise ValueError("closure 'bushing' needs bushing parameters")
+    text = (single_leg_sdf if model == "leg" else quadruped_sdf)(params, closure, bushing)
+    parser = Parser(plant)
+    parser.SetStrictParsing()
+    (instance,) = parser.AddModelsFromString(text, "sdf")
+    legs = ("leg",) if model == "leg" else LEGS
+    if closure == "ball":
+        for leg in legs:
+            plant.AddBallConstraint(
+                plant.GetBodyByName(f"{leg}_CE", instance), [params.leg.ce_m, 0.0, 0.0],
+                plant.GetBodyByName(f"{leg}_DE", instance), [params.leg.de_m, 0.0, 0.0])
+    return instance, legs
+
+
+@dataclass(frozen=True)
+class LegIndices:
+    """Where one leg's joints A, B, C, D sit in the plant's q and v, and its motors' actuator
+    indices in the actuation vector (A, B)."""
+
+    q: np.ndarray
+    v: np.ndarray
+    actuators: np.ndarray
+
+
+def leg_indices(plant: MultibodyPlant, instance, leg: str) -> LegIndices:
+    joints = [plant.GetJointByName(f"{leg}_{j}", instance) for j in JOINTS]
+    actuators = [plant.GetJointActuatorByName(f"{leg}_{j}", instance).input_start()
+                 for j in ("A", "B")]
+    return LegIndices(q=np.array([j.position_start() for j in joints]),
+                      v=np.array([j.velocity_start() for j in joints]),
+                      actuators=np.array(actuators))
+
+
+def tree_positions(pose: LegPose) -> np.ndarray:
+    """[theta_A, theta_B, phi_C, phi_D] (..., 4) in rad for leg poses."""
+    ce, de = pose.e - pose.c, pose.e - pose.d
+    phi_c = np.arctan2(ce[..., 1], ce[..., 0]) - pose.q[..., 0]
+    phi_d = np.arctan2(de[..., 1], de[..., 0]) - pose.q[..., 1]
+    return np.concatenate([pose.q, wrap(phi_c)[..., None], wrap(phi_d)[..., None]], axis=-1)
