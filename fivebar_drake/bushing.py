@@ -1,0 +1,81 @@
+"""Bushing parameters for the loop closure at E, derived from the leg's effective mass at the
+knee, the force the loop carries and the loop gap one accepts.
+
+A discrete plant applies the bushing force explicitly, so it is a spring on the effective mass
+m_eff = 1 / lambda_max(J_c M^-1 J_c^T) felt at the cut (J_c: Jacobian of the gap), integrated with
+step dt: it is stable for k dt^2 / m_eff < 4 (symplectic Euler). The gap under the loop force F
+is F / k. So for a target gap: k = F / gap, dt = sqrt(margin * 4 m_eff / k), and
+d = 2 zeta sqrt(k m_eff) (zeta = damping ratio), which keeps d dt / m_eff = 4 zeta sqrt(margin)
+below the explicit-damping limit 2.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from pydrake.multibody.plant import MultibodyPlant
+from pydrake.multibody.tree import JacobianWrtVariable
+
+from .dynamics import trot_model
+from .gait import sample_gait
+from .inverse_dynamics import loop_jacobian
+from .params import Params
+from .plant_model import add_model, leg_indices, tree_positions
+from .sdf_model import Bushing
+
+STABILITY_MARGIN = 0.5   # fraction of the explicit stability limit k dt^2 / m_eff < 4
+DAMPING_RATIO = 0.5
+
+
+def _fixed_leg(params: Params):
+    plant = MultibodyPlant(0.0)
+    instance, _ = add_model(plant, params, "leg", "ball")
+    plant.Finalize()
+    context = plant.CreateDefaultContext()
+    return plant, context, instance, leg_indices(plant, instance, "leg")
+
+
+def loop_load(params: Params):
+    """Effective mass at the knee (kg, least over the gait) and the largest loop force (N) over
+    the gait under trot loading (half the robot's weight on a stance foot), both from the Drake
+    model of one fixed-hip leg: lambda = J_phi^-T tau_tree[phi]."""
+    plant, context, instance, idx = _fixed_leg(params)
+    samples = sample_gait(params.leg, params.gait)
+    load = trot_model(params, samples.foot).foot_load_N
+    x = tree_positions(samples.pose)
+    m_eff, force = np.inf, 0.0
+    q = plant.GetPositions(context)
+    for k in range(len(x)):
+        q[idx.q] = x[k]
+        plant.SetPositions(context, q)
+        plant.SetVelocities(context, np.zeros(plant.num_velocities()))
+        jc, _ = loop_jacobian(plant, context, instance, params, "leg")
+        m_inv = np.linalg.inv(plant.CalcMassMatrix(context))
+        m_eff = min(m_eff, 1.0 / np.max(np.linalg.eigvalsh(jc @ m_inv @ jc.T)))
+        # static loop force: passive joints carry no torque, the foot load goes through E
+        tau_tree = -_foot_jacobian(plant, context, instance, params).T @ np.array([0.0, load[k]])
+        lam = np.linalg.solve(jc[:, idx.v[2:]].T, tau_tree[idx.v[2:]])
+        force = max(force, float(np.linalg.norm(lam)))
+    return m_eff, force
+
+
+def _foot_jacobian(plant, context, instance, params):
+    plane = plant.GetFrameByName("leg_plane", instance)
+    frame = plant.GetBodyByName("leg_DE", instance).body_frame()
+    p = np.array([params.leg.de_m + params.leg.ef_m, 0.0, 0.0])
+    return plant.CalcJacobianTranslationalVelocity(context, JacobianWrtVariable.kV, frame, p,
+                                                   plane, plane)[:2]
+
+
+def bushing_parameters(m_eff_kg: float, loop_force_N: float, target_gap_m: float,
+                       damping_ratio: float = DAMPING_RATIO,
+                       margin: float = STABILITY_MARGIN) -> tuple[Bushing, float]:
+    """Bushing stiffness/damping and the largest stable time step (s) for a loop gap of
+    target_gap_m (m) under loop_force_N (N) with effective mass m_eff_kg (kg)."""
+    for name, value in (("m_eff_kg", m_eff_kg), ("loop_force_N", loop_force_N),
+                        ("target_gap_m", target_gap_m)):
+        if not value > 0:
+            raise ValueError(f"{name} = {value!r}: must be > 0")
+    k = loop_force_N / target_gap_m
+    dt = float(np.sqrt(margin * 4.0 * m_eff_kg / k))
+    d = 2.0 * damping_ratio * np.sqrt(k * m_eff_kg)
+    return Bushing(stiffness_N_m=float(k), damping_N_s_m=float(d)), dt
