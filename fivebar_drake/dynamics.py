@@ -132,14 +132,23 @@ def coriolis(params: Params, izz, pose: LegPose, qd) -> np.ndarray:
             + np.einsum("k,...kj,...k->...j", np.asarray(izz), lj.jw, aw))
 
 
+def _static(params: Params, model: DynamicsModel, lj):
+    up = np.array([0.0, 1.0])
+    link_weight = (model.link_weight_sign * params.robot.gravity_m_s2
+                   * np.einsum("k,...kij,i->...j", _masses(params), lj.jv, up))
+    foot_load = -np.asarray(model.foot_load_N)[..., None] * _mv(_t(lj.jf), up)
+    return link_weight, foot_load
+
+
+def static_torques(params: Params, model: DynamicsModel, pose: LegPose) -> np.ndarray:
+    """Torque (..., 2) in N*m that holds the poses at rest under the model's loads."""
+    return sum(_static(params, model, link_jacobians(params.leg, params.links, pose)))
+
+
 def torques(params: Params, model: DynamicsModel, pose: LegPose, qd, qdd) -> TorqueBreakdown:
     """Motor torques (N*m) for poses with motor rates qd (rad/s) and accelerations qdd (rad/s^2)."""
     lj = link_jacobians(params.leg, params.links, pose)
-    g = params.robot.gravity_m_s2
-    up = np.array([0.0, 1.0])
-    link_weight = (model.link_weight_sign * g
-                   * np.einsum("k,...kij,i->...j", _masses(params), lj.jv, up))
-    foot_load = -np.asarray(model.foot_load_N)[..., None] * _mv(_t(lj.jf), up)
+    link_weight, foot_load = _static(params, model, lj)
     inertial = _mv(_mass_matrix(params, model.izz, lj), np.asarray(qdd, dtype=float))
     cor = (coriolis(params, model.izz, pose, qd) if model.coriolis
            else np.zeros_like(inertial))

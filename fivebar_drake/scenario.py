@@ -27,7 +27,8 @@ class Scenario:
     bushing's design gap; control_period_s / motor_period_s: update periods of the IK controller
     and motor model; kp_Nm_rad, kd_Nm_s_rad: joint PD gains; stand_s: standing time before the
     gait starts; ramp_s: time over which the ellipse grows to full size; phases_rad: gait phase
-    of FL, FR, RL, RR (diagonal pairs in phase); log_period_s: time-series sampling;
+    of FL, FR, RL, RR (diagonal pairs in phase); balance_gain, balance_rate_s: tilt feedback of
+    the controller (0 = plain trot; see systems.FootIKController); log_period_s: time-series sampling;
     pose_rate_hz: 3-D pose recording rate; params_file: parameter TOML ("" = packaged);
     gait_*: optional overrides of the parameter file's gait."""
 
@@ -39,6 +40,8 @@ class Scenario:
     motor_period_s: float = 0.0005
     kp_Nm_rad: float = 30.0
     kd_Nm_s_rad: float = 0.4
+    balance_gain: float = 1.0
+    balance_rate_s: float = 0.05
     stand_s: float = 0.5
     ramp_s: float = 1.0
     phases_rad: list[float] = field(default_factory=lambda: [0.0, math.pi, math.pi, 0.0])
@@ -60,7 +63,8 @@ class Scenario:
             value = getattr(self, name)
             if not (math.isfinite(value) and value > 0):
                 raise ValueError(f"scenario.{name} = {value!r}: must be > 0")
-        for name in ("time_step_s", "kp_Nm_rad", "kd_Nm_s_rad", "stand_s", "ramp_s"):
+        for name in ("time_step_s", "kp_Nm_rad", "kd_Nm_s_rad", "stand_s", "ramp_s",
+                     "balance_gain", "balance_rate_s"):
             value = getattr(self, name)
             if not (math.isfinite(value) and value >= 0):
                 raise ValueError(f"scenario.{name} = {value!r}: must be >= 0")

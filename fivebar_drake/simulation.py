@@ -11,7 +11,7 @@ import time
 from dataclasses import dataclass, field
 
 import numpy as np
-from pydrake.geometry import HalfSpace, ProximityProperties, AddContactMaterial
+from pydrake.geometry import AddContactMaterial, Box, ProximityProperties
 from pydrake.math import RigidTransform
 from pydrake.multibody.plant import (AddMultibodyPlantSceneGraph, CoulombFriction,
                                      MultibodyPlantConfig, ApplyMultibodyPlantConfig)
@@ -24,9 +24,12 @@ from .kinematics import inverse
 from .params import Params
 from .plant_model import add_model, leg_indices, tree_positions
 from .scenario import Scenario
+from .sdf_model import hip_positions
 from .systems import FootContactForces, FootIKController, GaitSource, MotorModel
 
 BALL_TIME_STEP_S = 1e-3
+GROUND_SIZE_M = 40.0   # flat ground, top face at z = 0
+GROUND_DEPTH_M = 1.0
 
 
 @dataclass
@@ -65,7 +68,8 @@ def build_diagram(scenario: Scenario, params: Params):
     ground = ProximityProperties()
     mu = params.body.foot_friction
     AddContactMaterial(friction=CoulombFriction(mu, mu), properties=ground)
-    plant.RegisterCollisionGeometry(plant.world_body(), RigidTransform(), HalfSpace(), "ground",
+    plant.RegisterCollisionGeometry(plant.world_body(), RigidTransform([0, 0, -GROUND_DEPTH_M / 2]),
+                                    Box(GROUND_SIZE_M, GROUND_SIZE_M, GROUND_DEPTH_M), "ground",
                                     ground)
     plant.Finalize()
     indices = {leg: leg_indices(plant, instance, leg) for leg in legs}
@@ -76,9 +80,13 @@ def build_diagram(scenario: Scenario, params: Params):
 
     gait = builder.AddNamedSystem("gait_source", GaitSource(
         params.gait, scenario.phases_rad, scenario.stand_s, scenario.ramp_s))
+    body = plant.GetBodyByName("body", instance)
     controller = builder.AddNamedSystem("ik_controller", FootIKController(
         params, q_index, v_index, actuators, nq, nx, scenario.control_period_s,
-        scenario.kp_Nm_rad, scenario.kd_Nm_s_rad))
+        scenario.kp_Nm_rad, scenario.kd_Nm_s_rad, body_q=body.floating_positions_start(),
+        body_v=body.floating_velocities_start_in_v(),
+        hips_m=[hip_positions(params)[leg] for leg in legs],
+        balance_gain=scenario.balance_gain, balance_rate_s=scenario.balance_rate_s))
     v_by_actuator = np.zeros(plant.num_actuators(), dtype=int)
     v_by_actuator[actuators.ravel()] = v_index.ravel() + nq
     motor = builder.AddNamedSystem("motor_model", MotorModel(

@@ -13,7 +13,7 @@ from pydrake.common.value import AbstractValue
 from pydrake.multibody.plant import ContactResults
 from pydrake.systems.framework import BasicVector, LeafSystem
 
-from .dynamics import full_model, torques
+from .dynamics import full_model, static_torques
 from .gait import wrap
 from .jacobians import foot_jacobian
 from .kinematics import inverse
@@ -66,12 +66,20 @@ class FootIKController(LeafSystem):
     Every period_s: closed-form IK (knees-out) gives q_des, J_F^-1 v gives q_dot_des, and
     tau = kp wrap(q_des - q) + kd (q_dot_des - q_dot) + tau_ff, where tau_ff is the full model's
     static torque at q_des with the robot's weight shared by the feet whose target is at or below
-    y_home (all four while standing, the diagonal pair in a trot)."""
+    y_home (all four while standing, the diagonal pair in a trot).
+
+    Balance (balance_gain > 0): each foot target's y is moved by balance_gain (dz + balance_rate_s
+    dz') with dz the height change of the leg's hip from the body's tilt (hip positions hips_m in
+    the body frame), so a leg under a sinking hip extends and one under a rising hip shortens."""
 
     def __init__(self, params: Params, q_index, v_index, actuators, nq: int, nx: int,
-                 period_s: float, kp: float, kd: float):
+                 period_s: float, kp: float, kd: float, body_q: int = -1, body_v: int = -1,
+                 hips_m=None, balance_gain: float = 0.0, balance_rate_s: float = 0.0):
         super().__init__()
         self._params, self._kp, self._kd = params, kp, kd
+        self._body_q, self._body_w = body_q, nq + body_v
+        self._hips = None if hips_m is None else np.asarray(hips_m, dtype=float)
+        self._balance = (balance_gain, balance_rate_s)
         self._q_index = np.asarray(q_index)     # (legs, 2) plant q indices of A, B
         self._v_index = np.asarray(v_index) + nq  # into the state vector
         self._actuators = np.asarray(actuators)   # (legs, 2) actuation indices
@@ -90,6 +98,9 @@ class FootIKController(LeafSystem):
         """Torque command (8) in actuation order from foot targets (legs, 2) m, velocities
         (legs, 2) m/s and the plant state vector."""
         p = self._params
+        if self._balance[0] > 0:
+            targets = targets.copy()
+            targets[:, 1] += self._balance_offset(state)
         pose = inverse(p.leg, targets)
         jac = foot_jacobian(p.leg, pose)
         qd_des = np.linalg.solve(jac, velocities[..., None])[..., 0]
@@ -97,18 +108,34 @@ class FootIKController(LeafSystem):
         stance = targets[:, 1] <= p.gait.y_home_m + 1e-9
         load = np.where(stance, self._weight / max(int(stance.sum()), 1), 0.0)
         model = dataclasses.replace(self._model, foot_load_N=load)
-        zero = np.zeros_like(q)
-        ff = torques(p, model, pose, zero, zero).static
+        ff = static_torques(p, model, pose)
         tau = self._kp * wrap(pose.q - q) + self._kd * (qd_des - qd) + ff
         out = np.zeros(2 * self._legs)
         out[self._actuators.ravel()] = tau.ravel()
         return out
+
+    def _balance_offset(self, state):
+        """Foot target y offsets (legs,) in m from the body's tilt (see class docstring)."""
+        quat = state[self._body_q:self._body_q + 4]
+        hips_w = self._hips @ _rotation(*(quat / np.linalg.norm(quat))).T  # body -> world axes
+        omega = state[self._body_w:self._body_w + 3]              # world frame, rad/s
+        dz = hips_w[:, 2] - self._hips[:, 2]
+        dz_dot = np.cross(omega, hips_w)[:, 2]
+        gain, rate = self._balance
+        return gain * (dz + rate * dz_dot)
 
     def _update(self, context, discrete_state):
         targets = self._targets.Eval(context).reshape(-1, 2)
         velocities = self._velocities.Eval(context).reshape(-1, 2)
         state = self._state.Eval(context)
         discrete_state.set_value(self._command, self.command(targets, velocities, state))
+
+
+def _rotation(w, x, y, z) -> np.ndarray:
+    """Rotation matrix of a unit quaternion (w, x, y, z)."""
+    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+                     [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+                     [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
 
 
 def motor_torque(motor: Motor, command, speed, smoothing_rad_s: float = 0.05):
