@@ -1,12 +1,12 @@
 """Bushing parameters for the loop closure at E, derived from the leg's effective mass at the
 knee, the force the loop carries and the loop gap one accepts.
 
-A discrete plant applies the bushing force explicitly, so it is a spring on the effective mass
-m_eff = 1 / lambda_max(J_c M^-1 J_c^T) felt at the cut (J_c: Jacobian of the gap), integrated with
-step dt: it is stable for k dt^2 / m_eff < 4 (symplectic Euler). The gap under the loop force F
-is F / k. So for a target gap: k = F / gap, dt = sqrt(margin * 4 m_eff / k), and
-d = 2 zeta sqrt(k m_eff) (zeta = damping ratio), which keeps d dt / m_eff = 4 zeta sqrt(margin)
-below the explicit-damping limit 2.
+A discrete plant applies the bushing force explicitly: a spring k and damper d on the effective
+mass m_eff = 1 / lambda_max(J_c M^-1 J_c^T) felt at the cut (J_c: Jacobian of the gap), stepped
+with dt by symplectic Euler. With a = k dt^2 / m_eff and b = d dt / m_eff = 2 zeta sqrt(a)
+(zeta = damping ratio), the step is stable iff a + 2 b < 4 (Jury criterion on the 2x2 step
+matrix, trace 2 - a - b, determinant 1 - b). The gap under the loop force F is F / k. So:
+k = F / gap, then the largest dt with a + 4 zeta sqrt(a) = 4 margin, and d = 2 zeta sqrt(k m_eff).
 """
 
 from __future__ import annotations
@@ -22,8 +22,8 @@ from .params import Params
 from .plant_model import add_model, leg_indices, tree_positions
 from .sdf_model import Bushing
 
-STABILITY_MARGIN = 0.5   # fraction of the explicit stability limit k dt^2 / m_eff < 4
-DAMPING_RATIO = 0.5
+STABILITY_MARGIN = 0.8   # fraction of the explicit stability bound a + 2 b < 4
+DAMPING_RATIO = 0.3
 
 
 def _fixed_leg(params: Params):
@@ -76,6 +76,7 @@ def bushing_parameters(m_eff_kg: float, loop_force_N: float, target_gap_m: float
         if not value > 0:
             raise ValueError(f"{name} = {value!r}: must be > 0")
     k = loop_force_N / target_gap_m
-    dt = float(np.sqrt(margin * 4.0 * m_eff_kg / k))
+    root_a = -2.0 * damping_ratio + np.sqrt(4.0 * damping_ratio**2 + 4.0 * margin)
+    dt = float(root_a * np.sqrt(m_eff_kg / k))
     d = 2.0 * damping_ratio * np.sqrt(k * m_eff_kg)
     return Bushing(stiffness_N_m=float(k), damping_N_s_m=float(d)), dt

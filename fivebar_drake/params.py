@@ -158,8 +158,8 @@ class Motor:
 
 @dataclass(frozen=True)
 class Body:
-    """Body box (m), hip placement of the leg planes (m), link width (m), foot sphere radius (m)
-    and its friction coefficient. Assumptions: the seeds give no body dimensions."""
+    """Body box (m), hip placement of the leg planes (m), link width (m), foot sphere radius (m),
+    its friction coefficient, contact stiffness (N/m) and dissipation time scale (s). Assumptions: the seeds give no body dimensions."""
 
     length_m: float
     width_m: float
@@ -170,6 +170,8 @@ class Body:
     link_width_m: float
     foot_radius_m: float
     foot_friction: float
+    foot_stiffness_N_m: float
+    foot_relaxation_time_s: float
 
     def __post_init__(self):
         for f in dataclasses.fields(self):

@@ -72,3 +72,13 @@ def tree_positions(pose: LegPose) -> np.ndarray:
     phi_c = np.arctan2(ce[..., 1], ce[..., 0]) - pose.q[..., 0]
     phi_d = np.arctan2(de[..., 1], de[..., 0]) - pose.q[..., 1]
     return np.concatenate([pose.q, wrap(phi_c)[..., None], wrap(phi_d)[..., None]], axis=-1)
+
+
+def loop_gaps(params: Params, x) -> np.ndarray:
+    """Loop gap (m) |E on CE - E on DE| for tree coordinates x (..., 4) of one leg."""
+    g = params.leg
+    ta, tb, pc, pd = np.moveaxis(np.asarray(x), -1, 0)
+    u = lambda a: np.stack([np.cos(a), np.sin(a)], -1)  # noqa: E731
+    e_ce = g.a + g.ac_m * u(ta) + g.ce_m * u(ta + pc)
+    e_de = g.b + g.bd_m * u(tb) + g.de_m * u(tb + pd)
+    return np.linalg.norm(e_ce - e_de, axis=-1)

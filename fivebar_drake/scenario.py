@@ -39,9 +39,9 @@ class Scenario:
     control_period_s: float = 0.002
     motor_period_s: float = 0.0005
     kp_Nm_rad: float = 30.0
-    kd_Nm_s_rad: float = 0.4
+    kd_Nm_s_rad: float = 0.08
     balance_gain: float = 1.0
-    balance_rate_s: float = 0.05
+    balance_rate_s: float = 0.1
     stand_s: float = 0.5
     ramp_s: float = 1.0
     phases_rad: list[float] = field(default_factory=lambda: [0.0, math.pi, math.pi, 0.0])

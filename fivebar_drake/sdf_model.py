@@ -64,7 +64,10 @@ def _link(params: Params, leg: str, name: str, origin, color: str) -> str:
         foot = f"<pose>{_fmt(length)} 0 0 0 0 0</pose><geometry><sphere><radius>{r:.12g}</radius></sphere></geometry>"
         extra = (f"<collision name='foot'>{foot}<drake:proximity_properties><drake:mu_dynamic>"
                  f"{params.body.foot_friction:.12g}</drake:mu_dynamic><drake:mu_static>"
-                 f"{params.body.foot_friction:.12g}</drake:mu_static></drake:proximity_properties>"
+                 f"{params.body.foot_friction:.12g}</drake:mu_static><drake:point_contact_stiffness>"
+                 f"{params.body.foot_stiffness_N_m:.12g}</drake:point_contact_stiffness>"
+                 f"<drake:relaxation_time>{params.body.foot_relaxation_time_s:.12g}"
+                 "</drake:relaxation_time></drake:proximity_properties>"
                  f"</collision><visual name='foot'>{foot}<material><diffuse>0.1 0.1 0.1 1</diffuse>"
                  "</material></visual>")
     return (f"<link name='{leg}_{name}'><pose relative_to='{leg}_plane'>{_fmt(*origin)} 0 0 0 0"

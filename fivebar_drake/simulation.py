@@ -182,7 +182,7 @@ def simulate(scenario: Scenario, params: Params, progress=True):
                     not np.all(np.isfinite(setup.plant.GetPositions(
                         setup.plant.GetMyContextFromRoot(context)))):
                 raise RuntimeError(f"state is not finite at t = {t:.3f} s")
-    except RuntimeError as err:
+    except (RuntimeError, ValueError) as err:   # divergence, unreachable targets
         error = str(err)
         say(f"simulation stopped early: {error}")
     wall = time.perf_counter() - start

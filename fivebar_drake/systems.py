@@ -70,7 +70,8 @@ class FootIKController(LeafSystem):
 
     Balance (balance_gain > 0): each foot target's y is moved by balance_gain (dz + balance_rate_s
     dz') with dz the height change of the leg's hip from the body's tilt (hip positions hips_m in
-    the body frame), so a leg under a sinking hip extends and one under a rising hip shortens."""
+    the body frame), so a leg under a sinking hip extends and one under a rising hip shortens;
+    the offset is limited to +-b (the gait's step height)."""
 
     def __init__(self, params: Params, q_index, v_index, actuators, nq: int, nx: int,
                  period_s: float, kp: float, kd: float, body_q: int = -1, body_v: int = -1,
@@ -98,6 +99,8 @@ class FootIKController(LeafSystem):
         """Torque command (8) in actuation order from foot targets (legs, 2) m, velocities
         (legs, 2) m/s and the plant state vector."""
         p = self._params
+        stance = targets[:, 1] <= p.gait.y_home_m + 1e-9
+        load = np.where(stance, self._weight / max(int(stance.sum()), 1), 0.0)
         if self._balance[0] > 0:
             targets = targets.copy()
             targets[:, 1] += self._balance_offset(state)
@@ -105,8 +108,6 @@ class FootIKController(LeafSystem):
         jac = foot_jacobian(p.leg, pose)
         qd_des = np.linalg.solve(jac, velocities[..., None])[..., 0]
         q, qd = state[self._q_index], state[self._v_index]
-        stance = targets[:, 1] <= p.gait.y_home_m + 1e-9
-        load = np.where(stance, self._weight / max(int(stance.sum()), 1), 0.0)
         model = dataclasses.replace(self._model, foot_load_N=load)
         ff = static_torques(p, model, pose)
         tau = self._kp * wrap(pose.q - q) + self._kd * (qd_des - qd) + ff
@@ -122,7 +123,8 @@ class FootIKController(LeafSystem):
         dz = hips_w[:, 2] - self._hips[:, 2]
         dz_dot = np.cross(omega, hips_w)[:, 2]
         gain, rate = self._balance
-        return gain * (dz + rate * dz_dot)
+        limit = self._params.gait.b_m
+        return np.clip(gain * (dz + rate * dz_dot), -limit, limit)
 
     def _update(self, context, discrete_state):
         targets = self._targets.Eval(context).reshape(-1, 2)
