@@ -1,4 +1,5 @@
-"""Command line: `fivebar-drake analyze [--config FILE] [--out DIR]`."""
+"""Command line: `fivebar-drake analyze [--config FILE] [--out DIR]` and
+`fivebar-drake simulate [--scenario FILE] [--duration S] [--closure bushing|ball] [--out DIR]`."""
 
 from __future__ import annotations
 
@@ -36,6 +37,45 @@ def _analyze(args) -> int:
     return 0
 
 
+def _simulate(args) -> int:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from .analysis import analyze
+    from .recording import write_recording
+    from .scenario import load_scenario
+    from .sim_plots import write_sim_plots
+    from .simulation import simulate
+    from .summary import signals, summarize, write_summary
+
+    scenario = load_scenario(args.scenario, duration_s=args.duration, closure=args.closure)
+    params = scenario.load_params()
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    result, setup = simulate(scenario, params, progress=True)
+    sig = signals(result, setup, params)
+    summary = summarize(sig, scenario, params, setup, result,
+                        analyze(params).results["results"]["seed"])
+    written = write_summary(summary, params, out)
+    written += write_sim_plots(sig, setup.legs, params, out)
+    written.append(write_recording(out / "run.rrd", sig, setup, params, scenario, result.state))
+    print(f"{summary['closure']} closure: {summary['duration_s']:.2f} s simulated, "
+          f"{summary['real_time_factor']:.2f}x real time, worst loop gap "
+          f"{summary['max_loop_gap_m'] * 1e3:.4f} mm, forward {summary['forward_distance_m']:.3f} m")
+    for leg, motors in summary["legs"].items():
+        print("  " + leg + ": " + ", ".join(
+            f"{m} peak {v['peak_torque_Nm']:.2f} N m (static {v['static_torque_Nm']:.2f}, "
+            f"SF {v['safety_factor']:.2f} {v['verdict']})" for m, v in motors.items()))
+    print(f"wrote {len(written)} files to {out.resolve()}:")
+    for path in written:
+        print(f"  {path}")
+    print(f"open the recording with: rerun {out / 'run.rrd'}")
+    if result.error:
+        print(f"fivebar-drake: error: the run stopped early: {result.error}", file=sys.stderr)
+        return 1
+    return 0
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(prog="fivebar-drake", description=__doc__)
     sub = parser.add_subparsers(dest="command", required=True)
@@ -43,10 +83,16 @@ def main(argv=None) -> int:
     p.add_argument("--config", help="parameter file (TOML); default: the packaged parameters")
     p.add_argument("--out", default="out/analysis", help="output folder (default: %(default)s)")
     p.set_defaults(run=_analyze)
+    s = sub.add_parser("simulate", help="Drake simulation of the trotting quadruped")
+    s.add_argument("--scenario", help="scenario file (YAML); default: built-in trot scenario")
+    s.add_argument("--duration", type=float, help="simulated time in s (overrides the scenario)")
+    s.add_argument("--closure", help="loop closure: bushing or ball (overrides the scenario)")
+    s.add_argument("--out", default="out/simulation", help="output folder (default: %(default)s)")
+    s.set_defaults(run=_simulate)
     args = parser.parse_args(argv)
     try:
         return args.run(args)
-    except (ParameterError, UnreachableError) as err:
+    except (ParameterError, UnreachableError, ValueError) as err:
         print(f"fivebar-drake: error: {err}", file=sys.stderr)
         return 2
 

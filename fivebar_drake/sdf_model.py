@@ -78,7 +78,10 @@ def _link(params: Params, leg: str, name: str, origin, color: str) -> str:
 
 def _joint(params: Params, leg: str, name: str, parent: str, child: str, motor: bool) -> str:
     m = params.motor
-    limit = (f"<limit><effort>{m.peak_torque_Nm:.12g}</effort></limit></axis>"
+    # The plant clamps actuation at the effort limit; the motor model (systems.MotorModel) is the
+    # authority on saturation, and its output includes friction, which can add to the torque.
+    effort = m.peak_torque_Nm + m.coulomb_friction_Nm + m.viscous_friction_Nm_s * m.no_load_speed_rad_s
+    limit = (f"<limit><effort>{effort:.12g}</effort></limit></axis>"
              f"<drake:rotor_inertia>{m.rotor_inertia_kg_m2:.12g}</drake:rotor_inertia>"
              f"<drake:gear_ratio>{m.gear_ratio:.12g}</drake:gear_ratio>" if motor
              else "<limit><effort>0</effort></limit></axis>")

@@ -118,7 +118,7 @@ class FootIKController(LeafSystem):
     def _balance_offset(self, state):
         """Foot target y offsets (legs,) in m from the body's tilt (see class docstring)."""
         quat = state[self._body_q:self._body_q + 4]
-        hips_w = self._hips @ _rotation(*(quat / np.linalg.norm(quat))).T  # body -> world axes
+        hips_w = self._hips @ rotation_from_quaternion(*(quat / np.linalg.norm(quat))).T  # body -> world axes
         omega = state[self._body_w:self._body_w + 3]              # world frame, rad/s
         dz = hips_w[:, 2] - self._hips[:, 2]
         dz_dot = np.cross(omega, hips_w)[:, 2]
@@ -133,7 +133,7 @@ class FootIKController(LeafSystem):
         discrete_state.set_value(self._command, self.command(targets, velocities, state))
 
 
-def _rotation(w, x, y, z) -> np.ndarray:
+def rotation_from_quaternion(w, x, y, z) -> np.ndarray:
     """Rotation matrix of a unit quaternion (w, x, y, z)."""
     return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
                      [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
