@@ -76,6 +76,19 @@ def _simulate(args) -> int:
     return 0
 
 
+def _models(args) -> int:
+    from .scenario import load_scenario
+    from .sdf_model import write_models
+    from .simulation import closure_parameters
+
+    scenario = load_scenario(args.scenario, closure="bushing")
+    params = scenario.load_params()
+    _, bushing, _, _ = closure_parameters(scenario, params)
+    for path in write_models(params, bushing, Path(args.out)):
+        print(f"wrote {path}")
+    return 0
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(prog="fivebar-drake", description=__doc__)
     sub = parser.add_subparsers(dest="command", required=True)
@@ -89,6 +102,10 @@ def main(argv=None) -> int:
     s.add_argument("--closure", help="loop closure: bushing or ball (overrides the scenario)")
     s.add_argument("--out", default="out/simulation", help="output folder (default: %(default)s)")
     s.set_defaults(run=_simulate)
+    m = sub.add_parser("models", help="write the SDF models generated from the parameters")
+    m.add_argument("--scenario", help="scenario file (YAML) for the bushing design")
+    m.add_argument("--out", default="sdf", help="output folder (default: %(default)s)")
+    m.set_defaults(run=_models)
     args = parser.parse_args(argv)
     try:
         return args.run(args)

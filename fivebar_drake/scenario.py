@@ -35,7 +35,7 @@ class Scenario:
     duration_s: float = 10.0
     closure: str = "bushing"
     time_step_s: float = 0.0
-    target_loop_gap_m: float = 5e-5
+    target_loop_gap_m: float = 4e-6
     control_period_s: float = 0.002
     motor_period_s: float = 0.0005
     kp_Nm_rad: float = 30.0

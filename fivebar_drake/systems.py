@@ -58,6 +58,14 @@ class GaitSource(LeafSystem):
         output.SetFromVector(self.targets(context.get_time())[1].ravel())
 
 
+def weight_shares(foot_y, y_home: float, band: float) -> np.ndarray:
+    """Share of the robot's weight each foot carries (sums to 1), from the foot targets' heights
+    (m): 1 for a foot more than band below y_home, 0 for one more than band above, linear in
+    between, normalised; so a foot takes over its load smoothly at touchdown."""
+    w = np.clip(0.5 - (np.asarray(foot_y) - y_home) / (2.0 * band), 0.0, 1.0)
+    return w / w.sum() if w.sum() > 0 else np.full(len(w), 1.0 / len(w))
+
+
 class FootIKController(LeafSystem):
     """Foot targets and measured plant state -> motor torque commands, at its own rate.
 
@@ -65,8 +73,8 @@ class FootIKController(LeafSystem):
     Output port: "torque_command" (8) N*m in actuation order, held between updates.
     Every period_s: closed-form IK (knees-out) gives q_des, J_F^-1 v gives q_dot_des, and
     tau = kp wrap(q_des - q) + kd (q_dot_des - q_dot) + tau_ff, where tau_ff is the full model's
-    static torque at q_des with the robot's weight shared by the feet whose target is at or below
-    y_home (all four while standing, the diagonal pair in a trot).
+    static torque at q_des with the robot's weight shared by the feet whose target is below
+    y_home (all four while standing, the diagonal pair in a trot; see weight_shares).
 
     Balance (balance_gain > 0): each foot target's y is moved by balance_gain (dz + balance_rate_s
     dz') with dz the height change of the leg's hip from the body's tilt (hip positions hips_m in
@@ -99,8 +107,7 @@ class FootIKController(LeafSystem):
         """Torque command (8) in actuation order from foot targets (legs, 2) m, velocities
         (legs, 2) m/s and the plant state vector."""
         p = self._params
-        stance = targets[:, 1] <= p.gait.y_home_m + 1e-9
-        load = np.where(stance, self._weight / max(int(stance.sum()), 1), 0.0)
+        load = self._weight * weight_shares(targets[:, 1], p.gait.y_home_m, p.gait.b_m / 6)
         if self._balance[0] > 0:
             targets = targets.copy()
             targets[:, 1] += self._balance_offset(state)

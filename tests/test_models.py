@@ -1,0 +1,60 @@
+"""The SDF models: generated from the one parameter file, loadable without warnings, physical."""
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+from pydrake.multibody.plant import MultibodyPlant
+from pydrake.visualization import ModelVisualizer
+
+from fivebar_drake.plant_model import add_model
+from fivebar_drake.scenario import load_scenario
+from fivebar_drake.sdf_model import body_mass_properties, quadruped_sdf, single_leg_sdf
+from fivebar_drake.simulation import closure_parameters
+
+SDF = Path(__file__).parent.parent / "sdf"
+
+
+def test_committed_models_match_the_parameter_file(params):
+    scenario = load_scenario(closure="bushing")
+    _, bushing, _, _ = closure_parameters(scenario, params)
+    assert (SDF / "leg.sdf").read_text() == single_leg_sdf(params, "bushing", bushing), \
+        "sdf/leg.sdf is stale: run `fivebar-drake models`"
+    assert (SDF / "quadruped.sdf").read_text() == quadruped_sdf(params, "bushing", bushing), \
+        "sdf/quadruped.sdf is stale: run `fivebar-drake models`"
+
+
+@pytest.mark.parametrize("name", ["leg.sdf", "quadruped.sdf"])
+def test_models_load_in_model_visualizer_without_warnings(name):
+    visualizer = ModelVisualizer(publish_contacts=False)
+    visualizer.parser().SetStrictParsing()      # any parser warning becomes an error
+    visualizer.AddModels(SDF / name)
+    visualizer.Run(loop_once=True)
+
+
+@pytest.mark.parametrize("closure", ["bushing", "ball"])
+def test_quadruped_plant_is_physical(params, closure):
+    plant = MultibodyPlant(1e-3)
+    instance, legs = add_model(plant, params, "quadruped", closure,
+                               closure_parameters(load_scenario(closure="bushing"), params)[1])
+    plant.Finalize()
+    context = plant.CreateDefaultContext()
+    assert plant.CalcTotalMass(context) == pytest.approx(params.robot.total_mass_kg, rel=1e-12)
+    assert plant.num_actuators() == 8                         # knees C, D are passive
+    for leg in legs:
+        for joint in ("C", "D"):
+            assert not plant.HasJointActuatorNamed(f"{leg}_{joint}", instance)
+    for body in plant.GetBodyIndices(instance):
+        inertia = plant.get_body(body).default_rotational_inertia()
+        assert inertia.CouldBePhysicallyValid(), plant.get_body(body).name()
+    n_bushings = plant.num_force_elements() - 1               # minus gravity
+    assert n_bushings == (4 if closure == "bushing" else 0)
+    assert plant.num_constraints() == (4 if closure == "ball" else 0)
+
+
+def test_body_mass_layout(params):
+    mass, com, inertia = body_mass_properties(params)
+    links = 4 * sum(link.mass_kg for link in params.links.values())
+    assert mass + links == pytest.approx(params.robot.total_mass_kg)
+    assert np.allclose(com, 0.0, atol=1e-12)                  # symmetric layout
+    assert np.all(np.linalg.eigvalsh(inertia) > 0)
