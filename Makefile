@@ -15,12 +15,14 @@ $(STAMP): pyproject.toml
 
 demo: $(STAMP)
 	$(BIN)/fivebar-drake analyze --out $(OUT)/analysis
+	$(BIN)/fivebar-drake simulate --duration 3 --out $(OUT)/simulation
 
 test: $(STAMP)
 	$(BIN)/pytest
 
 bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_kinematics.py
+	$(BIN)/python benchmarks/bench_simulation.py
 
 clean:
 	rm -rf $(VENV) $(OUT)

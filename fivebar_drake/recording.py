@@ -130,3 +130,20 @@ def _log_series(rec, sig, setup, params):
             _scalars(rec, f"{base}/limit_neg", sig.t_log, np.full(n_log, -limit), "-limit")
     _scalars(rec, "body/height", sig.t_state, sig.body_p[:, 2], "height (m)")
     _scalars(rec, "body/forward_speed", sig.t_state, sig.body_v[:, 0], "forward speed (m/s)")
+
+
+def read_series(path: Path, entity: str) -> tuple[np.ndarray, np.ndarray]:
+    """Time (s) and values of a scalar entity of a recording, read back from the file."""
+    from rerun.chunk import RrdReader
+
+    chunks = RrdReader(str(path)).stream().filter(content=entity, is_static=False).to_chunks()
+    if not chunks:
+        raise ValueError(f"{path} has no entity {entity!r}")
+    t, v = [], []
+    for chunk in chunks:
+        batch = chunk.to_record_batch()
+        t.append(batch.column(TIMELINE).cast("int64").to_numpy() * 1e-9)
+        v.append(np.array([row[0] for row in batch.column("Scalars:scalars").to_pylist()]))
+    t, v = np.concatenate(t), np.concatenate(v)
+    order = np.argsort(t, kind="stable")
+    return t[order], v[order]

@@ -7,12 +7,11 @@ Units: s, m, rad, N*m. A YAML file names any subset of the fields, e.g.
     gait_frequency_hz: 1.5
 """
 
-from __future__ import annotations
-
 import dataclasses
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Optional
 
 from pydrake.common.yaml import yaml_load_typed
 
@@ -48,10 +47,10 @@ class Scenario:
     log_period_s: float = 0.002
     pose_rate_hz: float = 50.0
     params_file: str = ""
-    gait_a_m: float | None = None
-    gait_b_m: float | None = None
-    gait_y_home_m: float | None = None
-    gait_frequency_hz: float | None = None
+    gait_a_m: Optional[float] = None
+    gait_b_m: Optional[float] = None
+    gait_y_home_m: Optional[float] = None
+    gait_frequency_hz: Optional[float] = None
 
     def validate(self) -> None:
         """Raise ValueError naming the first bad field, its value and the allowed range."""
@@ -80,7 +79,7 @@ class Scenario:
         return params.with_gait(**overrides) if overrides else params
 
 
-def load_scenario(path: str | Path | None = None, **overrides) -> Scenario:
+def load_scenario(path: "str | Path | None" = None, **overrides) -> "Scenario":
     """Scenario from a YAML file (None: defaults) with keyword overrides; validated."""
     scenario = Scenario()
     if path is not None:
