@@ -140,9 +140,10 @@ def _static(params: Params, model: DynamicsModel, lj):
     return link_weight, foot_load
 
 
-def static_torques(params: Params, model: DynamicsModel, pose: LegPose) -> np.ndarray:
-    """Torque (..., 2) in N*m that holds the poses at rest under the model's loads."""
-    return sum(_static(params, model, link_jacobians(params.leg, params.links, pose)))
+def static_torques(params: Params, model: DynamicsModel, pose: LegPose, lj=None) -> np.ndarray:
+    """Torque (..., 2) in N*m that holds the poses at rest under the model's loads (lj: the
+    poses' LinkJacobians if already computed)."""
+    return sum(_static(params, model, lj or link_jacobians(params.leg, params.links, pose)))
 
 
 def torques(params: Params, model: DynamicsModel, pose: LegPose, qd, qdd) -> TorqueBreakdown:

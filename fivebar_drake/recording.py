@@ -3,11 +3,11 @@
 Entities (timeline "sim_time"):
 - world/ground, world/body (box + pose), world/legs/<leg> (link segments), world/feet/<leg>
   (foot trace), at pose_rate_hz;
-- joints/<leg>/<A|B>/angle, joints/<leg>/<A|B>/speed (every plant step);
+- joints/<leg>/<A|B>/angle, joints/<leg>/<A|B>/speed (every plant step, at most 1 kHz);
 - torque/<leg>/<A|B>/{commanded, applied, static_contact, static_seed, limit_pos, limit_neg}
   (every log sample);
-- loop_gap/<leg> (every plant step), contact/<leg>/{normal, tangential} (leg plane, N),
-  body/height, body/forward_speed (every plant step).
+- loop_gap/<leg> (worst gap of each 1 ms bin of plant steps), contact/<leg>/{normal,
+  tangential} (leg plane, N), body/height, body/forward_speed (at most 1 kHz).
 """
 
 from __future__ import annotations
@@ -25,6 +25,7 @@ from .summary import MOTORS, Signals
 
 TIMELINE = "sim_time"
 RECORDING_ID = "fivebar_drake-simulation"
+STEP_SERIES_RATE_HZ = 1000.0   # per-step series (gap, joints, body) are binned to 1 kHz
 
 
 def blueprint(legs) -> rrb.Blueprint:
@@ -111,25 +112,35 @@ def _log_scene(rec, sig, setup, params, scenario, state):
                                                      colors=[[230, 80, 60]]), static=True)
 
 
+def step_bins(t, rate_hz: float) -> np.ndarray:
+    """Start indices of bins of the per-step times t, at most rate_hz bins per second (every
+    step when the plant step is longer)."""
+    edges = np.searchsorted(t, np.arange(t[0], t[-1] + 1.0 / rate_hz, 1.0 / rate_hz))
+    return np.unique(edges[edges < len(t)])
+
+
 def _log_series(rec, sig, setup, params):
     limit = params.motor.peak_torque_Nm
     n_log = len(sig.t_log)
+    bins = step_bins(sig.t_state, STEP_SERIES_RATE_HZ)
+    t_bins = sig.t_state[bins]
     for i, leg in enumerate(setup.legs):
-        _scalars(rec, f"loop_gap/{leg}", sig.t_state, sig.gap[i], leg)
+        # the worst gap of every bin, so no peak between samples is lost
+        _scalars(rec, f"loop_gap/{leg}", t_bins, np.maximum.reduceat(sig.gap[i], bins), leg)
         _scalars(rec, f"contact/{leg}/tangential", sig.t_log, sig.foot_force_plane[:, i, 0])
         _scalars(rec, f"contact/{leg}/normal", sig.t_log, sig.foot_force_plane[:, i, 1])
         for j, m in enumerate(MOTORS):
             base = f"torque/{leg}/{m}"
-            _scalars(rec, f"joints/{leg}/{m}/angle", sig.t_state, sig.q[:, i, j])
-            _scalars(rec, f"joints/{leg}/{m}/speed", sig.t_state, sig.qd[:, i, j])
+            _scalars(rec, f"joints/{leg}/{m}/angle", t_bins, sig.q[bins, i, j])
+            _scalars(rec, f"joints/{leg}/{m}/speed", t_bins, sig.qd[bins, i, j])
             for name, values in (("commanded", sig.command), ("applied", sig.applied),
                                  ("static_contact", sig.static_contact),
                                  ("static_seed", sig.static_seed)):
                 _scalars(rec, f"{base}/{name}", sig.t_log, values[:, i, j], f"{m} {name}")
             _scalars(rec, f"{base}/limit_pos", sig.t_log, np.full(n_log, limit), "+limit")
             _scalars(rec, f"{base}/limit_neg", sig.t_log, np.full(n_log, -limit), "-limit")
-    _scalars(rec, "body/height", sig.t_state, sig.body_p[:, 2], "height (m)")
-    _scalars(rec, "body/forward_speed", sig.t_state, sig.body_v[:, 0], "forward speed (m/s)")
+    _scalars(rec, "body/height", t_bins, sig.body_p[bins, 2], "height (m)")
+    _scalars(rec, "body/forward_speed", t_bins, sig.body_v[bins, 0], "forward speed (m/s)")
 
 
 def read_series(path: Path, entity: str) -> tuple[np.ndarray, np.ndarray]:

@@ -36,7 +36,7 @@ class Scenario:
     time_step_s: float = 0.0
     target_loop_gap_m: float = 4e-6
     control_period_s: float = 0.002
-    motor_period_s: float = 0.0005
+    motor_period_s: float = 0.001
     kp_Nm_rad: float = 30.0
     kd_Nm_s_rad: float = 0.08
     balance_gain: float = 1.0

@@ -15,7 +15,7 @@ from pydrake.systems.framework import BasicVector, LeafSystem
 
 from .dynamics import full_model, static_torques
 from .gait import wrap
-from .jacobians import foot_jacobian
+from .jacobians import link_jacobians
 from .kinematics import inverse
 from .params import Gait, Motor, Params
 
@@ -112,11 +112,11 @@ class FootIKController(LeafSystem):
             targets = targets.copy()
             targets[:, 1] += self._balance_offset(state)
         pose = inverse(p.leg, targets)
-        jac = foot_jacobian(p.leg, pose)
-        qd_des = np.linalg.solve(jac, velocities[..., None])[..., 0]
+        lj = link_jacobians(p.leg, p.links, pose)
+        qd_des = np.linalg.solve(lj.jf, velocities[..., None])[..., 0]
         q, qd = state[self._q_index], state[self._v_index]
         model = dataclasses.replace(self._model, foot_load_N=load)
-        ff = static_torques(p, model, pose)
+        ff = static_torques(p, model, pose, lj)
         tau = self._kp * wrap(pose.q - q) + self._kd * (qd_des - qd) + ff
         out = np.zeros(2 * self._legs)
         out[self._actuators.ravel()] = tau.ravel()
@@ -128,7 +128,7 @@ class FootIKController(LeafSystem):
         hips_w = self._hips @ rotation_from_quaternion(*(quat / np.linalg.norm(quat))).T  # body -> world axes
         omega = state[self._body_w:self._body_w + 3]              # world frame, rad/s
         dz = hips_w[:, 2] - self._hips[:, 2]
-        dz_dot = np.cross(omega, hips_w)[:, 2]
+        dz_dot = omega[0] * hips_w[:, 1] - omega[1] * hips_w[:, 0]   # (omega x r)_z
         gain, rate = self._balance
         limit = self._params.gait.b_m
         return np.clip(gain * (dz + rate * dz_dot), -limit, limit)
