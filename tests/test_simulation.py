@@ -18,12 +18,31 @@ from fivebar_drake.summary import signals
 TEST_DURATION_S = 3.0   # 0.5 s standing, 1 s ramp, 1.5 s full trot
 
 
-@pytest.fixture(scope="module", params=["bushing", "ball"])
-def run(request):
-    scenario = load_scenario(duration_s=TEST_DURATION_S, closure=request.param)
-    params = scenario.load_params()
-    result, setup = simulate(scenario, params, progress=False)
-    return scenario, params, result, setup, signals(result, setup, params)
+@pytest.fixture(scope="module")
+def runs():
+    """The test trot with each closure: closure -> (scenario, params, result, setup, signals)."""
+    out = {}
+    for closure in ("bushing", "ball"):
+        scenario = load_scenario(duration_s=TEST_DURATION_S, closure=closure)
+        params = scenario.load_params()
+        result, setup = simulate(scenario, params, progress=False)
+        out[closure] = scenario, params, result, setup, signals(result, setup, params)
+    return out
+
+
+@pytest.fixture(params=["bushing", "ball"])
+def run(request, runs):
+    return runs[request.param]
+
+
+def test_closures_give_the_same_gait_and_comparable_torques(runs):
+    (scenario, _, _, _, a), (_, _, _, _, b) = runs["ball"], runs["bushing"]
+    assert np.array_equal(a.t_log, b.t_log)
+    assert np.allclose(a.command[:1], b.command[:1])             # same start, same gait
+    trot = a.t_log >= scenario.stand_s + scenario.ramp_s
+    mean_a, mean_b = np.abs(a.applied[trot]).mean(), np.abs(b.applied[trot]).mean()
+    assert mean_b == pytest.approx(mean_a, rel=0.15)
+    assert np.corrcoef(a.applied.ravel(), b.applied.ravel())[0, 1] > 0.7
 
 
 def test_loop_gap_below_a_tenth_of_a_millimetre(run):
