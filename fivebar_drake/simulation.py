@@ -44,7 +44,6 @@ class Setup:
     bushing: object
     m_eff_kg: float
     loop_force_N: float
-    gait_source: object
     loggers: dict = field(default_factory=dict)
 
 
@@ -54,6 +53,11 @@ def closure_parameters(scenario: Scenario, params: Params):
     if scenario.closure == "ball":
         return scenario.time_step_s or BALL_TIME_STEP_S, None, m_eff, force
     bushing, dt = bushing_parameters(m_eff, force, scenario.target_loop_gap_m)
+    if scenario.time_step_s > dt:
+        raise ValueError(
+            f"scenario.time_step_s = {scenario.time_step_s!r}: the bushing (k = "
+            f"{bushing.stiffness_N_m:.3g} N/m, m_eff = {m_eff * 1e3:.2f} g) is stable up to "
+            f"{dt:.3g} s; use 0 (derived) or a smaller step, or a larger target_loop_gap_m")
     return scenario.time_step_s or dt, bushing, m_eff, force
 
 
@@ -117,7 +121,7 @@ def build_diagram(scenario: Scenario, params: Params):
         logger.set_name(f"log_{name}")
     setup = Setup(plant=plant, instance=instance, legs=legs, indices=indices,
                   time_step_s=time_step, bushing=bushing, m_eff_kg=m_eff, loop_force_N=force,
-                  gait_source=gait.targets, loggers=loggers)
+                  loggers=loggers)
     return builder.Build(), setup
 
 
@@ -126,7 +130,7 @@ def standing_height(params: Params) -> float:
     return params.body.foot_radius_m - params.gait.y_home_m - params.body.hip_z_m
 
 
-def set_initial_state(diagram, context, setup: Setup, params: Params) -> None:
+def set_initial_state(context, setup: Setup, params: Params) -> None:
     """Standing pose, every loop closed exactly (closed-form IK), at rest, feet on the ground."""
     plant = setup.plant
     pc = plant.GetMyMutableContextFromRoot(context)
@@ -164,7 +168,7 @@ def simulate(scenario: Scenario, params: Params, progress=True):
     diagram, setup = build_diagram(scenario, params)
     simulator = Simulator(diagram)
     context = simulator.get_mutable_context()
-    set_initial_state(diagram, context, setup, params)
+    set_initial_state(context, setup, params)
     simulator.Initialize()
     say = (lambda text: print(text, file=sys.stderr, flush=True)) if progress else (lambda text: None)
     say(f"simulating {scenario.duration_s:g} s, closure {scenario.closure}, "
@@ -178,10 +182,10 @@ def simulate(scenario: Scenario, params: Params, progress=True):
             simulator.AdvanceTo(t)
             wall = time.perf_counter() - start
             say(f"  t = {t:6.2f} s / {scenario.duration_s:g} s  ({t / wall:4.2f}x real time)")
-            if not np.all(np.isfinite(context.get_continuous_state_vector().CopyToVector())) or \
-                    not np.all(np.isfinite(setup.plant.GetPositions(
-                        setup.plant.GetMyContextFromRoot(context)))):
-                raise RuntimeError(f"state is not finite at t = {t:.3f} s")
+            plant_state = setup.plant.GetPositionsAndVelocities(
+                setup.plant.GetMyContextFromRoot(context))
+            if not np.all(np.isfinite(plant_state)):
+                raise RuntimeError(f"the plant state is not finite at t = {t:.3f} s (diverged)")
     except (RuntimeError, ValueError) as err:   # divergence, unreachable targets
         error = str(err)
         say(f"simulation stopped early: {error}")

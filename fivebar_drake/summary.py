@@ -38,6 +38,7 @@ def _period(t) -> float:
 
 def moving_average(x, n: int):
     """Centred moving average over n samples along axis 0 (edges use the available samples)."""
+    n = min(n, len(x))
     if n <= 1:
         return x
     kernel = np.ones(n)
@@ -100,6 +101,10 @@ def signals(result: SimResult, setup: Setup, params: Params) -> Signals:
         static_seed=static_seed, foot_force_plane=f_plane)
 
 
+def _ratio(a: float, b: float) -> float:
+    return a / b if b else float("nan")
+
+
 def _peak(x):
     return float(np.max(np.abs(x))) if np.size(x) else float("nan")
 
@@ -108,9 +113,9 @@ def summarize(sig: Signals, scenario: Scenario, params: Params, setup: Setup,
               result: SimResult, seed_analysis: dict) -> dict:
     """The summary.json dictionary (SI units). seed_analysis: analysis results of the seed model
     (report.json's results.seed), for the 'was the seed optimistic' verdict."""
-    start = scenario.stand_s + scenario.ramp_s
-    if sig.t_log[-1] <= start:
-        start = scenario.stand_s
+    # the trot at full size; a shorter (or failed) run falls back to what it has
+    start = next(s for s in (scenario.stand_s + scenario.ramp_s, scenario.stand_s, 0.0)
+                 if sig.t_log[-1] > s or s == 0.0)
     win = sig.t_log >= start
     win_state = sig.t_state >= start
     motor = params.motor
@@ -121,14 +126,14 @@ def summarize(sig: Signals, scenario: Scenario, params: Params, setup: Setup,
             applied = sig.applied[win, i, j]
             peak = _peak(applied)
             static = _peak(sig.static_contact[win, i, j])
-            sf = motor.peak_torque_Nm / peak
+            sf = _ratio(motor.peak_torque_Nm, peak)
             legs[leg][name] = {
                 "peak_torque_Nm": peak,
                 "rms_torque_Nm": float(np.sqrt(np.mean(applied**2))),
                 "static_torque_Nm": static,
                 "seed_static_torque_Nm": _peak(sig.static_seed[win, i, j]),
-                "dynamic_to_static_ratio": peak / static,
-                "dynamic_to_seed_static_ratio": peak / _peak(sig.static_seed[win, i, j]),
+                "dynamic_to_static_ratio": _ratio(peak, static),
+                "dynamic_to_seed_static_ratio": _ratio(peak, _peak(sig.static_seed[win, i, j])),
                 "safety_factor": sf,
                 "verdict": verdict(params, sf),
                 "saturated_fraction": float(np.mean(sig.saturated[win, i, j])),
@@ -163,7 +168,8 @@ def summarize(sig: Signals, scenario: Scenario, params: Params, setup: Setup,
         "max_tilt_deg": float(tilt.max()),
         "forward_distance_m": float(p[-1, 0] - p[0, 0]),
         "mean_forward_speed_m_s": float((p[win_state][-1, 0] - p[win_state][0, 0])
-                                        / max(trot_t[-1] - trot_t[0], 1e-9)),
+                                        / (trot_t[-1] - trot_t[0])) if len(trot_t) > 1
+                                  else float("nan"),
         "balance_feedback": {"gain": scenario.balance_gain, "rate_s": scenario.balance_rate_s},
         "seed_peak_torque_Nm": seed_peak,
         "simulated_peak_torque_Nm": worst,

@@ -9,7 +9,7 @@ from rerun.chunk import RrdReader
 
 from fivebar_drake.cli import main
 from fivebar_drake.jacobians import foot_jacobian
-from fivebar_drake.kinematics import forward
+from fivebar_drake.kinematics import UnreachableError, forward
 from fivebar_drake.recording import read_series
 from fivebar_drake.scenario import load_scenario
 from fivebar_drake.simulation import simulate, standing_height
@@ -154,3 +154,32 @@ def test_unknown_scenario_key(tmp_path, capsys):
     path.write_text("durration_s: 1.0\n")
     assert main(["simulate", "--scenario", str(path), "--out", str(tmp_path)]) == 2
     assert "durration_s" in capsys.readouterr().err
+
+
+def test_bushing_time_step_beyond_stability_is_refused(tmp_path, capsys):
+    path = tmp_path / "coarse.yaml"
+    path.write_text("time_step_s: 0.0005\n")
+    assert main(["simulate", "--scenario", str(path), "--out", str(tmp_path)]) == 2
+    assert "scenario.time_step_s = 0.0005: the bushing (k = 8.48e+06 N/m" in capsys.readouterr().err
+
+
+def test_failed_run_keeps_what_was_simulated(tmp_path, capsys, monkeypatch):
+    """A run that fails midway still writes its summary, plots and recording, and exits 1."""
+    from fivebar_drake import systems
+
+    original = systems.FootIKController.command
+    calls = []
+
+    def failing(self, targets, velocities, state):
+        calls.append(1)
+        if len(calls) > 150:                                    # t = 0.3 s at 500 Hz
+            raise UnreachableError("foot target out of reach (injected)")
+        return original(self, targets, velocities, state)
+
+    monkeypatch.setattr(systems.FootIKController, "command", failing)
+    out = tmp_path / "sim"
+    assert main(["simulate", "--duration", "1.0", "--closure", "ball", "--out", str(out)]) == 1
+    assert "stopped early: foot target out of reach (injected)" in capsys.readouterr().err
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["completed"] is False and 0.25 < summary["duration_s"] < 0.35
+    assert (out / "run.rrd").stat().st_size > 10_000 and (out / "sim_torques.png").exists()
