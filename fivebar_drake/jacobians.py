@@ -22,6 +22,14 @@ def _inv_times(a11, a12, a21, a22, x, y):
     return (a22 * x - a12 * y) / det, (a11 * y - a21 * x) / det
 
 
+def _matrix(m11, m12, m21, m22) -> np.ndarray:
+    """Stack elementwise entries (arrays of one shape, or scalars) into matrices (..., 2, 2)."""
+    shape = np.broadcast(m11, m12, m21, m22).shape
+    out = np.empty(shape + (2, 2))
+    out[..., 0, 0], out[..., 0, 1], out[..., 1, 0], out[..., 1, 1] = m11, m12, m21, m22
+    return out
+
+
 def _loop_matrix(pose: LegPose):
     """Rows (E - C) and (E - D) of the loop-closure matrix A (seed 003 section 3.3)."""
     e = pose.e
@@ -39,11 +47,9 @@ def point_jacobians(leg: LegGeometry, pose: LegPose) -> dict[str, np.ndarray]:
     b11 = ra_x * a12 - ra_y * a11          # l1 [(ye - yc) cos(tA) - (xe - xc) sin(tA)]
     b22 = rb_x * a22 - rb_y * a21          # l2 [(ye - yd) cos(tB) - (xe - xd) sin(tB)]
     det = a11 * a22 - a12 * a21
-    zero = np.zeros_like(ra_x)
-    jc = np.stack([np.stack([-ra_y, zero], -1), np.stack([ra_x, zero], -1)], -2)
-    jd = np.stack([np.stack([zero, -rb_y], -1), np.stack([zero, rb_x], -1)], -2)
-    je = np.stack([np.stack([a22 * b11, -a12 * b22], -1),
-                   np.stack([-a21 * b11, a11 * b22], -1)], -2) / det[..., None, None]
+    jc = _matrix(-ra_y, 0.0, ra_x, 0.0)
+    jd = _matrix(0.0, -rb_y, 0.0, rb_x)
+    je = _matrix(a22 * b11 / det, -a12 * b22 / det, -a21 * b11 / det, a11 * b22 / det)
     k = leg.ef_m / leg.de_m
     return {"C": jc, "D": jd, "E": je, "F": (1.0 + k) * je - k * jd}
 

@@ -220,9 +220,18 @@ def markdown(summary: dict, params: Params) -> str:
     return "\n".join(lines) + "\n"
 
 
+def _finite(value):
+    """The summary with non-finite numbers (a diverged run) as null, so the JSON stays valid."""
+    if isinstance(value, dict):
+        return {k: _finite(v) for k, v in value.items()}
+    if isinstance(value, float) and not np.isfinite(value):
+        return None
+    return value
+
+
 def write_summary(summary: dict, params: Params, out_dir: Path) -> list[Path]:
     out_dir.mkdir(parents=True, exist_ok=True)
     md, js = out_dir / "summary.md", out_dir / "summary.json"
     md.write_text(markdown(summary, params))
-    js.write_text(json.dumps(summary, indent=2) + "\n")
+    js.write_text(json.dumps(_finite(summary), indent=2, allow_nan=False) + "\n")
     return [md, js]

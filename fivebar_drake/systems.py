@@ -32,6 +32,7 @@ class GaitSource(LeafSystem):
         super().__init__()
         self._gait, self._phases = gait, np.asarray(phases, dtype=float)
         self._start, self._ramp = start_s, ramp_s
+        self._last = None
         n = 2 * len(self._phases)
         self.DeclareVectorOutputPort("foot_targets", n, self._calc_targets)
         self.DeclareVectorOutputPort("foot_velocities", n, self._calc_velocities)
@@ -52,10 +53,17 @@ class GaitSource(LeafSystem):
         return pos, vel
 
     def _calc_targets(self, context, output: BasicVector):
-        output.SetFromVector(self.targets(context.get_time())[0].ravel())
+        output.SetFromVector(self._cached(context.get_time())[0])
 
     def _calc_velocities(self, context, output: BasicVector):
-        output.SetFromVector(self.targets(context.get_time())[1].ravel())
+        output.SetFromVector(self._cached(context.get_time())[1])
+
+    def _cached(self, t: float):
+        """Both outputs at time t, computed once per time (the two ports are read together)."""
+        if self._last is None or self._last[0] != t:
+            pos, vel = self.targets(t)
+            self._last = (t, pos.ravel(), vel.ravel())
+        return self._last[1:]
 
 
 def weight_shares(foot_y, y_home: float, band: float) -> np.ndarray:
