@@ -47,7 +47,6 @@ def loop_load(params: Params):
     for k in range(len(x)):
         q[idx.q] = x[k]
         plant.SetPositions(context, q)
-        plant.SetVelocities(context, np.zeros(plant.num_velocities()))
         jc, _ = loop_jacobian(plant, context, instance, params, "leg")
         m_inv = np.linalg.inv(plant.CalcMassMatrix(context))
         m_eff = min(m_eff, 1.0 / np.max(np.linalg.eigvalsh(jc @ m_inv @ jc.T)))
