@@ -56,7 +56,8 @@ def main():
     q, jac = ik_and_jacobian(params.leg, foot)
     err = np.max(np.abs(forward(params.leg, q).f - foot))
     q_loop, j_loop = ik_and_jacobian(params.leg, few[-1])
-    same = np.allclose(q_loop, q[args.loop_n - 1], atol=0) and np.allclose(j_loop, jac[args.loop_n - 1], atol=0)
+    last = args.loop_n - 1
+    same = np.array_equal(q_loop, q[last]) and np.array_equal(j_loop, jac[last])
 
     rate_vec = args.n / t_vec
     rate_loop = args.loop_n / t_loop

@@ -13,11 +13,10 @@ from __future__ import annotations
 
 import numpy as np
 from pydrake.multibody.plant import MultibodyPlant
-from pydrake.multibody.tree import JacobianWrtVariable
 
 from .dynamics import trot_model
 from .gait import sample_gait
-from .inverse_dynamics import loop_jacobian
+from .inverse_dynamics import loop_jacobian, plane_point_jacobian
 from .params import Params
 from .plant_model import add_model, leg_indices, tree_positions
 from .sdf_model import Bushing
@@ -51,18 +50,12 @@ def loop_load(params: Params):
         m_inv = np.linalg.inv(plant.CalcMassMatrix(context))
         m_eff = min(m_eff, 1.0 / np.max(np.linalg.eigvalsh(jc @ m_inv @ jc.T)))
         # static loop force: passive joints carry no torque, the foot load goes through E
-        tau_tree = -_foot_jacobian(plant, context, instance, params).T @ np.array([0.0, load[k]])
+        j_foot, _ = plane_point_jacobian(plant, context, instance, "leg", "DE",
+                                         params.leg.de_m + params.leg.ef_m)
+        tau_tree = -j_foot.T @ np.array([0.0, load[k]])
         lam = np.linalg.solve(jc[:, idx.v[2:]].T, tau_tree[idx.v[2:]])
         force = max(force, float(np.linalg.norm(lam)))
     return m_eff, force
-
-
-def _foot_jacobian(plant, context, instance, params):
-    plane = plant.GetFrameByName("leg_plane", instance)
-    frame = plant.GetBodyByName("leg_DE", instance).body_frame()
-    p = np.array([params.leg.de_m + params.leg.ef_m, 0.0, 0.0])
-    return plant.CalcJacobianTranslationalVelocity(context, JacobianWrtVariable.kV, frame, p,
-                                                   plane, plane)[:2]
 
 
 def bushing_parameters(m_eff_kg: float, loop_force_N: float, target_gap_m: float,

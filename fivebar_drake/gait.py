@@ -41,8 +41,10 @@ def track_modes(leg: LegGeometry, foot, start_mode=KNEES_OUT) -> tuple[LegPose, 
     for k in range(1, len(foot)):
         dist = np.abs(wrap(q_all[:, k] - q_all[choice[k - 1], k - 1])).sum(-1)
         choice[k] = int(np.nanargmin(dist))
-    pick = lambda attr: np.stack([getattr(s, attr) for s in solutions])[choice, np.arange(len(foot))]
-    pose = LegPose(q=pick("q"), c=pick("c"), d=pick("d"), e=pick("e"), f=foot)
+    rows = np.arange(len(foot))
+    picked = {name: np.stack([getattr(s, name) for s in solutions])[choice, rows]
+              for name in ("q", "c", "d", "e")}
+    pose = LegPose(**picked, f=foot)
     mode_index = np.array([ALL_MODES.index(order[c]) for c in choice])
     return pose, mode_index
 

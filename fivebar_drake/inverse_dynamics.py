@@ -18,18 +18,25 @@ from .params import Params
 from .plant_model import LegIndices, tree_positions
 
 
+def plane_point_jacobian(plant: MultibodyPlant, context, instance, leg: str, link: str,
+                         x_m: float):
+    """Jacobian (2, nv) and bias acceleration J_dot v (2,) of the point at x_m (m) along a link
+    of the leg, measured and expressed in the leg plane."""
+    plane = plant.GetFrameByName(f"{leg}_plane", instance)
+    frame = plant.GetBodyByName(f"{leg}_{link}", instance).body_frame()
+    p = np.array([x_m, 0.0, 0.0])
+    jac = plant.CalcJacobianTranslationalVelocity(context, JacobianWrtVariable.kV, frame, p,
+                                                  plane, plane)[:2]
+    bias = plant.CalcBiasTranslationalAcceleration(context, JacobianWrtVariable.kV, frame, p,
+                                                   plane, plane)[:2, 0]
+    return jac, bias
+
+
 def loop_jacobian(plant: MultibodyPlant, context, instance, params: Params, leg: str):
     """J_c (2, nv) and bias J_c_dot v (2,) of the gap p(E on DE) - p(E on CE), in the leg plane."""
-    plane = plant.GetFrameByName(f"{leg}_plane", instance)
-    rows, bias = [], []
-    for link, length in (("DE", params.leg.de_m), ("CE", params.leg.ce_m)):
-        frame = plant.GetBodyByName(f"{leg}_{link}", instance).body_frame()
-        p = np.array([length, 0.0, 0.0])
-        rows.append(plant.CalcJacobianTranslationalVelocity(
-            context, JacobianWrtVariable.kV, frame, p, plane, plane)[:2])
-        bias.append(plant.CalcBiasTranslationalAcceleration(
-            context, JacobianWrtVariable.kV, frame, p, plane, plane)[:2, 0])
-    return rows[0] - rows[1], bias[0] - bias[1]
+    j_de, b_de = plane_point_jacobian(plant, context, instance, leg, "DE", params.leg.de_m)
+    j_ce, b_ce = plane_point_jacobian(plant, context, instance, leg, "CE", params.leg.ce_m)
+    return j_de - j_ce, b_de - b_ce
 
 
 def projected_inverse_dynamics(plant: MultibodyPlant, context, instance, params: Params,

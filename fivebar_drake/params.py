@@ -159,7 +159,8 @@ class Motor:
 @dataclass(frozen=True)
 class Body:
     """Body box (m), hip placement of the leg planes (m), link width (m), foot sphere radius (m),
-    its friction coefficient, contact stiffness (N/m) and dissipation time scale (s). Assumptions: the seeds give no body dimensions."""
+    its friction coefficient, contact stiffness (N/m) and dissipation time scale (s).
+    Assumptions: the seeds give no body dimensions."""
 
     length_m: float
     width_m: float

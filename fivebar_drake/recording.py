@@ -60,13 +60,13 @@ def _link_points(setup: Setup, params: Params, state_rows: np.ndarray):
     nq = plant.num_positions()
     g = params.leg
     ends = {"AC": g.ac_m, "BD": g.bd_m, "CE": g.ce_m, "DE": g.de_m + g.ef_m}
+    bodies = [{n: plant.GetBodyByName(f"{leg}_{n}", setup.instance) for n in ends}
+              for leg in setup.legs]
     out = np.zeros((len(state_rows), len(setup.legs), 6, 3))
     for f, row in enumerate(state_rows):
         plant.SetPositions(context, row[:nq])
-        for i, leg in enumerate(setup.legs):
-            pose = {n: plant.EvalBodyPoseInWorld(context, plant.GetBodyByName(f"{leg}_{n}",
-                                                                             setup.instance))
-                    for n in ends}
+        for i in range(len(setup.legs)):
+            pose = {n: plant.EvalBodyPoseInWorld(context, body) for n, body in bodies[i].items()}
             tip = {n: pose[n].multiply(np.array([ends[n], 0.0, 0.0])) for n in ends}
             e = pose["DE"].multiply(np.array([g.de_m, 0.0, 0.0]))
             out[f, i] = [pose["AC"].translation(), tip["AC"], e, tip["DE"],

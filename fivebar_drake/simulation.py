@@ -115,7 +115,6 @@ def build_diagram(scenario: Scenario, params: Params):
         "applied": LogVectorOutput(motor.GetOutputPort("applied_torque"), builder, period),
         "saturated": LogVectorOutput(motor.GetOutputPort("saturated"), builder, period),
         "foot_forces": LogVectorOutput(feet.GetOutputPort("foot_forces"), builder, period),
-        "foot_targets": LogVectorOutput(gait.GetOutputPort("foot_targets"), builder, period),
     }
     for name, logger in loggers.items():
         logger.set_name(f"log_{name}")
@@ -147,8 +146,8 @@ def set_initial_state(context, setup: Setup, params: Params) -> None:
 @dataclass
 class SimResult:
     """Logged signals. t_state (steps) and state (steps, nx); t_log (samples) and per-sample
-    command/applied/saturated (samples, 8, actuation order), foot_forces (samples, 4, 3) N world,
-    foot_targets (samples, 4, 2) m; wall time (s); error text if the run stopped early."""
+    command/applied/saturated (samples, 8, actuation order), foot_forces (samples, 4, 3) N world;
+    wall time (s); error text if the run stopped early."""
 
     t_state: np.ndarray
     state: np.ndarray
@@ -157,7 +156,6 @@ class SimResult:
     applied: np.ndarray
     saturated: np.ndarray
     foot_forces: np.ndarray
-    foot_targets: np.ndarray
     wall_s: float
     error: str = ""
 
@@ -197,6 +195,5 @@ def simulate(scenario: Scenario, params: Params, progress=True):
         t_state=logs["state"].sample_times().copy(), state=logs["state"].data().T.copy(),
         t_log=logs["command"].sample_times()[:n_log].copy(),
         command=data["command"], applied=data["applied"], saturated=data["saturated"],
-        foot_forces=data["foot_forces"].reshape(n_log, -1, 3),
-        foot_targets=data["foot_targets"].reshape(n_log, -1, 2), wall_s=wall, error=error)
+        foot_forces=data["foot_forces"].reshape(n_log, -1, 3), wall_s=wall, error=error)
     return result, setup

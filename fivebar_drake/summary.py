@@ -26,7 +26,7 @@ from .plant_model import loop_gaps
 from .scenario import Scenario
 from .sdf_model import plane_rotation
 from .simulation import Setup, SimResult
-from .systems import rotation_from_quaternion
+from .systems import body_rotation
 
 MOTORS = ("A", "B")
 CONTACT_AVERAGE_S = 0.02   # contact forces chatter at touchdown: average them over 20 ms
@@ -87,8 +87,7 @@ def signals(result: SimResult, setup: Setup, params: Params) -> Signals:
     k = np.clip(np.searchsorted(result.t_state, result.t_log, side="right") - 1, 0, len(st) - 1)
     q_log = q[k]
     pose = forward(params.leg, q_log)
-    quat = st[k, qs:qs + 4]
-    r_plane = np.array([rotation_from_quaternion(*(v / np.linalg.norm(v))) @ plane_rotation() for v in quat])
+    r_plane = np.array([body_rotation(v) @ plane_rotation() for v in st[k, qs:qs + 4]])
     f_plane = np.einsum("sji,slj->sli", r_plane, result.foot_forces)[..., :2]
     f_plane = moving_average(f_plane, max(1, round(CONTACT_AVERAGE_S / _period(result.t_log))))
     static_contact = -np.einsum("slji,slj->sli", foot_jacobian(params.leg, pose), f_plane)

@@ -9,7 +9,9 @@ from __future__ import annotations
 import dataclasses
 
 import numpy as np
+from pydrake.common.eigen_geometry import Quaternion
 from pydrake.common.value import AbstractValue
+from pydrake.math import RotationMatrix
 from pydrake.multibody.plant import ContactResults
 from pydrake.systems.framework import BasicVector, LeafSystem
 
@@ -32,7 +34,6 @@ class GaitSource(LeafSystem):
         super().__init__()
         self._gait, self._phases = gait, np.asarray(phases, dtype=float)
         self._start, self._ramp = start_s, ramp_s
-        self._last = None
         n = 2 * len(self._phases)
         self.DeclareVectorOutputPort("foot_targets", n, self._calc_targets)
         self.DeclareVectorOutputPort("foot_velocities", n, self._calc_velocities)
@@ -53,17 +54,10 @@ class GaitSource(LeafSystem):
         return pos, vel
 
     def _calc_targets(self, context, output: BasicVector):
-        output.SetFromVector(self._cached(context.get_time())[0])
+        output.SetFromVector(self.targets(context.get_time())[0].ravel())
 
     def _calc_velocities(self, context, output: BasicVector):
-        output.SetFromVector(self._cached(context.get_time())[1])
-
-    def _cached(self, t: float):
-        """Both outputs at time t, computed once per time (the two ports are read together)."""
-        if self._last is None or self._last[0] != t:
-            pos, vel = self.targets(t)
-            self._last = (t, pos.ravel(), vel.ravel())
-        return self._last[1:]
+        output.SetFromVector(self.targets(context.get_time())[1].ravel())
 
 
 def weight_shares(foot_y, y_home: float, band: float) -> np.ndarray:
@@ -102,12 +96,11 @@ class FootIKController(LeafSystem):
         self._actuators = np.asarray(actuators)   # (legs, 2) actuation indices
         self._model = full_model(params)
         self._weight = params.robot.total_mass_kg * params.robot.gravity_m_s2
-        legs = len(self._q_index)
-        self._targets = self.DeclareVectorInputPort("foot_targets", 2 * legs)
-        self._velocities = self.DeclareVectorInputPort("foot_velocities", 2 * legs)
+        n = self._q_index.size
+        self._targets = self.DeclareVectorInputPort("foot_targets", n)
+        self._velocities = self.DeclareVectorInputPort("foot_velocities", n)
         self._state = self.DeclareVectorInputPort("plant_state", nx)
-        self._legs = legs
-        self._command = self.DeclareDiscreteState(2 * legs)
+        self._command = self.DeclareDiscreteState(n)
         self.DeclarePeriodicDiscreteUpdateEvent(period_s, 0.0, self._update)
         self.DeclareStateOutputPort("torque_command", self._command)
 
@@ -126,14 +119,13 @@ class FootIKController(LeafSystem):
         model = dataclasses.replace(self._model, foot_load_N=load)
         ff = static_torques(p, model, pose, lj)
         tau = self._kp * wrap(pose.q - q) + self._kd * (qd_des - qd) + ff
-        out = np.zeros(2 * self._legs)
+        out = np.zeros(self._q_index.size)
         out[self._actuators.ravel()] = tau.ravel()
         return out
 
     def _balance_offset(self, state):
         """Foot target y offsets (legs,) in m from the body's tilt (see class docstring)."""
-        quat = state[self._body_q:self._body_q + 4]
-        hips_w = self._hips @ rotation_from_quaternion(*(quat / np.linalg.norm(quat))).T  # body -> world axes
+        hips_w = self._hips @ body_rotation(state[self._body_q:self._body_q + 4]).T  # world axes
         omega = state[self._body_w:self._body_w + 3]              # world frame, rad/s
         dz = hips_w[:, 2] - self._hips[:, 2]
         dz_dot = omega[0] * hips_w[:, 1] - omega[1] * hips_w[:, 0]   # (omega x r)_z
@@ -148,11 +140,11 @@ class FootIKController(LeafSystem):
         discrete_state.set_value(self._command, self.command(targets, velocities, state))
 
 
-def rotation_from_quaternion(w, x, y, z) -> np.ndarray:
-    """Rotation matrix of a unit quaternion (w, x, y, z)."""
-    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
-                     [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
-                     [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+def body_rotation(quaternion_wxyz) -> np.ndarray:
+    """Rotation matrix (3, 3) of a floating body's quaternion [w, x, y, z] as stored in the
+    plant state (normalised first: the state drifts from unit length)."""
+    q = np.asarray(quaternion_wxyz, dtype=float)
+    return RotationMatrix(Quaternion(q / np.linalg.norm(q))).matrix()
 
 
 def motor_torque(motor: Motor, command, speed, smoothing_rad_s: float = 0.05):
