@@ -70,12 +70,12 @@ def motor_results(params: Params, samples: GaitSamples, tb: TorqueBreakdown, j: 
     }
 
 
-def analyze(params: Params) -> Analysis:
-    """Run the seed's analysis for the seed model, the full model and the full model under trot
-    loading."""
-    samples = sample_gait(params.leg, params.gait)
+def analyze(params: Params, path: str = "seed_ellipse") -> Analysis:
+    """Run the seed's analysis over one cycle of the foot path (footpath.PATHS) for the seed
+    model, the full model and the full model under trot loading."""
+    samples = sample_gait(params.leg, params.gait, path)
     models = {m.name: m for m in (seed_model(params), full_model(params),
-                                  trot_model(params, samples.foot))}
+                                  trot_model(params, path, samples.t))}
     tbs = {name: torques(params, m, samples.pose, samples.qd, samples.qdd)
            for name, m in models.items()}
     measures = singularity_measures(params.leg, samples.pose)
@@ -84,6 +84,7 @@ def analyze(params: Params) -> Analysis:
                            for j, motor in enumerate(MOTORS)} for name, tb in tbs.items()},
         "models": {name: m.description for name, m in models.items()},
         "path": {
+            "gait": path,
             "samples": params.gait.samples,
             "dt_s": params.gait.period_s / params.gait.samples,
             "assembly_modes_used": sorted({int(i) for i in samples.mode_index}),

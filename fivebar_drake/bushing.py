@@ -39,7 +39,7 @@ def loop_load(params: Params):
     model of one fixed-hip leg: lambda = J_phi^-T tau_tree[phi]."""
     plant, context, instance, idx = _fixed_leg(params)
     samples = sample_gait(params.leg, params.gait)
-    load = trot_model(params, samples.foot).foot_load_N
+    load = trot_model(params, samples.path, samples.t).foot_load_N
     x = tree_positions(samples.pose)
     m_eff, force = np.inf, 0.0
     q = plant.GetPositions(context)

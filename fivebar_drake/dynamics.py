@@ -17,6 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .footpath import TROT_PHASES_RAD, stance_loads
 from .jacobians import bias_accelerations, link_jacobians
 from .kinematics import LegPose
 from .params import LINK_NAMES, Params
@@ -68,17 +69,19 @@ def full_model(params: Params) -> DynamicsModel:
         foot_load_N=params.robot.weight_share_kg * params.robot.gravity_m_s2)
 
 
-def trot_model(params: Params, foot) -> DynamicsModel:
-    """The full model under trot loading: a stance foot (below y_home) carries half the robot's
-    weight (two feet on the ground), a swing foot carries nothing. foot: (N, 2) targets in m."""
-    stance = np.asarray(foot)[..., 1] < params.gait.y_home_m - 1e-12
-    body_weight = params.robot.total_mass_kg * params.robot.gravity_m_s2
+def trot_model(params: Params, path: str, t, phases_rad=TROT_PHASES_RAD,
+               leg: int = 0) -> DynamicsModel:
+    """The full model under trot loading at times t (s) of the foot path: the robot's weight
+    shared by the feet the schedule (legs' gait phases phases_rad) has in stance, none in swing
+    (footpath.stance_loads), on leg number `leg`."""
+    weight = params.robot.total_mass_kg * params.robot.gravity_m_s2
+    foot_load_N = stance_loads(params.gait, path, t, phases_rad, weight)[leg]
     return DynamicsModel(
         name="full_trot",
-        description="full model, trot loading: half the robot's weight on a stance foot "
-                    "(lower half of the ellipse), none in swing",
+        description="full model, trot loading: the robot's weight shared by the feet the trot "
+                    "schedule has in stance (half on each of a diagonal pair), none in swing",
         izz=physical_izz(params), link_weight_sign=1.0, coriolis=True,
-        foot_load_N=np.where(stance, body_weight / 2.0, 0.0))
+        foot_load_N=np.asarray(foot_load_N, dtype=float))
 
 
 @dataclass(frozen=True)

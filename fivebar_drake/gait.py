@@ -1,5 +1,6 @@
-"""The seed's elliptical gait (seed 000 section 3) sampled over one cycle, the IK mode tracking
-along it (seed 000 appendix B) and periodic central differences (seed 000 section 5)."""
+"""A foot path (footpath.py: the seed's ellipse or the trot path) sampled over one cycle, the IK
+mode tracking along it (seed 000 appendix B) and periodic central differences (seed 000
+section 5)."""
 
 from __future__ import annotations
 
@@ -7,20 +8,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .footpath import cycle_times, evaluate
 from .kinematics import ALL_MODES, KNEES_OUT, LegPose, inverse
 from .params import Gait, LegGeometry
-
-
-def foot_path(gait: Gait, t=None):
-    """Times t (s) and foot targets (..., 2) in m: x = x_c + a cos(wt), y = y_home + b sin(wt).
-    t None gives the N samples t_k = k T / N of one cycle."""
-    if t is None:
-        t = np.arange(gait.samples) * (gait.period_s / gait.samples)
-    t = np.asarray(t, dtype=float)
-    w = 2.0 * np.pi * gait.frequency_hz
-    foot = np.stack([gait.x_center_m + gait.a_m * np.cos(w * t),
-                     gait.y_home_m + gait.b_m * np.sin(w * t)], axis=-1)
-    return t, foot
 
 
 def wrap(angle):
@@ -60,20 +50,26 @@ def periodic_derivatives(q, dt: float):
 
 @dataclass(frozen=True)
 class GaitSamples:
-    """One gait cycle: times t (N,) s, foot targets (N, 2) m, poses, motor rates qd (N, 2) rad/s
-    and accelerations qdd (N, 2) rad/s^2 by central differences, IK mode index per sample."""
+    """One gait cycle of a foot path: times t (N,) s, foot targets (N, 2) m, scheduled stance
+    (N,), poses, motor rates qd (N, 2) rad/s and accelerations qdd (N, 2) rad/s^2 by central
+    differences, IK mode index per sample."""
 
+    path: str
     t: np.ndarray
     foot: np.ndarray
+    stance: np.ndarray
     pose: LegPose
     qd: np.ndarray
     qdd: np.ndarray
     mode_index: np.ndarray
 
 
-def sample_gait(leg: LegGeometry, gait: Gait) -> GaitSamples:
-    """Sample one cycle of the gait, solve IK with mode tracking and differentiate."""
-    t, foot = foot_path(gait)
-    pose, mode_index = track_modes(leg, foot)
+def sample_gait(leg: LegGeometry, gait: Gait, path: str = "seed_ellipse") -> GaitSamples:
+    """Sample one cycle of the foot path at t_k = k T / N, solve IK with mode tracking and
+    differentiate."""
+    t = cycle_times(gait)
+    points = evaluate(gait, path, t)
+    pose, mode_index = track_modes(leg, points.pos)
     qd, qdd = periodic_derivatives(pose.q, gait.period_s / gait.samples)
-    return GaitSamples(t=t, foot=foot, pose=pose, qd=qd, qdd=qdd, mode_index=mode_index)
+    return GaitSamples(path=path, t=t, foot=points.pos, stance=points.stance, pose=pose, qd=qd,
+                       qdd=qdd, mode_index=mode_index)

@@ -105,7 +105,9 @@ class Robot:
 
 @dataclass(frozen=True)
 class Gait:
-    """Elliptical foot path x = x_center + a cos(wt), y = y_home + b sin(wt) in the leg plane (m)."""
+    """Foot path parameters in the leg plane (m): stride half-length a, step height b, centre
+    (x_center, y_home), frequency (Hz), samples per cycle for the analysis, and the trot path's
+    duty factor (fraction of the cycle in stance); see footpath.py for the paths."""
 
     a_m: float
     b_m: float
@@ -113,6 +115,7 @@ class Gait:
     y_home_m: float
     frequency_hz: float
     samples: int
+    duty_factor: float
 
     def __post_init__(self):
         for name in ("a_m", "b_m"):
@@ -125,6 +128,8 @@ class Gait:
                  self.frequency_hz, "must be > 0")
         _require(isinstance(self.samples, int) and self.samples >= 3, "gait.samples", self.samples,
                  "must be an integer >= 3 (central differences need neighbours)")
+        _require(math.isfinite(self.duty_factor) and 0.0 < self.duty_factor < 1.0,
+                 "gait.duty_factor", self.duty_factor, "must be in (0, 1)")
 
     @property
     def period_s(self) -> float:
@@ -276,15 +281,17 @@ def params_from_dict(data: dict) -> Params:
 
 
 def check_gait_reachable(params: Params) -> None:
-    """Raise ParameterError if a gait sample lies outside the knees-out workspace."""
-    from .gait import foot_path  # the gait module needs the dataclasses above
+    """Raise ParameterError if a sample of either foot path lies outside the knees-out
+    workspace."""
+    from .footpath import PATHS, evaluate  # the foot paths need the dataclasses above
     from .kinematics import KNEES_OUT, UnreachableError, inverse
 
-    t, foot = foot_path(params.gait)
-    try:
-        inverse(params.leg, foot, KNEES_OUT)
-    except UnreachableError as err:
-        raise ParameterError(f"gait leaves the workspace: {err}") from None
+    for path in PATHS:
+        foot = evaluate(params.gait, path, np.linspace(0.0, params.gait.period_s, 241)).pos
+        try:
+            inverse(params.leg, foot, KNEES_OUT)
+        except UnreachableError as err:
+            raise ParameterError(f"gait leaves the workspace ({path} path): {err}") from None
 
 
 DEFAULT_PATH = resources.files("fivebar_drake") / "data" / "default.toml"

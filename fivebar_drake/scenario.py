@@ -15,6 +15,7 @@ from typing import Optional
 
 from pydrake.common.yaml import yaml_load_typed
 
+from .footpath import check_path
 from .params import Params, load_params
 from .plant_model import CLOSURES
 
@@ -32,6 +33,7 @@ class Scenario:
     gait_*: optional overrides of the parameter file's gait."""
 
     duration_s: float = 10.0
+    gait: str = "trot"
     closure: str = "bushing"
     time_step_s: float = 0.0
     target_loop_gap_m: float = 4e-6
@@ -54,6 +56,7 @@ class Scenario:
 
     def validate(self) -> None:
         """Raise ValueError naming the first bad field, its value and the allowed range."""
+        check_path(self.gait)
         if self.closure not in CLOSURES:
             raise ValueError(f"scenario.closure = {self.closure!r}: allowed {list(CLOSURES)}")
         positive = ("duration_s", "target_loop_gap_m", "control_period_s", "motor_period_s",
