@@ -49,7 +49,7 @@ def motor_results(params: Params, samples: GaitSamples, tb: TorqueBreakdown, j: 
     peak = float(total[k_peak])
     sf = motor.peak_torque_Nm / peak
     # Torque available on the linear torque-speed line at each sample's speed.
-    available = motor.peak_torque_Nm * np.clip(1.0 - speed / motor.no_load_speed_rad_s, 0.0, None)
+    available = motor.torque_limit(speed)
     return {
         "peak_torque_Nm": peak,
         "peak_time_s": float(samples.t[k_peak]),

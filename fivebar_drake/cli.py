@@ -53,25 +53,33 @@ def _simulate(args) -> int:
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     result, setup = simulate(scenario, params, progress=True)
-    sig = signals(result, setup, params)
+    sig = signals(result, setup, params, scenario)
     summary = summarize(sig, scenario, params, setup, result,
                         analyze(params).results["results"]["seed"])
     written = write_summary(summary, params, out)
-    written += write_sim_plots(sig, setup.legs, params, out)
-    written.append(write_recording(out / "run.rrd", sig, setup, params, scenario, result.state))
-    print(f"{summary['closure']} closure: {summary['duration_s']:.2f} s simulated, "
-          f"{summary['real_time_factor']:.2f}x real time, worst loop gap "
-          f"{summary['max_loop_gap_m'] * 1e3:.4f} mm, forward {summary['forward_distance_m']:.3f} m")
+    written += write_sim_plots(sig, setup.legs, params, summary, out)
+    written.append(write_recording(out / "run.rrd", sig, setup, params, scenario,
+                                   result.table["state"], summary))
+    print(f"{summary['gait']} gait, {summary['closure']} closure: {summary['duration_s']:.2f} s "
+          f"simulated, {summary['real_time_factor']:.2f}x real time, worst loop gap "
+          f"{summary['max_loop_gap_m'] * 1e3:.4f} mm, {summary['cycles_in_window']} whole cycles, "
+          f"walking {summary['mean_forward_speed_m_s']:.3f} m/s (gait "
+          f"{summary['gait_speed_m_s']:.3f} m/s), largest tilt {summary['max_tilt_deg']:.1f} deg")
     for leg, motors in summary["legs"].items():
         print("  " + leg + ": " + ", ".join(
-            f"{m} peak {v['peak_torque_Nm']:.2f} N m (static {v['static_torque_Nm']:.2f}, "
+            f"{m} demand p99 {v['demand_p99_Nm']:.2f} N m (RMS {v['rms_torque_Nm']:.2f}, "
             f"SF {v['safety_factor']:.2f} {v['verdict']})" for m, v in motors.items()))
+    print(f"verdict: {summary['verdict'].upper()} (worst motor {summary['worst_motor']})")
+    print(summary["answer"])
     print(f"wrote {len(written)} files to {out.resolve()}:")
     for path in written:
         print(f"  {path}")
     print(f"open the recording with: rerun {out / 'run.rrd'}")
     if result.error:
         print(f"fivebar-drake: error: the run stopped early: {result.error}", file=sys.stderr)
+        return 1
+    if summary["verdict"] == "insufficient":
+        print(f"fivebar-drake: error: no verdict: {summary['answer']}", file=sys.stderr)
         return 1
     return 0
 

@@ -113,6 +113,23 @@ def evaluate(gait: Gait, path: str, t, phase_rad=0.0) -> PathPoints:
     return _ellipse(gait, u) if path == "seed_ellipse" else _trot(gait, u)
 
 
+def stance_start(gait: Gait, path: str) -> float:
+    """Cycle phase u at which the path's stance begins (it ends at u = 1)."""
+    check_path(path)
+    return 0.5 if path == "seed_ellipse" else 1.0 - gait.duty_factor
+
+
+def stance_weight(gait: Gait, path: str, t, phase_rad, transfer_s: float) -> np.ndarray:
+    """Scheduled share of a foot in the support (0 swing, 1 stance) at times t (s), rising and
+    falling smoothly (smoothstep) over transfer_s (s) after touchdown and before lift-off, so
+    the load passes from foot to foot without a step."""
+    u = cycle_phase(gait, t, phase_rad)
+    u0 = stance_start(gait, path)
+    edge = np.minimum(u - u0, 1.0 - u) * gait.period_s           # s from the nearer stance end
+    x = np.clip(edge / transfer_s, 0.0, 1.0) if transfer_s > 0 else (edge >= 0).astype(float)
+    return np.where(u >= u0, x * x * (3.0 - 2.0 * x), 0.0)
+
+
 def cycle_times(gait: Gait) -> np.ndarray:
     """The N sample times t_k = k T / N (s) of one cycle."""
     return np.arange(gait.samples) * (gait.period_s / gait.samples)

@@ -155,6 +155,12 @@ class Motor:
             value = getattr(self, f)
             _require(math.isfinite(value) and value >= 0, f"motor.{f}", value, "must be >= 0")
 
+    def torque_limit(self, speed_rad_s):
+        """Largest motoring torque (N*m) at a joint speed (rad/s): the linear torque-speed line
+        peak (1 - |w| / w_0), zero beyond the no-load speed w_0."""
+        return self.peak_torque_Nm * np.clip(
+            1.0 - np.abs(speed_rad_s) / self.no_load_speed_rad_s, 0.0, 1.0)
+
     @property
     def reflected_inertia_kg_m2(self) -> float:
         """Rotor inertia seen at the output, N^2 J_rotor."""

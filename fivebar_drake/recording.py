@@ -2,16 +2,20 @@
 
 Entities (timeline "sim_time"):
 - world/ground, world/body (box + pose), world/legs/<leg> (link segments), world/feet/<leg>
-  (foot trace), at pose_rate_hz;
-- joints/<leg>/<A|B>/angle, joints/<leg>/<A|B>/speed (every plant step, at most 1 kHz);
-- torque/<leg>/<A|B>/{commanded, applied, static_contact, static_seed, limit_pos, limit_neg}
-  (every log sample);
-- loop_gap/<leg> (worst gap of each 1 ms bin of plant steps), contact/<leg>/{normal,
-  tangential} (leg plane, N), body/height, body/forward_speed (at most 1 kHz).
+  (foot trace), world/forces/<leg> (ground force arrows at the feet, 1 cm per 10 N), at
+  pose_rate_hz;
+- per log interval (means over the plant steps of the interval): joints/<leg>/<A|B>/{angle,
+  speed}, torque/<leg>/<A|B>/{commanded, applied, static_contact, static_trot, static_seed,
+  limit_pos, limit_neg}, loop_gap/<leg> (worst gap of the interval), contact/<leg>/{normal,
+  tangential} (leg plane, N), body/height, body/forward_speed, body/tilt_deg,
+  stats/window (1 inside the statistics window);
+- cycle_peak/<leg>/<A|B>: the peak applied torque of each whole cycle, at the cycle's end.
+Each run gets its own recording id, so two runs open side by side in one viewer.
 """
 
 from __future__ import annotations
 
+import uuid
 from pathlib import Path
 
 import numpy as np
@@ -24,8 +28,7 @@ from .simulation import Setup
 from .summary import MOTORS, Signals
 
 TIMELINE = "sim_time"
-RECORDING_ID = "fivebar_drake-simulation"
-STEP_SERIES_RATE_HZ = 1000.0   # per-step series (gap, joints, body) are binned to 1 kHz
+FORCE_ARROW_M_PER_N = 0.001    # 1 mm of arrow per newton
 
 
 def blueprint(legs) -> rrb.Blueprint:
@@ -41,7 +44,9 @@ def blueprint(legs) -> rrb.Blueprint:
                 rrb.Tabs(*torque_views, name="motor torques"),
                 rrb.Tabs(rrb.TimeSeriesView(origin="loop_gap", name="loop gap (m)"),
                          rrb.TimeSeriesView(origin="contact", name="foot forces (N)"),
-                         rrb.TimeSeriesView(origin="joints", name="joints (rad, rad/s)"))),
+                         rrb.TimeSeriesView(origin="joints", name="joints (rad, rad/s)"),
+                         rrb.TimeSeriesView(origin="cycle_peak", name="per-cycle peaks (N·m)"),
+                         rrb.TimeSeriesView(origin="stats", name="statistics window"))),
             column_shares=[1, 1]),
         collapse_panels=True)
 
@@ -75,26 +80,28 @@ def _link_points(setup: Setup, params: Params, state_rows: np.ndarray):
 
 
 def write_recording(path: Path, sig: Signals, setup: Setup, params: Params,
-                    scenario: Scenario, state: np.ndarray) -> Path:
-    """Write the .rrd file; state: the per-step plant state (for the 3-D poses)."""
+                    scenario: Scenario, state: np.ndarray, summary: dict) -> Path:
+    """Write the .rrd file; state: the plant state of each log interval (for the 3-D poses)."""
     path.parent.mkdir(parents=True, exist_ok=True)
-    rec = rr.RecordingStream("fivebar_drake", recording_id=RECORDING_ID)
+    rec = rr.RecordingStream("fivebar_drake", recording_id=f"fivebar_drake-{scenario.gait}-"
+                             f"{scenario.closure}-{uuid.uuid4().hex[:12]}")
     rec.set_log_time_enabled(False)
     rec.set_log_tick_enabled(False)
     rec.save(str(path), default_blueprint=blueprint(setup.legs))
     with rec:
         _log_scene(rec, sig, setup, params, scenario, state)
-        _log_series(rec, sig, setup, params)
+        _log_series(rec, sig, setup, params, summary)
     return path
 
 
 def _log_scene(rec, sig, setup, params, scenario, state):
+    state_forces = sig.foot_force_world
     b = params.body
     rec.log("world/ground", rr.Boxes3D(centers=[[0.0, 0.0, -0.005]], half_sizes=[[3.0, 3.0, 0.005]],
                                        colors=[[90, 110, 90]]), static=True)
     rec.log("world/body", rr.Boxes3D(half_sizes=[[b.length_m / 2, b.width_m / 2, b.height_m / 2]],
                                      colors=[[150, 150, 165]]), static=True)
-    t = sig.t_state
+    t = sig.t
     frames = np.unique(np.searchsorted(t, np.arange(0.0, t[-1] + 1e-9, 1.0 / scenario.pose_rate_hz)))
     frames = frames[frames < len(t)]
     tf = t[frames]
@@ -110,37 +117,46 @@ def _log_scene(rec, sig, setup, params, scenario, state):
         rec.log(f"world/legs/{leg}", rr.LineStrips3D.from_fields(radii=0.004), static=True)
         rec.log(f"world/feet/{leg}", rr.LineStrips3D([points[:, i, 3]], radii=0.0015,
                                                      colors=[[230, 80, 60]]), static=True)
+        origin = points[:, i, 3] - np.array([0.0, 0.0, b.foot_radius_m])
+        force = state_forces[frames, i] * FORCE_ARROW_M_PER_N
+        rec.send_columns(f"world/forces/{leg}", indexes=time, columns=rr.Arrows3D.columns(
+            origins=origin, vectors=force))
+        rec.log(f"world/forces/{leg}", rr.Arrows3D.from_fields(colors=[[40, 160, 60]],
+                                                               radii=0.002), static=True)
 
 
-def step_bins(t, rate_hz: float) -> np.ndarray:
-    """Start indices of bins of the per-step times t, at most rate_hz bins per second (every
-    step when the plant step is longer)."""
-    edges = np.searchsorted(t, np.arange(t[0], t[-1] + 1.0 / rate_hz, 1.0 / rate_hz))
-    return np.unique(edges[edges < len(t)])
-
-
-def _log_series(rec, sig, setup, params):
+def _log_series(rec, sig, setup, params, summary):
     limit = params.motor.peak_torque_Nm
-    n_log = len(sig.t_log)
-    bins = step_bins(sig.t_state, STEP_SERIES_RATE_HZ)
-    t_bins = sig.t_state[bins]
+    n = len(sig.t)
     for i, leg in enumerate(setup.legs):
-        # the worst gap of every bin, so no peak between samples is lost
-        _scalars(rec, f"loop_gap/{leg}", t_bins, np.maximum.reduceat(sig.gap[i], bins), leg)
-        _scalars(rec, f"contact/{leg}/tangential", sig.t_log, sig.foot_force_plane[:, i, 0])
-        _scalars(rec, f"contact/{leg}/normal", sig.t_log, sig.foot_force_plane[:, i, 1])
+        _scalars(rec, f"loop_gap/{leg}", sig.t, sig.gap[:, i], leg)
+        _scalars(rec, f"contact/{leg}/tangential", sig.t, sig.foot_force_plane[:, i, 0])
+        _scalars(rec, f"contact/{leg}/normal", sig.t, sig.foot_force_plane[:, i, 1])
         for j, m in enumerate(MOTORS):
             base = f"torque/{leg}/{m}"
-            _scalars(rec, f"joints/{leg}/{m}/angle", t_bins, sig.q[bins, i, j])
-            _scalars(rec, f"joints/{leg}/{m}/speed", t_bins, sig.qd[bins, i, j])
+            _scalars(rec, f"joints/{leg}/{m}/angle", sig.t, sig.q[:, i, j])
+            _scalars(rec, f"joints/{leg}/{m}/speed", sig.t, sig.qd[:, i, j])
             for name, values in (("commanded", sig.command), ("applied", sig.applied),
                                  ("static_contact", sig.static_contact),
+                                 ("static_trot", sig.static_trot),
                                  ("static_seed", sig.static_seed)):
-                _scalars(rec, f"{base}/{name}", sig.t_log, values[:, i, j], f"{m} {name}")
-            _scalars(rec, f"{base}/limit_pos", sig.t_log, np.full(n_log, limit), "+limit")
-            _scalars(rec, f"{base}/limit_neg", sig.t_log, np.full(n_log, -limit), "-limit")
-    _scalars(rec, "body/height", t_bins, sig.body_p[bins, 2], "height (m)")
-    _scalars(rec, "body/forward_speed", t_bins, sig.body_v[bins, 0], "forward speed (m/s)")
+                _scalars(rec, f"{base}/{name}", sig.t, values[:, i, j], f"{m} {name}")
+            _scalars(rec, f"{base}/limit_pos", sig.t, np.full(n, limit), "+limit")
+            _scalars(rec, f"{base}/limit_neg", sig.t, np.full(n, -limit), "-limit")
+            start, _ = summary["window_s"]
+            cycles = summary["cycles_in_window"]
+            if cycles:
+                period = params.gait.period_s
+                ends = start + period * np.arange(1, cycles + 1)
+                peaks = [np.max(np.abs(sig.applied[(sig.t > e - period) & (sig.t <= e), i, j]))
+                         for e in ends]
+                _scalars(rec, f"cycle_peak/{leg}/{m}", ends, peaks, f"{leg} {m}")
+    _scalars(rec, "body/height", sig.t, sig.body_p[:, 2], "height (m)")
+    _scalars(rec, "body/forward_speed", sig.t, sig.body_v[:, 0], "forward speed (m/s)")
+    _scalars(rec, "body/tilt_deg", sig.t, sig.tilt_deg, "tilt (deg)")
+    start, end = summary["window_s"]
+    _scalars(rec, "stats/window", sig.t, ((sig.t > start) & (sig.t <= end)).astype(float),
+             "statistics window")
 
 
 def read_series(path: Path, entity: str) -> tuple[np.ndarray, np.ndarray]:

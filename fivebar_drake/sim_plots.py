@@ -11,16 +11,19 @@ from .params import Params
 from .summary import MOTORS, Signals
 
 
-def torque_figure(sig: Signals, legs, params: Params) -> plt.Figure:
+def torque_figure(sig: Signals, legs, params: Params, window) -> plt.Figure:
     limit = params.motor.peak_torque_Nm
     fig, axes = plt.subplots(len(legs), 2, figsize=(13, 2.6 * len(legs)), sharex=True, sharey=True)
     for i, leg in enumerate(legs):
         for j, motor in enumerate(MOTORS):
             ax = axes[i, j]
-            ax.plot(sig.t_log, sig.command[:, i, j], color="0.7", lw=0.8, label="commanded")
-            ax.plot(sig.t_log, sig.applied[:, i, j], lw=1.2, label="applied (simulated)")
-            ax.plot(sig.t_log, sig.static_contact[:, i, j], lw=1.0, label="static: $-J_F^T F$")
-            ax.plot(sig.t_log, sig.static_seed[:, i, j], "--", lw=1.0, label="static: seed G(q)")
+            ax.axvspan(*window, color="0.93", zorder=0,
+                       label="statistics window" if i == j == 0 else None)
+            ax.plot(sig.t, sig.command[:, i, j], color="0.6", lw=0.8, label="demand (command)")
+            ax.plot(sig.t, sig.applied[:, i, j], lw=1.2, label="applied (motor output)")
+            ax.plot(sig.t, sig.static_contact[:, i, j], lw=1.0, label="quasi-static: $-J^T F$")
+            ax.plot(sig.t, sig.static_trot[:, i, j], ":", lw=1.2, label="static: trot load")
+            ax.plot(sig.t, sig.static_seed[:, i, j], "--", lw=1.0, label="static: seed G(q)")
             for sign in (1, -1):
                 ax.axhline(sign * limit, color="r", lw=1.2,
                            label=f"limit ±{limit:g} N·m" if sign > 0 else None)
@@ -34,27 +37,32 @@ def torque_figure(sig: Signals, legs, params: Params) -> plt.Figure:
     return fig
 
 
-def motion_figure(sig: Signals, legs) -> plt.Figure:
-    fig, (ag, ah, av) = plt.subplots(3, 1, figsize=(10, 7), sharex=True)
+def motion_figure(sig: Signals, legs, gait_speed: float) -> plt.Figure:
+    fig, (ag, ah, at, av) = plt.subplots(4, 1, figsize=(10, 9), sharex=True)
     for i, leg in enumerate(legs):
-        ag.plot(sig.t_state, sig.gap[i] * 1e3, lw=0.8, label=leg)
+        ag.plot(sig.t, sig.gap[:, i] * 1e3, lw=0.8, label=leg)
     ag.axhline(0.1, color="r", ls="--", lw=1, label="0.1 mm")
-    ag.set(ylabel="loop gap (mm)", title="Loop closure gap per leg")
-    ah.plot(sig.t_state, sig.body_p[:, 2] * 1e3)
+    ag.set(ylabel="loop gap (mm)", title="Loop closure gap per leg (worst per interval)")
+    ah.plot(sig.t, sig.body_p[:, 2] * 1e3)
     ah.set(ylabel="body height (mm)")
-    av.plot(sig.t_state, sig.body_v[:, 0])
+    at.plot(sig.t, sig.tilt_deg)
+    at.set(ylabel="tilt (deg)")
+    av.plot(sig.t, sig.body_v[:, 0], label="body")
+    av.axhline(gait_speed, color="k", ls="--", lw=1, label="gait speed")
     av.set(ylabel="forward speed (m/s)", xlabel="time (s)")
-    for ax in (ag, ah, av):
+    av.legend(fontsize=8)
+    for ax in (ag, ah, at, av):
         ax.grid(alpha=0.3)
     ag.legend(fontsize=8, ncol=5)
     fig.tight_layout()
     return fig
 
 
-def write_sim_plots(sig: Signals, legs, params: Params, out_dir: Path) -> list[Path]:
+def write_sim_plots(sig: Signals, legs, params: Params, summary: dict,
+                    out_dir: Path) -> list[Path]:
     paths = []
-    for name, fig in (("sim_torques.png", torque_figure(sig, legs, params)),
-                      ("sim_motion.png", motion_figure(sig, legs))):
+    for name, fig in (("sim_torques.png", torque_figure(sig, legs, params, summary["window_s"])),
+                      ("sim_motion.png", motion_figure(sig, legs, summary["gait_speed_m_s"]))):
         fig.savefig(out_dir / name, dpi=110)
         plt.close(fig)
         paths.append(out_dir / name)

@@ -1,14 +1,14 @@
 """Build the quadruped Diagram from a scenario and simulate it.
 
-gait source -> IK controller -> motor model -> plant (+ scene graph), loggers on the plant state
-(every step), the commands, applied torques, saturation flags and foot contact forces.
+gait source -> leg controller -> motor model -> plant (+ scene graph), and a recorder that
+measures every plant step and keeps the means of each log interval.
 """
 
 from __future__ import annotations
 
 import sys
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 from pydrake.geometry import AddContactMaterial, Box, ProximityProperties
@@ -17,17 +17,19 @@ from pydrake.multibody.plant import (AddMultibodyPlantSceneGraph, CoulombFrictio
                                      MultibodyPlantConfig, ApplyMultibodyPlantConfig)
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder
-from pydrake.systems.primitives import LogVectorOutput
 
 from .bushing import bushing_parameters, loop_load
+from .dynamics import mass_matrix, physical_izz
 from .kinematics import inverse
 from .params import Params
-from .plant_model import add_model, leg_indices, tree_positions
+from .plant_model import add_model, leg_indices, loop_gaps, tree_positions
 from .scenario import Scenario
 from .sdf_model import hip_positions
-from .systems import FootContactForces, FootIKController, GaitSource, MotorModel
+from .systems import (ControlGains, FootLegController, GaitSource, MotorModel, RobotLayout,
+                      StepRecorder, derive_gains)
 
 BALL_TIME_STEP_S = 1e-3
+FALL_TILT_DEG = 45.0   # a body tilted further has fallen: the run stops
 GROUND_SIZE_M = 40.0   # flat ground, top face at z = 0
 GROUND_DEPTH_M = 1.0
 
@@ -44,7 +46,10 @@ class Setup:
     bushing: object
     m_eff_kg: float
     loop_force_N: float
-    loggers: dict = field(default_factory=dict)
+    layout: RobotLayout
+    gains: ControlGains
+    recorder: StepRecorder
+    controller: FootLegController
 
 
 def closure_parameters(scenario: Scenario, params: Params):
@@ -61,13 +66,48 @@ def closure_parameters(scenario: Scenario, params: Params):
     return scenario.time_step_s or dt, bushing, m_eff, force
 
 
+def robot_layout(plant, instance, legs, params: Params) -> RobotLayout:
+    """The controller's view of the finalized plant (see systems.RobotLayout): indices, hips,
+    and the whole robot's mass, COM and inertia in the standing pose."""
+    indices = {leg: leg_indices(plant, instance, leg) for leg in legs}
+    context = plant.CreateDefaultContext()
+    set_standing_pose(plant, context, instance, legs, params)
+    body = plant.GetBodyByName("body", instance)
+    spatial = plant.CalcSpatialInertia(context, body.body_frame(),
+                                       plant.GetBodyIndices(instance))
+    com = spatial.get_com()
+    inertia = spatial.Shift(com).CalcRotationalInertia().CopyToFullMatrix3()
+    return RobotLayout(
+        q_index=np.array([indices[leg].q[:2] for leg in legs]),
+        v_index=np.array([indices[leg].v[:2] for leg in legs]),
+        actuators=np.array([indices[leg].actuators for leg in legs]),
+        body_q=body.floating_positions_start(), body_v=body.floating_velocities_start_in_v(),
+        nq=plant.num_positions(), nx=plant.num_multibody_states(),
+        hips_m=np.array([hip_positions(params)[leg] for leg in legs]), com_m=np.asarray(com),
+        mass_kg=spatial.get_mass(), inertia_kg_m2=inertia,
+        stand_height_m=standing_height(params))
+
+
+def controller_gains(scenario: Scenario, params: Params, layout: RobotLayout) -> ControlGains:
+    """Gains from the robot's numbers: the swing joint's inertia is the largest diagonal entry
+    of the leg's mass matrix at home plus the reflected rotor inertia (systems.derive_gains)."""
+    home = inverse(params.leg, np.array([params.gait.x_center_m, params.gait.y_home_m]))
+    leg_inertia = (np.max(np.diag(mass_matrix(params, physical_izz(params), home)))
+                   + params.motor.reflected_inertia_kg_m2)
+    return derive_gains(layout.mass_kg, layout.inertia_kg_m2, leg_inertia,
+                        scenario.swing_bandwidth_hz, scenario.body_bandwidth_hz,
+                        scenario.damping_ratio)
+
+
 def build_diagram(scenario: Scenario, params: Params):
     """Assemble the Diagram for the scenario; returns (diagram, Setup)."""
     time_step, bushing, m_eff, force = closure_parameters(scenario, params)
     builder = DiagramBuilder()
     plant, scene_graph = AddMultibodyPlantSceneGraph(builder, time_step)
-    ApplyMultibodyPlantConfig(MultibodyPlantConfig(time_step=time_step,
-                                                   discrete_contact_approximation="sap"), plant)
+    # unsampled output ports: a block updating at tick t reads the state at t, as a driver would
+    ApplyMultibodyPlantConfig(MultibodyPlantConfig(
+        time_step=time_step, discrete_contact_approximation="sap",
+        use_sampled_output_ports=False), plant)
     instance, legs = add_model(plant, params, "quadruped", scenario.closure, bushing)
     ground = ProximityProperties()
     mu = params.body.foot_friction
@@ -77,50 +117,41 @@ def build_diagram(scenario: Scenario, params: Params):
                                     ground)
     plant.Finalize()
     indices = {leg: leg_indices(plant, instance, leg) for leg in legs}
-    nq, nx = plant.num_positions(), plant.num_multibody_states()
-    q_index = np.array([indices[leg].q[:2] for leg in legs])
-    v_index = np.array([indices[leg].v[:2] for leg in legs])
-    actuators = np.array([indices[leg].actuators for leg in legs])
+    layout = robot_layout(plant, instance, legs, params)
+    gains = controller_gains(scenario, params, layout)
 
     gait = builder.AddNamedSystem("gait_source", GaitSource(
-        params.gait, scenario.phases_rad, scenario.stand_s, scenario.ramp_s))
-    body = plant.GetBodyByName("body", instance)
-    controller = builder.AddNamedSystem("ik_controller", FootIKController(
-        params, q_index, v_index, actuators, nq, nx, scenario.control_period_s,
-        scenario.kp_Nm_rad, scenario.kd_Nm_s_rad, body_q=body.floating_positions_start(),
-        body_v=body.floating_velocities_start_in_v(),
-        hips_m=[hip_positions(params)[leg] for leg in legs],
-        balance_gain=scenario.balance_gain, balance_rate_s=scenario.balance_rate_s))
-    v_by_actuator = np.zeros(plant.num_actuators(), dtype=int)
-    v_by_actuator[actuators.ravel()] = v_index.ravel() + nq
+        params.gait, scenario.gait, scenario.phases_rad, scenario.stand_s, scenario.ramp_s,
+        scenario.load_transfer_s))
+    controller = builder.AddNamedSystem("leg_controller", FootLegController(
+        params, layout, gains, scenario.control_period_s, scenario.control_delay_periods))
+    speed_index = np.zeros(plant.num_actuators(), dtype=int)    # joint speed of each actuator
+    speed_index[layout.actuators.ravel()] = layout.v_index.ravel() + layout.nq
     motor = builder.AddNamedSystem("motor_model", MotorModel(
-        params.motor, v_by_actuator, nx, scenario.motor_period_s))
-    feet = builder.AddNamedSystem("foot_contact_forces", FootContactForces(
-        [plant.GetBodyByName(f"{leg}_DE", instance).index() for leg in legs]))
+        params.motor, speed_index, layout.nx, scenario.motor_period_s))
+    tree_q = np.array([indices[leg].q for leg in legs])
+    recorder = builder.AddNamedSystem("recorder", StepRecorder(
+        [plant.GetBodyByName(f"{leg}_DE", instance).index() for leg in legs], layout.nx,
+        plant.num_actuators(), time_step, max(1, round(scenario.log_period_s / time_step)),
+        speed_index, lambda state: loop_gaps(params, state[tree_q])))
 
     state = plant.get_state_output_port(instance)
-    builder.Connect(gait.GetOutputPort("foot_targets"), controller.GetInputPort("foot_targets"))
-    builder.Connect(gait.GetOutputPort("foot_velocities"),
-                    controller.GetInputPort("foot_velocities"))
+    for name in ("foot_targets", "foot_velocities", "foot_accelerations", "stance_weights"):
+        builder.Connect(gait.GetOutputPort(name), controller.GetInputPort(name))
     builder.Connect(state, controller.GetInputPort("plant_state"))
     builder.Connect(controller.GetOutputPort("torque_command"), motor.GetInputPort("torque_command"))
     builder.Connect(state, motor.GetInputPort("plant_state"))
     builder.Connect(motor.GetOutputPort("applied_torque"), plant.get_actuation_input_port())
-    builder.Connect(plant.get_contact_results_output_port(), feet.GetInputPort("contact_results"))
-
-    period = scenario.log_period_s
-    loggers = {
-        "state": LogVectorOutput(state, builder),          # every plant step
-        "command": LogVectorOutput(controller.GetOutputPort("torque_command"), builder, period),
-        "applied": LogVectorOutput(motor.GetOutputPort("applied_torque"), builder, period),
-        "saturated": LogVectorOutput(motor.GetOutputPort("saturated"), builder, period),
-        "foot_forces": LogVectorOutput(feet.GetOutputPort("foot_forces"), builder, period),
-    }
-    for name, logger in loggers.items():
-        logger.set_name(f"log_{name}")
+    builder.Connect(plant.get_contact_results_output_port(),
+                    recorder.GetInputPort("contact_results"))
+    builder.Connect(state, recorder.GetInputPort("plant_state"))
+    builder.Connect(controller.GetOutputPort("torque_command"),
+                    recorder.GetInputPort("torque_command"))
+    for name in ("motor_torque", "clipped_peak", "clipped_line"):
+        builder.Connect(motor.GetOutputPort(name), recorder.GetInputPort(name))
     setup = Setup(plant=plant, instance=instance, legs=legs, indices=indices,
                   time_step_s=time_step, bushing=bushing, m_eff_kg=m_eff, loop_force_N=force,
-                  loggers=loggers)
+                  layout=layout, gains=gains, recorder=recorder, controller=controller)
     return builder.Build(), setup
 
 
@@ -129,33 +160,26 @@ def standing_height(params: Params) -> float:
     return params.body.foot_radius_m - params.gait.y_home_m - params.body.hip_z_m
 
 
-def set_initial_state(context, setup: Setup, params: Params) -> None:
-    """Standing pose, every loop closed exactly (closed-form IK), at rest, feet on the ground."""
-    plant = setup.plant
-    pc = plant.GetMyMutableContextFromRoot(context)
+def set_standing_pose(plant, context, instance, legs, params: Params) -> None:
+    """Standing pose in a plant context: every loop closed exactly (closed-form IK), at rest,
+    feet at (x_center, y_home) on the ground."""
     foot = np.array([params.gait.x_center_m, params.gait.y_home_m])
     x = tree_positions(inverse(params.leg, foot))
-    q = plant.GetPositions(pc)
-    for leg in setup.legs:
-        q[setup.indices[leg].q] = x
-    plant.SetPositions(pc, q)
-    plant.SetFreeBodyPose(pc, plant.GetBodyByName("body", setup.instance),
+    q = plant.GetPositions(context)
+    for leg in legs:
+        q[leg_indices(plant, instance, leg).q] = x
+    plant.SetPositions(context, q)
+    plant.SetFreeBodyPose(context, plant.GetBodyByName("body", instance),
                           RigidTransform([0.0, 0.0, standing_height(params)]))
 
 
 @dataclass
 class SimResult:
-    """Logged signals. t_state (steps) and state (steps, nx); t_log (samples) and per-sample
-    command/applied/saturated (samples, 8, actuation order), foot_forces (samples, 4, 3) N world;
-    wall time (s); error text if the run stopped early."""
+    """What the recorder measured (systems.StepRecorder.table: t, state, gap, foot_force,
+    speed, command, motor_torque, clipped_peak, clipped_line), wall time (s), the error text if
+    the run stopped early."""
 
-    t_state: np.ndarray
-    state: np.ndarray
-    t_log: np.ndarray
-    command: np.ndarray
-    applied: np.ndarray
-    saturated: np.ndarray
-    foot_forces: np.ndarray
+    table: dict
     wall_s: float
     error: str = ""
 
@@ -166,7 +190,8 @@ def simulate(scenario: Scenario, params: Params, progress=True):
     diagram, setup = build_diagram(scenario, params)
     simulator = Simulator(diagram)
     context = simulator.get_mutable_context()
-    set_initial_state(context, setup, params)
+    set_standing_pose(setup.plant, setup.plant.GetMyMutableContextFromRoot(context),
+                      setup.instance, setup.legs, params)
     simulator.Initialize()
     say = (lambda text: print(text, file=sys.stderr, flush=True)) if progress else (lambda text: None)
     say(f"simulating {scenario.duration_s:g} s, closure {scenario.closure}, "
@@ -184,16 +209,13 @@ def simulate(scenario: Scenario, params: Params, progress=True):
                 setup.plant.GetMyContextFromRoot(context))
             if not np.all(np.isfinite(plant_state)):
                 raise RuntimeError(f"the plant state is not finite at t = {t:.3f} s (diverged)")
+            quat = plant_state[setup.layout.body_q:setup.layout.body_q + 4]
+            tilt = np.degrees(np.arccos(np.clip(1 - 2 * (quat[1]**2 + quat[2]**2)
+                                                / (quat @ quat), -1, 1)))
+            if tilt > FALL_TILT_DEG:
+                raise RuntimeError(f"the robot fell over: tilt {tilt:.0f} deg at t = {t:.2f} s")
     except (RuntimeError, ValueError) as err:   # divergence, unreachable targets
         error = str(err)
         say(f"simulation stopped early: {error}")
     wall = time.perf_counter() - start
-    logs = {name: logger.FindLog(context) for name, logger in setup.loggers.items()}
-    n_log = min(logs[k].data().shape[1] for k in logs if k != "state")
-    data = {k: logs[k].data()[:, :n_log].T for k in logs if k != "state"}
-    result = SimResult(
-        t_state=logs["state"].sample_times().copy(), state=logs["state"].data().T.copy(),
-        t_log=logs["command"].sample_times()[:n_log].copy(),
-        command=data["command"], applied=data["applied"], saturated=data["saturated"],
-        foot_forces=data["foot_forces"].reshape(n_log, -1, 3), wall_s=wall, error=error)
-    return result, setup
+    return SimResult(table=setup.recorder.table(), wall_s=wall, error=error), setup

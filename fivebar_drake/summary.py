@@ -1,221 +1,324 @@
-"""Dynamic vs static motor torques of a simulated trot: summary.json, summary.md and plots.
+"""What a simulated trot needed, against the static estimates: signals, whole-cycle statistics,
+summary.json and summary.md.
 
-Per leg and motor, over the trot window (t >= stand_s + ramp_s, the gait at full size):
-- applied torque (motor model output): peak and RMS;
-- static torque for the same poses: -J_F(q)^T F with F the measured ground force on the foot in
-  the leg plane, averaged over 20 ms because point contact chatters at touchdown ("contact"),
-  and the seed's model G_seed(q) with m_leg g at the foot ("seed");
-- their ratio, the safety factor against the motor and its verdict, the fraction of time the
-  motor model clipped the command, the peak joint speed against the no-load speed.
+Every series is a mean over one log interval of plant steps (systems.StepRecorder), so a contact
+spike counts for the time it lasts. Per leg and motor, over the poses the robot went through:
+- applied: the torque the motor delivered (the command after saturation); demand: the command;
+- static_seed: the seed's G(q) with m_leg g at the foot; static_trot: the full model's static
+  torque with the scheduled stance load (the weight shared by the feet in stance);
+- static_contact: -J_P(q)^T F, F the measured ground force and J_P the Jacobian of the contact
+  point (the bottom of the foot sphere on flat ground);
+- the applied torque split into contact, links (M q'' + c + G of the links), rotor (N^2 J q'')
+  and friction.
+Statistics cover the whole gait cycles after the ramp; a run with fewer than MIN_CYCLES of them,
+or one that stopped early, gets the verdict "insufficient".
 """
 
 from __future__ import annotations
 
+import dataclasses
 import json
+import math
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from .analysis import verdict
-from .dynamics import seed_model, static_torques
-from .jacobians import foot_jacobian
+from .dynamics import full_model, seed_model, static_torques, torques
+from .footpath import evaluate, stance_loads, stance_speed
+from .jacobians import link_jacobians
 from .kinematics import forward
 from .params import Params
-from .plant_model import loop_gaps
 from .scenario import Scenario
 from .sdf_model import plane_rotation
 from .simulation import Setup, SimResult
-from .systems import body_rotation
+from .systems import body_rotation, motor_torque
 
 MOTORS = ("A", "B")
-CONTACT_AVERAGE_S = 0.02   # contact forces chatter at touchdown: average them over 20 ms
-
-
-def _period(t) -> float:
-    return float(np.median(np.diff(t))) if len(t) > 1 else 1.0
-
-
-def moving_average(x, n: int):
-    """Centred moving average over n samples along axis 0 (edges use the available samples)."""
-    n = min(n, len(x))
-    if n <= 1:
-        return x
-    kernel = np.ones(n)
-    flat = x.reshape(len(x), -1)
-    num = np.apply_along_axis(lambda c: np.convolve(c, kernel, mode="same"), 0, flat)
-    den = np.convolve(np.ones(len(x)), kernel, mode="same")[:, None]
-    return (num / den).reshape(x.shape)
+MIN_CYCLES = 3            # fewer whole cycles than this give no verdict
+PERCENTILE = 99.0
 
 
 @dataclass(frozen=True)
 class Signals:
-    """Time series derived from a run. Per step: t_state (s), loop gap (legs, steps) m, body
-    position (steps, 3) m, quaternion (steps, 4), velocity (steps, 3) m/s, joint angles and
-    speeds (steps, legs, 2). Per log sample: t_log (s), command/applied/saturated/static_contact/
-    static_seed (samples, legs, 2) N*m, foot force in the leg plane (samples, legs, 2) N."""
+    """Per log interval (rows): t (s, interval end); body position (rows, 3) m, quaternion
+    (rows, 4), velocity (rows, 3) m/s (world), tilt (rows,) deg; per leg and motor (rows, legs,
+    2): q (rad), qd (rad/s, interval mean), command, applied, static_seed, static_trot,
+    static_contact, links, rotor, friction (N*m), clipped_peak, clipped_line (fractions);
+    foot_force_plane (rows, legs, 2) N (leg plane), foot_force_world (rows, legs, 3); gap (rows, legs) m (worst per interval);
+    stance (rows, legs) scheduled stance; swing_contact (rows, legs) foot loaded in scheduled
+    swing."""
 
-    t_state: np.ndarray
-    gap: np.ndarray
+    t: np.ndarray
     body_p: np.ndarray
     body_quat: np.ndarray
     body_v: np.ndarray
+    tilt_deg: np.ndarray
     q: np.ndarray
     qd: np.ndarray
-    t_log: np.ndarray
     command: np.ndarray
     applied: np.ndarray
-    saturated: np.ndarray
-    static_contact: np.ndarray
     static_seed: np.ndarray
+    static_trot: np.ndarray
+    static_contact: np.ndarray
+    links: np.ndarray
+    rotor: np.ndarray
+    friction: np.ndarray
+    clipped_peak: np.ndarray
+    clipped_line: np.ndarray
     foot_force_plane: np.ndarray
+    foot_force_world: np.ndarray
+    gap: np.ndarray
+    stance: np.ndarray
+    swing_contact: np.ndarray
 
 
-def signals(result: SimResult, setup: Setup, params: Params) -> Signals:
-    plant = setup.plant
-    nq = plant.num_positions()
-    body = plant.GetBodyByName("body", setup.instance)
-    qs, vs = body.floating_positions_start(), nq + body.floating_velocities_start_in_v()
-    st = result.state
-    legs = setup.legs
-    gap = np.array([loop_gaps(params, st[:, setup.indices[leg].q]) for leg in legs])
-    q = np.stack([st[:, setup.indices[leg].q[:2]] for leg in legs], 1)
-    qd = np.stack([st[:, nq + setup.indices[leg].v[:2]] for leg in legs], 1)
-    act = np.array([setup.indices[leg].actuators for leg in legs])     # (legs, 2)
-    per_leg = lambda x: x[:, act]  # noqa: E731  (samples, 8) -> (samples, legs, 2)
-    # poses at the log samples (the state logged at or just before each sample)
-    k = np.clip(np.searchsorted(result.t_state, result.t_log, side="right") - 1, 0, len(st) - 1)
-    q_log = q[k]
-    pose = forward(params.leg, q_log)
-    r_plane = np.array([body_rotation(v) @ plane_rotation() for v in st[k, qs:qs + 4]])
-    f_plane = np.einsum("sji,slj->sli", r_plane, result.foot_forces)[..., :2]
-    f_plane = moving_average(f_plane, max(1, round(CONTACT_AVERAGE_S / _period(result.t_log))))
-    static_contact = -np.einsum("slji,slj->sli", foot_jacobian(params.leg, pose), f_plane)
-    static_seed = static_torques(params, seed_model(params), pose)
+def tilt_deg(quat_wxyz) -> np.ndarray:
+    """Angle (deg) between the body's z axis and the vertical, for quaternions (..., 4)."""
+    q = np.asarray(quat_wxyz) / np.linalg.norm(quat_wxyz, axis=-1, keepdims=True)
+    return np.degrees(np.arccos(np.clip(1 - 2 * (q[..., 1] ** 2 + q[..., 2] ** 2), -1, 1)))
+
+
+def signals(result: SimResult, setup: Setup, params: Params, scenario: Scenario) -> Signals:
+    table, lay = result.table, setup.layout
+    st, t = table["state"], table["t"]
+    per_leg = lambda x: x[:, lay.actuators]  # noqa: E731  (rows, 8) -> (rows, legs, 2)
+    qd = per_leg(table["speed"])
+    period = np.median(np.diff(t)) if len(t) > 1 else scenario.log_period_s
+    q = st[:, lay.q_index] - qd * period / 2        # pose at the middle of each interval
+    qdd = np.gradient(qd, t, axis=0) if len(t) > 2 else np.zeros_like(qd)
+    pose = forward(params.leg, q)
+    lj = link_jacobians(params.leg, params.links, pose)
+    quat = st[:, lay.body_q:lay.body_q + 4]
+    r_world_plane = np.array([body_rotation(v) @ plane_rotation() for v in quat])
+    force = np.einsum("sji,slj->sli", r_world_plane, table["foot_force"])[..., :2]
+    # contact point: the bottom of the foot sphere, (0, 0, -r) from its centre in the world
+    down = -params.body.foot_radius_m * r_world_plane[:, 2, :2]          # leg plane (x, y)
+    jw_de = lj.jw[..., 3, :]                                            # (rows, legs, 2)
+    j_contact = lj.jf.copy()
+    j_contact[..., 0, :] -= down[:, None, 1:2] * jw_de
+    j_contact[..., 1, :] += down[:, None, 0:1] * jw_de
+    static_contact = -np.einsum("slji,slj->sli", j_contact, force)
+    tau_gait = t - scenario.stand_s
+    gaiting = tau_gait[:, None] >= 0
+    stance = np.stack([evaluate(params.gait, scenario.gait, tau_gait, ph).stance
+                       for ph in scenario.phases_rad], 1) & gaiting
+    weight = params.robot.total_mass_kg * params.robot.gravity_m_s2
+    loads = np.where(gaiting, stance_loads(params.gait, scenario.gait, tau_gait,
+                                           scenario.phases_rad, weight).T, weight / len(setup.legs))
+    full = full_model(params)
+    trot_static = static_torques(params, dataclasses.replace(full, foot_load_N=loads), pose, lj)
+    links = torques(params, dataclasses.replace(full, foot_load_N=0.0), pose, qd, qdd).total
+    rotor = params.motor.reflected_inertia_kg_m2 * qdd
+    friction = motor_torque(params.motor, np.zeros_like(qd), qd).friction
     return Signals(
-        t_state=result.t_state, gap=gap, body_p=st[:, qs + 4:qs + 7], body_quat=st[:, qs:qs + 4],
-        body_v=st[:, vs + 3:vs + 6], q=q, qd=qd, t_log=result.t_log,
-        command=per_leg(result.command), applied=per_leg(result.applied),
-        saturated=per_leg(result.saturated), static_contact=static_contact,
-        static_seed=static_seed, foot_force_plane=f_plane)
+        t=t, body_p=st[:, lay.body_q + 4:lay.body_q + 7], body_quat=quat,
+        body_v=st[:, lay.nq + lay.body_v + 3:lay.nq + lay.body_v + 6], tilt_deg=tilt_deg(quat),
+        q=q, qd=qd, command=per_leg(table["command"]), applied=per_leg(table["motor_torque"]),
+        static_seed=static_torques(params, seed_model(params), pose, lj),
+        static_trot=trot_static, static_contact=static_contact, links=links, rotor=rotor,
+        friction=friction, clipped_peak=per_leg(table["clipped_peak"]),
+        clipped_line=per_leg(table["clipped_line"]), foot_force_plane=force,
+        foot_force_world=table["foot_force"], gap=table["gap"],
+        stance=stance, swing_contact=(~stance) & gaiting & (table["foot_force"][..., 2] > 0.0))
+
+
+
+def cycle_window(scenario: Scenario, params: Params, t_end: float) -> tuple[float, float, int]:
+    """Start and end (s) of the whole gait cycles after the ramp that fit before t_end, and
+    their number. Cycles start where the gait time t - stand_s is a multiple of the period."""
+    period = params.gait.period_s
+    start = scenario.stand_s + math.ceil(scenario.ramp_s / period - 1e-9) * period
+    cycles = max(0, math.floor((t_end - start) / period + 1e-9))
+    return start, start + cycles * period, cycles
+
+
+def _p(x, q=PERCENTILE) -> float:
+    return float(np.percentile(np.abs(x), q)) if np.size(x) else float("nan")
+
+
+def _peak(x) -> float:
+    return float(np.max(np.abs(x))) if np.size(x) else float("nan")
+
+
+def _rms(x) -> float:
+    return float(np.sqrt(np.mean(np.square(x)))) if np.size(x) else float("nan")
 
 
 def _ratio(a: float, b: float) -> float:
     return a / b if b else float("nan")
 
 
-def _peak(x):
-    return float(np.max(np.abs(x))) if np.size(x) else float("nan")
+def _spread(values) -> list[float]:
+    return [float(min(values)), float(max(values))] if len(values) else [math.nan, math.nan]
+
+
+def motor_summary(sig: Signals, params: Params, win, cycle, cycles: int, i: int, j: int) -> dict:
+    """Statistics of motor j of leg i over the window rows `win` (cycle: each row's cycle)."""
+    motor = params.motor
+    applied, demand = sig.applied[win, i, j], sig.command[win, i, j]
+    speed = sig.qd[win, i, j]
+    parts = {"contact": sig.static_contact, "links": sig.links, "rotor": sig.rotor,
+             "friction": sig.friction}
+    k = int(np.argmax(np.abs(applied))) if applied.size else 0
+    residual = applied - sum(v[win, i, j] for v in parts.values())
+    per_cycle = [(applied[cycle == c], demand[cycle == c]) for c in range(cycles)]
+    demand_p99 = _p(demand)
+    static_seed, static_trot = _peak(sig.static_seed[win, i, j]), _peak(sig.static_trot[win, i, j])
+    sf = _ratio(motor.peak_torque_Nm, demand_p99)
+    return {
+        "peak_torque_Nm": _peak(applied), "p99_torque_Nm": _p(applied),
+        "rms_torque_Nm": _rms(applied),
+        "demand_peak_Nm": _peak(demand), "demand_p99_Nm": demand_p99,
+        "static_seed_Nm": static_seed, "static_trot_Nm": static_trot,
+        "static_contact_Nm": _peak(sig.static_contact[win, i, j]),
+        "dynamic_to_seed_static": _ratio(demand_p99, static_seed),
+        "dynamic_to_trot_static": _ratio(demand_p99, static_trot),
+        "safety_factor": sf, "verdict": verdict(params, sf),
+        "saturated_fraction": float(np.mean(sig.clipped_peak[win, i, j]
+                                            + sig.clipped_line[win, i, j])),
+        "clipped_peak_fraction": float(np.mean(sig.clipped_peak[win, i, j])),
+        "clipped_line_fraction": float(np.mean(sig.clipped_line[win, i, j])),
+        "peak_speed_rad_s": _peak(speed), "p99_speed_rad_s": _p(speed),
+        "no_load_speed_rad_s": motor.no_load_speed_rad_s,
+        "speed_ok": bool(_peak(speed) <= motor.no_load_speed_rad_s),
+        "decomposition_rms_Nm": {**{name: _rms(v[win, i, j]) for name, v in parts.items()},
+                                 "residual": _rms(residual)},
+        "decomposition_at_peak_Nm": {name: float(v[win, i, j][k]) if applied.size else math.nan
+                                     for name, v in parts.items()},
+        "per_cycle": {
+            "peak_torque_Nm": _spread([_peak(a) for a, _ in per_cycle]),
+            "rms_torque_Nm": _spread([_rms(a) for a, _ in per_cycle]),
+            "demand_p99_Nm": _spread([_p(d) for _, d in per_cycle]),
+        },
+    }
 
 
 def summarize(sig: Signals, scenario: Scenario, params: Params, setup: Setup,
               result: SimResult, seed_analysis: dict) -> dict:
-    """The summary.json dictionary (SI units). seed_analysis: analysis results of the seed model
-    (report.json's results.seed), for the 'was the seed optimistic' verdict."""
-    # the trot at full size; a shorter (or failed) run falls back to what it has
-    start = next(s for s in (scenario.stand_s + scenario.ramp_s, scenario.stand_s, 0.0)
-                 if sig.t_log[-1] > s or s == 0.0)
-    win = sig.t_log >= start
-    win_state = sig.t_state >= start
-    motor = params.motor
-    legs = {}
-    for i, leg in enumerate(setup.legs):
-        legs[leg] = {}
-        for j, name in enumerate(MOTORS):
-            applied = sig.applied[win, i, j]
-            peak = _peak(applied)
-            static = _peak(sig.static_contact[win, i, j])
-            sf = _ratio(motor.peak_torque_Nm, peak)
-            legs[leg][name] = {
-                "peak_torque_Nm": peak,
-                "rms_torque_Nm": float(np.sqrt(np.mean(applied**2))),
-                "static_torque_Nm": static,
-                "seed_static_torque_Nm": _peak(sig.static_seed[win, i, j]),
-                "dynamic_to_static_ratio": _ratio(peak, static),
-                "dynamic_to_seed_static_ratio": _ratio(peak, _peak(sig.static_seed[win, i, j])),
-                "safety_factor": sf,
-                "verdict": verdict(params, sf),
-                "saturated_fraction": float(np.mean(sig.saturated[win, i, j])),
-                "peak_speed_rad_s": _peak(sig.qd[win_state, i, j]),
-                "speed_ok": bool(_peak(sig.qd[win_state, i, j]) <= motor.no_load_speed_rad_s),
-            }
-    worst = max((m["peak_torque_Nm"] for leg in legs.values() for m in leg.values()))
+    """The summary.json dictionary (SI units). seed_analysis: the analysis results of the seed
+    model on the seed's ellipse (report.json's results.seed)."""
+    t_end = float(sig.t[-1]) if len(sig.t) else 0.0
+    start, end, cycles = cycle_window(scenario, params, t_end)
+    win = (sig.t > start + 1e-9) & (sig.t <= end + 1e-9)
+    cycle = np.floor((sig.t[win] - start - 1e-9) / params.gait.period_s).astype(int)
+    legs = {leg: {name: motor_summary(sig, params, win, cycle, cycles, i, j)
+                  for j, name in enumerate(MOTORS)} for i, leg in enumerate(setup.legs)}
+    completed = not result.error
+    sufficient = completed and cycles >= MIN_CYCLES
+    motors = [(leg, name, m) for leg, ms in legs.items() for name, m in ms.items()]
+    worst_leg, worst_motor, worst = min(motors, key=lambda x: (
+        x[2]["safety_factor"] if np.isfinite(x[2]["safety_factor"]) else math.inf))
+    p = sig.body_p[win]
+    tw = sig.t[win]
+    speed = float((p[-1, 0] - p[0, 0]) / (tw[-1] - tw[0])) if len(tw) > 1 else math.nan
+    scheduled_swing = (~sig.stance[win]).sum(0)
     seed_peak = max(seed_analysis[m]["peak_torque_Nm"] for m in MOTORS)
-    duration = float(sig.t_state[-1])
-    p = sig.body_p
-    quat = sig.body_quat / np.linalg.norm(sig.body_quat, axis=1, keepdims=True)
-    tilt = np.degrees(np.arccos(np.clip(1 - 2 * (quat[:, 1] ** 2 + quat[:, 2] ** 2), -1, 1)))
-    trot_t = sig.t_state[win_state]
-    return {
-        "closure": scenario.closure,
-        "duration_s": duration,
-        "requested_duration_s": scenario.duration_s,
-        "completed": not result.error,
-        "error": result.error,
+    summary = {
+        "gait": scenario.gait, "closure": scenario.closure,
+        "duration_s": t_end, "requested_duration_s": scenario.duration_s,
+        "completed": completed, "error": result.error,
+        "cycles_in_window": cycles, "window_s": [start, end],
+        "verdict": worst["verdict"] if sufficient else "insufficient",
+        "worst_motor": f"{worst_leg} {worst_motor}",
+        "max_tilt_deg": float(np.max(sig.tilt_deg)) if len(sig.t) else math.nan,
+        "mean_forward_speed_m_s": speed,
+        "gait_speed_m_s": stance_speed(params.gait, scenario.gait),
+        "gait_frequency_hz": params.gait.frequency_hz,
+        "swing_clear_fraction": {leg: float(1 - sig.swing_contact[win, i].sum()
+                                            / max(scheduled_swing[i], 1))
+                                 for i, leg in enumerate(setup.legs)},
+        "body_height_m": {"min": float(sig.body_p[:, 2].min()), "max": float(sig.body_p[:, 2].max())}
+        if len(sig.t) else None,
+        "max_loop_gap_m": float(np.max(sig.gap)) if len(sig.t) else math.nan,
+        "max_loop_gap_per_leg_m": {leg: float(np.max(sig.gap[:, i])) if len(sig.t) else math.nan
+                                   for i, leg in enumerate(setup.legs)},
         "time_step_s": setup.time_step_s,
-        "real_time_factor": duration / result.wall_s,
+        "log_period_s": scenario.log_period_s,
+        "real_time_factor": t_end / result.wall_s if result.wall_s > 0 else math.nan,
         "wall_time_s": result.wall_s,
-        "max_loop_gap_m": float(np.max(sig.gap)),
-        "max_loop_gap_per_leg_m": {leg: float(np.max(g)) for leg, g in zip(setup.legs, sig.gap)},
         "bushing": None if setup.bushing is None else {
             "stiffness_N_m": setup.bushing.stiffness_N_m,
             "damping_N_s_m": setup.bushing.damping_N_s_m},
-        "knee_effective_mass_kg": setup.m_eff_kg,
-        "design_loop_force_N": setup.loop_force_N,
-        "trot_window_s": [float(start), duration],
-        "body_height_m": {"min": float(p[:, 2].min()), "max": float(p[:, 2].max())},
-        "max_tilt_deg": float(tilt.max()),
-        "forward_distance_m": float(p[-1, 0] - p[0, 0]),
-        "mean_forward_speed_m_s": float((p[win_state][-1, 0] - p[win_state][0, 0])
-                                        / (trot_t[-1] - trot_t[0])) if len(trot_t) > 1
-                                  else float("nan"),
-        "balance_feedback": {"gain": scenario.balance_gain, "rate_s": scenario.balance_rate_s},
+        "knee_effective_mass_kg": setup.m_eff_kg, "design_loop_force_N": setup.loop_force_N,
+        "controller_gains": {k: np.asarray(v).tolist() for k, v in
+                             dataclasses.asdict(setup.gains).items()},
         "seed_peak_torque_Nm": seed_peak,
-        "simulated_peak_torque_Nm": worst,
-        "seed_static_estimate_optimistic": bool(worst > seed_peak),
+        "seed_static_estimate_optimistic": bool(worst["demand_p99_Nm"] > seed_peak),
+        "motor_peak_torque_Nm": params.motor.peak_torque_Nm,
         "legs": legs,
     }
+    summary["answer"] = answer(summary, params)
+    return summary
 
 
-def markdown(summary: dict, params: Params) -> str:
-    s = summary
+def answer(s: dict, params: Params) -> str:
+    """The plain sentence that answers 'how much torque does the trot need?' for this run."""
+    if s["verdict"] == "insufficient":
+        why = (f"the run stopped early ({s['error']})" if not s["completed"] else
+               f"it covered {s['cycles_in_window']} whole gait cycles after the ramp, fewer than "
+               f"{MIN_CYCLES}")
+        return (f"No verdict: {why}; run at least {MIN_CYCLES} whole cycles after the "
+                f"{s['window_s'][0]:g} s of standing and ramp.")
+    leg, name = s["worst_motor"].split()
+    m = s["legs"][leg][name]
+    ratio = m["demand_p99_Nm"] / s["seed_peak_torque_Nm"]
+    judged = (f"optimistic by {ratio:.1f}x" if ratio > 1 else
+              f"conservative ({ratio:.2f}x of it was needed)")
+    return (f"At {s['gait_frequency_hz']:g} Hz with the {s['gait']} gait the motors need "
+            f"{m['demand_p99_Nm']:.2f} N·m ({PERCENTILE:g}th percentile of the demand over "
+            f"{s['cycles_in_window']} cycles, worst motor {leg} {name}; safety factor "
+            f"{m['safety_factor']:.2f}, {m['verdict'].upper()} against "
+            f"{params.checks.sf_pass:g}). The seed's static {s['seed_peak_torque_Nm']:.2f} N·m "
+            f"was {judged}; the static torque with the trot's stance load on the same poses is "
+            f"{m['static_trot_Nm']:.2f} N·m (the robot's weight shared by the feet in stance, "
+            f"not {params.robot.weight_share_kg:.3f} kg per foot).")
+
+
+def markdown(s: dict, params: Params) -> str:
     lines = [
-        f"# Simulated trot: dynamic vs static motor torque ({s['closure']} closure)", "",
-        f"Simulated {s['duration_s']:.2f} s (requested {s['requested_duration_s']:g} s) at "
-        f"time step {s['time_step_s'] * 1e3:.3f} ms, {s['real_time_factor']:.2f}x real time. "
-        f"Statistics over the trot window t = {s['trot_window_s'][0]:.2f} .. "
-        f"{s['trot_window_s'][1]:.2f} s.",
+        f"# Simulated {s['gait']} gait: dynamic vs static motor torque", "", s["answer"], "",
+        f"Simulated {s['duration_s']:.2f} s (requested {s['requested_duration_s']:g} s), "
+        f"{s['closure']} closure, time step {s['time_step_s'] * 1e3:.3f} ms, "
+        f"{s['real_time_factor']:.2f}x real time. Statistics over {s['cycles_in_window']} whole "
+        f"gait cycles, t = {s['window_s'][0]:.2f} .. {s['window_s'][1]:.2f} s; every value is a "
+        f"mean over {s['log_period_s'] * 1e3:g} ms of plant steps.",
     ]
     if s["error"]:
         lines += ["", f"**The run stopped early:** {s['error']}"]
+    clear = min(s["swing_clear_fraction"].values())
     lines += [
-        "", f"- worst loop gap: {s['max_loop_gap_m'] * 1e3:.4f} mm; body height "
-        f"{s['body_height_m']['min'] * 1e3:.1f} .. {s['body_height_m']['max'] * 1e3:.1f} mm; "
-        f"largest tilt {s['max_tilt_deg']:.1f} deg; forward {s['forward_distance_m']:.3f} m "
-        f"(mean trot speed {s['mean_forward_speed_m_s']:.3f} m/s)",
-        f"- balance feedback: gain {s['balance_feedback']['gain']:g}, rate "
-        f"{s['balance_feedback']['rate_s']:g} s (0 = plain trot)",
-        "", "| leg | motor | peak (N m) | RMS (N m) | static J^T F (N m) | dyn/static | seed static "
-        "(N m) | dyn/seed static | SF | verdict | saturated | peak speed (rad/s) |",
-        "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+        "", f"- walking: {s['mean_forward_speed_m_s']:.3f} m/s against the gait's "
+        f"{s['gait_speed_m_s']:.3f} m/s; largest tilt {s['max_tilt_deg']:.1f} deg; swing feet "
+        f"clear of the ground {clear * 100:.0f} % of scheduled swing (worst leg); worst loop gap "
+        f"{s['max_loop_gap_m'] * 1e3:.4f} mm",
+        "", "| leg | motor | demand p99 | demand peak | applied p99 | RMS | seed static | "
+        "trot static | J^T F peak | dyn/seed | dyn/trot | SF | verdict | clipped | p99 speed "
+        "(rad/s) |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for leg, motors in s["legs"].items():
         for name, m in motors.items():
             lines.append(
-                f"| {leg} | {name} | {m['peak_torque_Nm']:.3f} | {m['rms_torque_Nm']:.3f} | "
-                f"{m['static_torque_Nm']:.3f} | {m['dynamic_to_static_ratio']:.2f}x | "
-                f"{m['seed_static_torque_Nm']:.3f} | {m['dynamic_to_seed_static_ratio']:.2f}x | "
+                f"| {leg} | {name} | {m['demand_p99_Nm']:.2f} | {m['demand_peak_Nm']:.2f} | "
+                f"{m['p99_torque_Nm']:.2f} | {m['rms_torque_Nm']:.2f} | {m['static_seed_Nm']:.2f} | "
+                f"{m['static_trot_Nm']:.2f} | {m['static_contact_Nm']:.2f} | "
+                f"{m['dynamic_to_seed_static']:.2f}x | {m['dynamic_to_trot_static']:.2f}x | "
                 f"{m['safety_factor']:.2f} | {m['verdict'].upper()} | "
-                f"{m['saturated_fraction'] * 100:.1f} % | {m['peak_speed_rad_s']:.2f} |")
-    verdict_text = ("**optimistic**: the simulated trot needs more torque than the seed's static "
-                    "analysis predicts" if s["seed_static_estimate_optimistic"]
-                    else "not optimistic: the simulated trot stays within it")
-    lines += [
-        "", f"Seed analysis peak (seed model, 1.675 kg at the foot all cycle): "
-        f"{s['seed_peak_torque_Nm']:.3f} N m; simulated peak applied torque: "
-        f"{s['simulated_peak_torque_Nm']:.3f} N m. The seed's static estimate was {verdict_text}.",
-        "", f"Motor limit {params.motor.peak_torque_Nm:g} N m at the output, torque-speed line to "
-        f"{params.motor.no_load_speed_rad_s:.2f} rad/s; 'static J^T F' uses the measured ground "
-        "force on each foot; 'seed static' the seed's G(q) at the same poses."]
+                f"{m['saturated_fraction'] * 100:.1f} % | {m['p99_speed_rad_s']:.2f} |")
+    lines += ["", "Torque split (RMS over the window, N·m): contact -J^T F, links M q'' + c + G, "
+              "rotor N^2 J q'', friction; residual = applied - their sum.", "",
+              "| leg | motor | contact | links | rotor | friction | residual |",
+              "|---|---|---|---|---|---|---|"]
+    for leg, motors in s["legs"].items():
+        for name, m in motors.items():
+            d = m["decomposition_rms_Nm"]
+            lines.append(f"| {leg} | {name} | {d['contact']:.3f} | {d['links']:.3f} | "
+                         f"{d['rotor']:.3f} | {d['friction']:.3f} | {d['residual']:.3f} |")
+    lines += ["", f"Units N·m unless stated. Motor limit {params.motor.peak_torque_Nm:g} N·m at "
+              f"the output, torque-speed line to {params.motor.no_load_speed_rad_s:.2f} rad/s. "
+              "Demand = the controller's command before saturation; SF = motor limit / demand "
+              f"p99. Seed static: the seed's G(q) with {params.robot.weight_share_kg:.3f} kg at "
+              "the foot. Per-cycle spreads are in summary.json."]
     return "\n".join(lines) + "\n"
 
 
@@ -223,6 +326,8 @@ def _finite(value):
     """The summary with non-finite numbers (a diverged run) as null, so the JSON stays valid."""
     if isinstance(value, dict):
         return {k: _finite(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [_finite(v) for v in value]
     if isinstance(value, float) and not np.isfinite(value):
         return None
     return value

@@ -1,4 +1,4 @@
-"""The Diagram's blocks: gait source, IK controller, motor model, foot contact forces.
+"""The Diagram's blocks: gait source, leg controller, motor model, per-step recorder.
 
 Legs are ordered FL, FR, RL, RR; per leg the motors A, B and foot coordinates (x, y) in the leg
 plane (m). Torque vectors (8) are in the plant's actuation order (LegIndices.actuators).
@@ -7,6 +7,7 @@ plane (m). Torque vectors (8) are in the plant's actuation order (LegIndices.act
 from __future__ import annotations
 
 import dataclasses
+from dataclasses import dataclass
 
 import numpy as np
 from pydrake.common.eigen_geometry import Quaternion
@@ -15,129 +16,224 @@ from pydrake.math import RotationMatrix
 from pydrake.multibody.plant import ContactResults
 from pydrake.systems.framework import BasicVector, LeafSystem
 
-from .dynamics import full_model, static_torques
+from .dynamics import full_model, static_torques, torques
+from .footpath import evaluate, stance_weight
 from .gait import wrap
-from .jacobians import link_jacobians
-from .kinematics import inverse
+from .jacobians import bias_accelerations, link_jacobians
+from .kinematics import forward, inverse
 from .params import Gait, Motor, Params
+from .sdf_model import plane_rotation
 
 
 class GaitSource(LeafSystem):
-    """Time (s) -> foot targets of all legs in their leg planes.
+    """Time (s) -> foot targets of all legs in their leg planes and the stance schedule.
 
-    Output ports: "foot_targets" (8) in m, "foot_velocities" (8) in m/s, legs x (x, y).
-    The seed's ellipse x = x_c + s a cos(w tau + phase), y = y_home + s b sin(w tau + phase) with
-    tau = t - start_s and an amplitude s ramping 0 -> 1 over ramp_s (feet at (x_c, y_home) while
-    standing). phases (rad) per leg."""
+    Output ports (legs x (x, y) where two values per leg): "foot_targets" (8) m,
+    "foot_velocities" (8) m/s, "foot_accelerations" (8) m/s^2, "stance_weights" (4) in [0, 1].
+    The foot path (footpath.evaluate) with gait time tau = t - start_s, each leg at its phase
+    (rad), about the home point (x_c, y_home) scaled by s ramping 0 -> 1 over ramp_s; the
+    stance weights blend from all-stance to the schedule with the same s. While standing
+    (t < start_s) the feet rest at home, all in stance."""
 
-    def __init__(self, gait: Gait, phases, start_s: float, ramp_s: float):
+    def __init__(self, gait: Gait, path: str, phases, start_s: float, ramp_s: float,
+                 transfer_s: float):
         super().__init__()
-        self._gait, self._phases = gait, np.asarray(phases, dtype=float)
-        self._start, self._ramp = start_s, ramp_s
-        n = 2 * len(self._phases)
-        self.DeclareVectorOutputPort("foot_targets", n, self._calc_targets)
-        self.DeclareVectorOutputPort("foot_velocities", n, self._calc_velocities)
+        self._gait, self._path, self._phases = gait, path, np.asarray(phases, dtype=float)
+        self._start, self._ramp, self._transfer = start_s, ramp_s, transfer_s
+        self._home = np.array([gait.x_center_m, gait.y_home_m])
+        n = len(self._phases)
+        for name, size in (("foot_targets", 2 * n), ("foot_velocities", 2 * n),
+                           ("foot_accelerations", 2 * n), ("stance_weights", n)):
+            self.DeclareVectorOutputPort(name, size, lambda c, o, name=name: o.SetFromVector(
+                self.targets(c.get_time())[name].ravel()))
 
-    def targets(self, t: float):
-        """Foot targets (legs, 2) in m and velocities (legs, 2) in m/s at time t (s)."""
-        g = self._gait
-        w = 2.0 * np.pi * g.frequency_hz
-        tau = max(t - self._start, 0.0)
-        s = min(tau / self._ramp, 1.0) if self._ramp > 0 else float(tau > 0)
-        ds = (1.0 / self._ramp if 0 < tau < self._ramp else 0.0) if self._ramp > 0 else 0.0
-        ang = w * tau + self._phases
-        c, sn = np.cos(ang), np.sin(ang)
-        pos = np.stack([g.x_center_m + s * g.a_m * c, g.y_home_m + s * g.b_m * sn], -1)
-        vel = np.stack([ds * g.a_m * c - s * g.a_m * w * sn, ds * g.b_m * sn + s * g.b_m * w * c], -1)
-        if t < self._start:
-            vel[:] = 0.0
-        return pos, vel
-
-    def _calc_targets(self, context, output: BasicVector):
-        output.SetFromVector(self.targets(context.get_time())[0].ravel())
-
-    def _calc_velocities(self, context, output: BasicVector):
-        output.SetFromVector(self.targets(context.get_time())[1].ravel())
-
-
-def weight_shares(foot_y, y_home: float, band: float) -> np.ndarray:
-    """Share of the robot's weight each foot carries (sums to 1), from the foot targets' heights
-    (m): 1 for a foot more than band below y_home, 0 for one more than band above, linear in
-    between, normalised; so a foot takes over its load smoothly at touchdown."""
-    w = np.clip(0.5 - (np.asarray(foot_y) - y_home) / (2.0 * band), 0.0, 1.0)
-    return w / w.sum() if w.sum() > 0 else np.full(len(w), 1.0 / len(w))
+    def targets(self, t: float) -> dict:
+        """The output ports' values at time t (s), each (legs, 2) or (legs,)."""
+        tau = t - self._start
+        if tau < 0.0:
+            zero = np.zeros((len(self._phases), 2))
+            return {"foot_targets": np.tile(self._home, (len(self._phases), 1)),
+                    "foot_velocities": zero, "foot_accelerations": zero,
+                    "stance_weights": np.ones(len(self._phases))}
+        ramping = self._ramp > 0 and tau < self._ramp
+        s, ds = (tau / self._ramp, 1.0 / self._ramp) if ramping else (1.0, 0.0)
+        p = evaluate(self._gait, self._path, tau, self._phases)
+        rel = p.pos - self._home
+        weights = stance_weight(self._gait, self._path, tau, self._phases, self._transfer)
+        return {"foot_targets": self._home + s * rel, "foot_velocities": ds * rel + s * p.vel,
+                "foot_accelerations": 2.0 * ds * p.vel + s * p.acc,
+                "stance_weights": 1.0 - s * (1.0 - weights)}
 
 
-class FootIKController(LeafSystem):
-    """Foot targets and measured plant state -> motor torque commands, at its own rate.
+@dataclass(frozen=True)
+class ControlGains:
+    """Gains of FootLegController (SI). Swing: joint PD kp (N*m/rad), kd (N*m*s/rad). Body
+    (virtual model): height kz (N/m), dz (N*s/m); forward speed dx (N*s/m); roll and pitch
+    k_att (N*m/rad, per axis), d_att (N*m*s/rad, per axis)."""
 
-    Input ports: "foot_targets" (8) m, "foot_velocities" (8) m/s, "plant_state" (nq + nv).
-    Output port: "torque_command" (8) N*m in actuation order, held between updates.
-    Every period_s: closed-form IK (knees-out) gives q_des, J_F^-1 v gives q_dot_des, and
-    tau = kp wrap(q_des - q) + kd (q_dot_des - q_dot) + tau_ff, where tau_ff is the full model's
-    static torque at q_des with the robot's weight shared by the feet whose target is below
-    y_home (all four while standing, the diagonal pair in a trot; see weight_shares).
+    kp: float
+    kd: float
+    kz: float
+    dz: float
+    dx: float
+    k_att: np.ndarray
+    d_att: np.ndarray
 
-    Balance (balance_gain > 0): each foot target's y is moved by balance_gain (dz + balance_rate_s
-    dz') with dz the height change of the leg's hip from the body's tilt (hip positions hips_m in
-    the body frame), so a leg under a sinking hip extends and one under a rising hip shortens;
-    the offset is limited to +-b (the gait's step height)."""
 
-    def __init__(self, params: Params, q_index, v_index, actuators, nq: int, nx: int,
-                 period_s: float, kp: float, kd: float, body_q: int = -1, body_v: int = -1,
-                 hips_m=None, balance_gain: float = 0.0, balance_rate_s: float = 0.0):
+def derive_gains(mass_kg: float, inertia_kg_m2, leg_inertia_kg_m2: float, swing_hz: float,
+                 body_hz: float, damping_ratio: float) -> ControlGains:
+    """Gains that place a second-order mode at the given frequency and damping ratio: a swing
+    joint of inertia leg_inertia (kg*m^2, links and reflected rotor about the motor axis) at
+    swing_hz; the body's height, roll and pitch (mass kg, inertia (3, 3) kg*m^2 about the COM)
+    at body_hz; the forward speed as a first-order loop at body_hz."""
+    ws, wb, z = 2 * np.pi * swing_hz, 2 * np.pi * body_hz, damping_ratio
+    i_att = np.array([inertia_kg_m2[0][0], inertia_kg_m2[1][1]])
+    return ControlGains(kp=leg_inertia_kg_m2 * ws**2, kd=2 * z * leg_inertia_kg_m2 * ws,
+                        kz=mass_kg * wb**2, dz=2 * z * mass_kg * wb, dx=mass_kg * wb,
+                        k_att=i_att * wb**2, d_att=2 * z * i_att * wb)
+
+
+@dataclass(frozen=True)
+class RobotLayout:
+    """What the controller needs to know about the plant: per leg (legs, 2) the plant q and v
+    indices of motors A and B and their actuation indices; the body's first position index
+    (quaternion w, x, y, z, then position) and velocity index (angular then linear, world
+    frame); nq, nx; hip positions (legs, 3) m and the robot's COM (3,) m in the body frame;
+    robot mass (kg) and inertia about the COM (3, 3) kg*m^2; standing body height (m)."""
+
+    q_index: np.ndarray
+    v_index: np.ndarray
+    actuators: np.ndarray
+    body_q: int
+    body_v: int
+    nq: int
+    nx: int
+    hips_m: np.ndarray
+    com_m: np.ndarray
+    mass_kg: float
+    inertia_kg_m2: np.ndarray
+    stand_height_m: float
+
+
+class FootLegController(LeafSystem):
+    """Foot targets, stance schedule and the sampled plant state -> motor torque commands.
+
+    Input ports: "foot_targets", "foot_velocities", "foot_accelerations" (8, legs x (x, y)),
+    "stance_weights" (4), "plant_state" (nx). Output port: "torque_command" (8) N*m in actuation
+    order. Every period_s the controller samples its inputs and computes a command that it
+    releases delay_periods ticks later (0: at once), held in between.
+
+    - Swing (weight 1 - w per leg): joint PD to the closed-form IK of the target (knees out) with
+      the full model's inverse dynamics (M q'' + c + G of the links, reflected rotor inertia) of
+      the target's motion as feed-forward.
+    - Stance (weight w): a virtual-model controller. The body's targets follow from the stance
+      feet's targets: height z = foot radius - hip z - y, vertical speed -y', forward speed the
+      feet's x' (leg-plane x points backwards). The wrench on the body, in the body frame,
+      F_x = m dx (v_x* - v_x), F_z = m (g + z*'') + kz (z* - z) + dz (z*' - z'),
+      M_roll,pitch = -k_att angle - d_att rate, is shared by the stance feet: the in-plane ground
+      forces of least weighted norm (weights w) that produce it, vertical forces >= 0 and
+      horizontal ones inside the friction cone; each motor pair gives -J_F(q)^T F.
+    - The links' weight is compensated on every leg."""
+
+    def __init__(self, params: Params, layout: RobotLayout, gains: ControlGains, period_s: float,
+                 delay_periods: int = 0):
         super().__init__()
-        self._params, self._kp, self._kd = params, kp, kd
-        self._body_q, self._body_w = body_q, nq + body_v
-        self._hips = None if hips_m is None else np.asarray(hips_m, dtype=float)
-        self._balance = (balance_gain, balance_rate_s)
-        self._q_index = np.asarray(q_index)     # (legs, 2) plant q indices of A, B
-        self._v_index = np.asarray(v_index) + nq  # into the state vector
-        self._actuators = np.asarray(actuators)   # (legs, 2) actuation indices
-        self._model = full_model(params)
-        self._weight = params.robot.total_mass_kg * params.robot.gravity_m_s2
-        n = self._q_index.size
-        self._targets = self.DeclareVectorInputPort("foot_targets", n)
-        self._velocities = self.DeclareVectorInputPort("foot_velocities", n)
-        self._state = self.DeclareVectorInputPort("plant_state", nx)
-        self._command = self.DeclareDiscreteState(n)
+        self._params, self._layout, self._gains = params, layout, gains
+        self._delay = delay_periods
+        self._swing_model = dataclasses.replace(full_model(params), foot_load_N=0.0)
+        self._plane = plane_rotation()
+        self._mu = params.body.foot_friction
+        n = layout.q_index.size
+        for name in ("foot_targets", "foot_velocities", "foot_accelerations"):
+            self.DeclareVectorInputPort(name, n)
+        self.DeclareVectorInputPort("stance_weights", n // 2)
+        self.DeclareVectorInputPort("plant_state", layout.nx)
+        # commands of the last delay_periods + 1 ticks, oldest first; the oldest is the output
+        self._queue = self.DeclareDiscreteState((delay_periods + 1) * n)
         self.DeclarePeriodicDiscreteUpdateEvent(period_s, 0.0, self._update)
-        self.DeclareStateOutputPort("torque_command", self._command)
+        self.DeclareVectorOutputPort("torque_command", n, self._output,
+                                     prerequisites_of_calc={self.xd_ticket()})
 
-    def command(self, targets, velocities, state):
-        """Torque command (8) in actuation order from foot targets (legs, 2) m, velocities
-        (legs, 2) m/s and the plant state vector."""
-        p = self._params
-        load = self._weight * weight_shares(targets[:, 1], p.gait.y_home_m, p.gait.b_m / 6)
-        if self._balance[0] > 0:
-            targets = targets.copy()
-            targets[:, 1] += self._balance_offset(state)
-        pose = inverse(p.leg, targets)
+    def command(self, targets, velocities, accelerations, weights, state) -> np.ndarray:
+        """Torque command (8) in actuation order from foot targets, velocities, accelerations
+        (legs, 2), stance weights (legs,) and the plant state vector (nx,)."""
+        p, lay, g = self._params, self._layout, self._gains
+        q, qd = state[lay.q_index], state[lay.v_index + lay.nq]
+        # swing: IK target, its rates and accelerations, inverse-dynamics feed-forward
+        pose_des = inverse(p.leg, targets)
+        lj_des = link_jacobians(p.leg, p.links, pose_des)
+        qd_des = np.linalg.solve(lj_des.jf, velocities[..., None])[..., 0]
+        _, _, af = bias_accelerations(p.leg, p.links, pose_des, qd_des)
+        qdd_des = np.linalg.solve(lj_des.jf, (accelerations - af)[..., None])[..., 0]
+        ff = torques(p, self._swing_model, pose_des, qd_des, qdd_des).total
+        ff = ff + p.motor.reflected_inertia_kg_m2 * qdd_des
+        swing = g.kp * wrap(pose_des.q - q) + g.kd * (qd_des - qd) + ff
+        # stance: virtual model, links' weight at the measured pose
+        pose = forward(p.leg, q)
         lj = link_jacobians(p.leg, p.links, pose)
-        qd_des = np.linalg.solve(lj.jf, velocities[..., None])[..., 0]
-        q, qd = state[self._q_index], state[self._v_index]
-        model = dataclasses.replace(self._model, foot_load_N=load)
-        ff = static_torques(p, model, pose, lj)
-        tau = self._kp * wrap(pose.q - q) + self._kd * (qd_des - qd) + ff
-        out = np.zeros(self._q_index.size)
-        out[self._actuators.ravel()] = tau.ravel()
+        links = static_torques(p, self._swing_model, pose, lj)
+        forces = self._ground_forces(targets, velocities, accelerations, weights, pose, state)
+        stance = links - np.einsum("lji,lj->li", lj.jf, forces)
+        w = weights[:, None]
+        tau = w * stance + (1.0 - w) * swing
+        out = np.zeros(lay.q_index.size)
+        out[lay.actuators.ravel()] = tau.ravel()
         return out
 
-    def _balance_offset(self, state):
-        """Foot target y offsets (legs,) in m from the body's tilt (see class docstring)."""
-        hips_w = self._hips @ body_rotation(state[self._body_q:self._body_q + 4]).T  # world axes
-        omega = state[self._body_w:self._body_w + 3]              # world frame, rad/s
-        dz = hips_w[:, 2] - self._hips[:, 2]
-        dz_dot = omega[0] * hips_w[:, 1] - omega[1] * hips_w[:, 0]   # (omega x r)_z
-        gain, rate = self._balance
-        limit = self._params.gait.b_m
-        return np.clip(gain * (dz + rate * dz_dot), -limit, limit)
+    def _ground_forces(self, targets, velocities, accelerations, weights, pose, state):
+        """Ground forces on the feet (legs, 2) in N, leg-plane (x, y), from the body wrench."""
+        p, lay, g = self._params, self._layout, self._gains
+        total = weights.sum()
+        if total <= 0.0:
+            return np.zeros((len(weights), 2))
+        share = weights / total
+        r_wb = body_rotation(state[lay.body_q:lay.body_q + 4])
+        z = state[lay.body_q + 6]
+        omega_w = state[lay.nq + lay.body_v:lay.nq + lay.body_v + 3]
+        v_b = r_wb.T @ state[lay.nq + lay.body_v + 3:lay.nq + lay.body_v + 6]
+        omega_b = r_wb.T @ omega_w
+        roll, pitch = np.arctan2(r_wb[2, 1], r_wb[2, 2]), -np.arcsin(np.clip(r_wb[2, 0], -1, 1))
+        # body targets from the stance feet's targets (leg plane: x backwards, y up)
+        foot_clearance = p.body.foot_radius_m - p.body.hip_z_m
+        z_des = foot_clearance - share @ targets[:, 1]
+        vz_des, az_des = -share @ velocities[:, 1], -share @ accelerations[:, 1]
+        vx_des = share @ velocities[:, 0]
+        grav = p.robot.gravity_m_s2
+        force_w = np.array([0.0, 0.0, lay.mass_kg * (grav + az_des) + g.kz * (z_des - z)
+                            + g.dz * (vz_des - (r_wb @ v_b)[2])])
+        force_b = r_wb.T @ force_w
+        force_b[0] += g.dx * (vx_des - v_b[0])
+        moment_b = np.zeros(3)
+        moment_b[:2] = -g.k_att * np.array([roll, pitch]) - g.d_att * omega_b[:2]
+        # feet relative to the COM, body frame
+        foot_plane = np.column_stack([pose.f, np.zeros(len(weights))])
+        r = lay.hips_m + foot_plane @ self._plane.T - lay.com_m
+        # unknowns per foot: ground force along body x and z; rows: Fx, Fz, Mx, My, Mz
+        a = np.zeros((5, 2 * len(weights)))
+        a[0, 0::2], a[1, 1::2] = 1.0, 1.0
+        a[2, 1::2] = r[:, 1]                       # Mx = y Fz
+        a[3, 0::2], a[3, 1::2] = r[:, 2], -r[:, 0]  # My = z Fx - x Fz
+        a[4, 0::2] = -r[:, 1]                      # Mz = -y Fx
+        wrench = np.concatenate([force_b[[0, 2]], moment_b])
+        scale = np.array([1, 1, 1 / 0.1, 1 / 0.1, 1 / 0.1])   # moments per 0.1 m lever
+        sw = np.sqrt(np.repeat(weights, 2))
+        sol = np.linalg.lstsq((a * scale[:, None]) * sw, wrench * scale, rcond=1e-6)[0] * sw
+        fx, fz = sol[0::2], np.maximum(sol[1::2], 0.0)
+        fx = np.clip(fx, -self._mu * fz, self._mu * fz)
+        ground_b = np.column_stack([fx, np.zeros_like(fx), fz])
+        return (ground_b @ self._plane)[:, :2]     # body -> leg plane (x, y)
 
     def _update(self, context, discrete_state):
-        targets = self._targets.Eval(context).reshape(-1, 2)
-        velocities = self._velocities.Eval(context).reshape(-1, 2)
-        state = self._state.Eval(context)
-        discrete_state.set_value(self._command, self.command(targets, velocities, state))
+        n = self._layout.q_index.size
+        inputs = [self.get_input_port(i).Eval(context) for i in range(5)]
+        targets, velocities, accelerations = (x.reshape(-1, 2) for x in inputs[:3])
+        new = self.command(targets, velocities, accelerations, inputs[3], inputs[4])
+        queue = context.get_discrete_state(self._queue).get_value()
+        discrete_state.set_value(self._queue, np.concatenate([queue[n:], new]))
+
+    def _output(self, context, output: BasicVector):
+        output.SetFromVector(context.get_discrete_state(self._queue).get_value()[
+            :self._layout.q_index.size])
 
 
 def body_rotation(quaternion_wxyz) -> np.ndarray:
@@ -147,27 +243,44 @@ def body_rotation(quaternion_wxyz) -> np.ndarray:
     return RotationMatrix(Quaternion(q / np.linalg.norm(q))).matrix()
 
 
-def motor_torque(motor: Motor, command, speed, smoothing_rad_s: float = 0.05):
-    """Torque (N*m) at the gearbox output for a command (N*m) at joint speed (rad/s), and whether
-    the command was clipped. Motoring (torque and speed of the same sign) is limited by the linear
-    torque-speed line tau_max (1 - |w| / w_0); braking by tau_max. Friction: Coulomb
-    tau_c tanh(w / w_s) plus viscous b w opposes the motion."""
+@dataclass(frozen=True)
+class MotorOutput:
+    """Motor model result (each like the command): delivered torque at the gearbox output
+    (N*m, the command after saturation), friction (N*m, opposing the motion), the torque the
+    joint receives (delivered - friction), and whether the command was clipped by the peak
+    torque or by the torque-speed line."""
+
+    delivered: np.ndarray
+    friction: np.ndarray
+    joint: np.ndarray
+    clipped_peak: np.ndarray
+    clipped_line: np.ndarray
+
+
+def motor_torque(motor: Motor, command, speed, smoothing_rad_s: float = 0.05) -> MotorOutput:
+    """Motor at joint speed (rad/s) given a command (N*m). Motoring (torque and speed of the
+    same sign) is limited by the torque-speed line (Motor.torque_limit); braking by the peak
+    torque. Friction: Coulomb tau_c tanh(w / w_s) plus viscous b w."""
     command, speed = np.asarray(command, dtype=float), np.asarray(speed, dtype=float)
     peak = motor.peak_torque_Nm
-    line = peak * np.clip(1.0 - np.abs(speed) / motor.no_load_speed_rad_s, 0.0, 1.0)
+    line = motor.torque_limit(speed)
     upper = np.where(speed > 0, line, peak)
     lower = np.where(speed < 0, -line, -peak)
-    clipped = np.clip(command, lower, upper)
+    delivered = np.clip(command, lower, upper)
+    clipped = delivered != command
+    clipped_peak = clipped & (np.abs(command) > peak) & (np.abs(delivered) >= peak)
     friction = (motor.coulomb_friction_Nm * np.tanh(speed / smoothing_rad_s)
                 + motor.viscous_friction_Nm_s * speed)
-    return clipped - friction, clipped != command
+    return MotorOutput(delivered=delivered, friction=friction, joint=delivered - friction,
+                       clipped_peak=clipped_peak, clipped_line=clipped & ~clipped_peak)
 
 
 class MotorModel(LeafSystem):
-    """Commanded torque and joint speed -> torque applied at the joints (see motor_torque).
+    """Commanded torque and joint speed -> torque at the joints (see motor_torque).
 
-    Input ports: "torque_command" (n) N*m, "plant_state" (nq + nv). Output ports:
-    "applied_torque" (n) N*m, "saturated" (n) 1.0 where the command was clipped. Sampled every
+    Input ports: "torque_command" (n) N*m, "plant_state" (nx). Output ports: "applied_torque"
+    (n) N*m at the joints (delivered - friction), "motor_torque" (n) N*m delivered by the motor,
+    "clipped_peak" and "clipped_line" (n) 1.0 where the command was clipped. Sampled every
     period_s (zero-order hold). The rotor's reflected inertia N^2 J_rotor is in the plant
     (<drake:rotor_inertia>, <drake:gear_ratio>), not here."""
 
@@ -178,39 +291,92 @@ class MotorModel(LeafSystem):
         n = len(self._v)
         self._command = self.DeclareVectorInputPort("torque_command", n)
         self._state = self.DeclareVectorInputPort("plant_state", nx)
-        self._applied = self.DeclareDiscreteState(n)
-        self._saturated = self.DeclareDiscreteState(n)
+        self._out = self.DeclareDiscreteState(4 * n)
         self.DeclarePeriodicDiscreteUpdateEvent(period_s, 0.0, self._update)
-        self.DeclareStateOutputPort("applied_torque", self._applied)
-        self.DeclareStateOutputPort("saturated", self._saturated)
+        for i, name in enumerate(("applied_torque", "motor_torque", "clipped_peak",
+                                  "clipped_line")):
+            self.DeclareVectorOutputPort(
+                name, n, lambda c, o, i=i: o.SetFromVector(
+                    c.get_discrete_state(self._out).get_value()[i * n:(i + 1) * n]),
+                prerequisites_of_calc={self.xd_ticket()})
 
     def _update(self, context, discrete_state):
         speed = self._state.Eval(context)[self._v]
-        applied, saturated = motor_torque(self._motor, self._command.Eval(context), speed)
-        discrete_state.set_value(self._applied, applied)
-        discrete_state.set_value(self._saturated, saturated.astype(float))
+        m = motor_torque(self._motor, self._command.Eval(context), speed)
+        discrete_state.set_value(self._out, np.concatenate(
+            [m.joint, m.delivered, m.clipped_peak, m.clipped_line]).astype(float))
 
 
-class FootContactForces(LeafSystem):
-    """Contact results -> ground force on each foot (N, world frame).
+def contact_forces(results: ContactResults, feet: dict) -> np.ndarray:
+    """Ground force on each foot (legs, 3) in N, world frame, from the point contacts;
+    feet maps a foot body's index (int) to its leg number."""
+    forces = np.zeros((len(feet), 3))
+    for i in range(results.num_point_pair_contacts()):
+        info = results.point_pair_contact_info(i)
+        a, b = int(info.bodyA_index()), int(info.bodyB_index())
+        if b in feet:
+            forces[feet[b]] += info.contact_force()
+        elif a in feet:
+            forces[feet[a]] -= info.contact_force()
+    return forces
 
-    Input port: "contact_results" (ContactResults). Output port: "foot_forces" (3 per foot)."""
 
-    def __init__(self, foot_body_indices):
+class StepRecorder(LeafSystem):
+    """Measures the run at every plant step and keeps one row per log interval (a sink: the
+    rows live in this system, one simulation per Diagram).
+
+    Input ports: "contact_results", "plant_state" (nx), "torque_command", "motor_torque",
+    "clipped_peak", "clipped_line" (n each). Every plant step (period step_s) it adds the
+    step's ground force on each foot times step_s (impulse), the joint speeds, the command,
+    the motor torque and the clip flags, and the largest loop gap; every steps_per_row steps it
+    stores their means over the interval (so contact spikes count for the time they last), the
+    worst gap and the plant state at the interval's end. Memory grows with the number of
+    intervals, not of steps."""
+
+    def __init__(self, feet_body_indices, nx: int, n_act: int, step_s: float,
+                 steps_per_row: int, speed_index, gap_fn):
         super().__init__()
-        self._feet = {int(b): i for i, b in enumerate(foot_body_indices)}
-        self._input = self.DeclareAbstractInputPort("contact_results",
-                                                    AbstractValue.Make(ContactResults()))
-        self.DeclareVectorOutputPort("foot_forces", 3 * len(self._feet), self._calc)
+        self._feet = {int(b): i for i, b in enumerate(feet_body_indices)}
+        self._speed_index, self._gap = np.asarray(speed_index), gap_fn
+        self._per_row, self._step = steps_per_row, step_s
+        self.DeclareAbstractInputPort("contact_results", AbstractValue.Make(ContactResults()))
+        self.DeclareVectorInputPort("plant_state", nx)
+        for name in ("torque_command", "motor_torque", "clipped_peak", "clipped_line"):
+            self.DeclareVectorInputPort(name, n_act)
+        n_feet = len(self._feet)
+        self._widths = (3 * n_feet, len(self._speed_index), n_act, n_act, n_act, n_act)
+        self._sum = np.zeros(sum(self._widths))
+        self._gap_max = np.zeros(n_feet)
+        self._count = 0
+        self.rows, self.states, self.gaps, self.times = [], [], [], []
+        self.DeclarePeriodicPublishEvent(step_s, step_s, self._on_step)
 
-    def _calc(self, context, output: BasicVector):
-        results = self._input.Eval(context)
-        forces = np.zeros((len(self._feet), 3))
-        for i in range(results.num_point_pair_contacts()):
-            info = results.point_pair_contact_info(i)
-            a, b = int(info.bodyA_index()), int(info.bodyB_index())
-            if b in self._feet:
-                forces[self._feet[b]] += info.contact_force()
-            elif a in self._feet:
-                forces[self._feet[a]] -= info.contact_force()
-        output.SetFromVector(forces.ravel())
+    def _on_step(self, context):
+        state = self.get_input_port(1).Eval(context)
+        forces = contact_forces(self.get_input_port(0).Eval(context), self._feet)
+        self._sum += np.concatenate([forces.ravel(), state[self._speed_index]]
+                                    + [self.get_input_port(i).Eval(context) for i in range(2, 6)])
+        self._gap_max = np.maximum(self._gap_max, self._gap(state))
+        self._count += 1
+        if self._count == self._per_row:
+            self.rows.append(self._sum / self._count)
+            self.gaps.append(self._gap_max)
+            self.states.append(state.copy())
+            self.times.append(context.get_time())
+            self._sum = np.zeros_like(self._sum)
+            self._gap_max = np.zeros_like(self._gap_max)
+            self._count = 0
+
+    def table(self) -> dict:
+        """The rows so far: t (rows,) s at each interval's end, state (rows, nx), gap (rows,
+        legs) m, and the interval means foot_force (rows, legs, 3) N world, speed (rows, n)
+        rad/s, command, motor_torque (rows, n) N*m, clipped_peak, clipped_line (rows, n)
+        fractions of the steps."""
+        rows = np.array(self.rows).reshape(len(self.rows), sum(self._widths))
+        parts = np.split(rows, np.cumsum(self._widths)[:-1], axis=1)
+        names = ("foot_force", "speed", "command", "motor_torque", "clipped_peak", "clipped_line")
+        out = dict(zip(names, parts))
+        out["foot_force"] = out["foot_force"].reshape(len(rows), -1, 3)
+        out.update(t=np.array(self.times), state=np.array(self.states).reshape(len(rows), -1),
+                   gap=np.array(self.gaps).reshape(len(rows), -1))
+        return out
