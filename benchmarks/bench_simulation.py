@@ -12,10 +12,11 @@ from pathlib import Path
 
 import numpy as np
 
+from fivebar_drake.analysis import analyze
 from fivebar_drake.recording import write_recording
 from fivebar_drake.scenario import load_scenario
 from fivebar_drake.simulation import simulate
-from fivebar_drake.summary import signals
+from fivebar_drake.summary import signals, summarize
 
 
 def main():
@@ -30,17 +31,19 @@ def main():
         params = scenario.load_params()
         result, setup = simulate(scenario, params, progress=False)
         start = time.perf_counter()
-        sig = signals(result, setup, params)
+        sig = signals(result, setup, params, scenario)
         post = time.perf_counter() - start
         with tempfile.TemporaryDirectory() as tmp:
             path = Path(tmp) / "run.rrd"
             start = time.perf_counter()
-            write_recording(path, sig, setup, params, scenario, result.state)
+            summary = summarize(sig, scenario, params, setup, result,
+                                analyze(params).results["results"]["seed"])
+            write_recording(path, sig, setup, params, scenario, result.table["state"], summary)
             rec = time.perf_counter() - start
             size = path.stat().st_size / 1e6
         total = result.wall_s + post + rec
         print(f"{closure:>8} {setup.time_step_s * 1e3:9.4f} {result.wall_s:12.2f} "
-              f"{result.t_state[-1] / result.wall_s:8.2f}x {np.max(sig.gap) * 1e3:14.4f} "
+              f"{sig.t[-1] / result.wall_s:8.2f}x {np.max(sig.gap) * 1e3:14.4f} "
               f"{rec:8.2f} {rec / total * 100:12.1f}% {size:8.1f}"
               + (f"  stopped early: {result.error}" if result.error else ""))
 

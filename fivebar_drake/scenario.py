@@ -31,7 +31,9 @@ class Scenario:
     command computed from the state sampled at tick t reaches the motor model's next sample);
     swing_bandwidth_hz, body_bandwidth_hz, damping_ratio: the controller's gains
     (systems.derive_gains); load_transfer_s: time over which a foot takes up or gives off its
-    load at touchdown and lift-off; stand_s: standing time before the gait starts; ramp_s: time
+    load at touchdown and lift-off; catch_gain (m/m), catch_rate_s (s): the swing legs' catch
+    reflex (systems.FootLegController, 0 = off); touchdown_detection: a descending swing foot
+    that meets the ground early joins the support; stand_s: standing time before the gait starts; ramp_s: time
     over which the foot path grows to full size; phases_rad: gait phase of FL, FR, RL, RR;
     log_period_s: interval of the recorded means (measured every plant step); pose_rate_hz: 3-D
     pose recording rate; params_file: parameter TOML ("" = packaged); gait_*: optional overrides
@@ -49,6 +51,9 @@ class Scenario:
     body_bandwidth_hz: float = 3.0
     damping_ratio: float = 0.7
     load_transfer_s: float = 0.04
+    catch_gain: float = 1.0
+    catch_rate_s: float = 0.1
+    touchdown_detection: bool = True
     stand_s: float = 0.5
     ramp_s: float = 1.0
     phases_rad: list[float] = field(default_factory=lambda: list(TROT_PHASES_RAD))
@@ -73,7 +78,8 @@ class Scenario:
             value = getattr(self, name)
             if not (math.isfinite(value) and value > 0):
                 raise ValueError(f"scenario.{name} = {value!r}: must be > 0")
-        for name in ("time_step_s", "stand_s", "ramp_s", "load_transfer_s"):
+        for name in ("time_step_s", "stand_s", "ramp_s", "load_transfer_s", "catch_gain",
+                     "catch_rate_s"):
             value = getattr(self, name)
             if not (math.isfinite(value) and value >= 0):
                 raise ValueError(f"scenario.{name} = {value!r}: must be >= 0")

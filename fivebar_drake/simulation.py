@@ -124,7 +124,8 @@ def build_diagram(scenario: Scenario, params: Params):
         params.gait, scenario.gait, scenario.phases_rad, scenario.stand_s, scenario.ramp_s,
         scenario.load_transfer_s))
     controller = builder.AddNamedSystem("leg_controller", FootLegController(
-        params, layout, gains, scenario.control_period_s, scenario.control_delay_periods))
+        params, layout, gains, scenario.control_period_s, scenario.control_delay_periods,
+        scenario.catch_gain, scenario.catch_rate_s, scenario.touchdown_detection))
     speed_index = np.zeros(plant.num_actuators(), dtype=int)    # joint speed of each actuator
     speed_index[layout.actuators.ravel()] = layout.v_index.ravel() + layout.nq
     motor = builder.AddNamedSystem("motor_model", MotorModel(

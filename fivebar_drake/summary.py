@@ -38,6 +38,7 @@ from .systems import body_rotation, motor_torque
 MOTORS = ("A", "B")
 MIN_CYCLES = 3            # fewer whole cycles than this give no verdict
 PERCENTILE = 99.0
+SWING_CONTACT_N = 1.0     # a swing foot pressing harder than this (~1.5 % of the weight) drags
 
 
 @dataclass(frozen=True)
@@ -47,8 +48,8 @@ class Signals:
     2): q (rad), qd (rad/s, interval mean), command, applied, static_seed, static_trot,
     static_contact, links, rotor, friction (N*m), clipped_peak, clipped_line (fractions);
     foot_force_plane (rows, legs, 2) N (leg plane), foot_force_world (rows, legs, 3); gap (rows, legs) m (worst per interval);
-    stance (rows, legs) scheduled stance; swing_contact (rows, legs) foot loaded in scheduled
-    swing."""
+    stance (rows, legs) scheduled stance; swing_contact (rows, legs) foot pressing the ground
+    with more than SWING_CONTACT_N in scheduled swing."""
 
     t: np.ndarray
     body_p: np.ndarray
@@ -121,7 +122,8 @@ def signals(result: SimResult, setup: Setup, params: Params, scenario: Scenario)
         friction=friction, clipped_peak=per_leg(table["clipped_peak"]),
         clipped_line=per_leg(table["clipped_line"]), foot_force_plane=force,
         foot_force_world=table["foot_force"], gap=table["gap"],
-        stance=stance, swing_contact=(~stance) & gaiting & (table["foot_force"][..., 2] > 0.0))
+        stance=stance,
+        swing_contact=(~stance) & gaiting & (table["foot_force"][..., 2] > SWING_CONTACT_N))
 
 
 

@@ -25,6 +25,9 @@ from .params import Gait, Motor, Params
 from .sdf_model import plane_rotation
 
 
+TOUCHDOWN_BAND_M = 0.004   # a descending swing foot this close to the ground joins the support
+
+
 class GaitSource(LeafSystem):
     """Time (s) -> foot targets of all legs in their leg planes and the stance schedule.
 
@@ -133,12 +136,20 @@ class FootLegController(LeafSystem):
       M_roll,pitch = -k_att angle - d_att rate, is shared by the stance feet: the in-plane ground
       forces of least weighted norm (weights w) that produce it, vertical forces >= 0 and
       horizontal ones inside the friction cone; each motor pair gives -J_F(q)^T F.
+    - Swing legs catch the body (catch_gain > 0): under a hip that the tilt lowers, the swing
+      foot's target reaches down (see _catch_offset); with touchdown_detection a descending
+      swing foot that meets the ground early joins the support (see _early_touchdown). The legs
+      are planar and cannot step sideways: with a diagonal pair alone on the ground nothing
+      else stops the body tipping about the diagonal.
     - The links' weight is compensated on every leg."""
 
     def __init__(self, params: Params, layout: RobotLayout, gains: ControlGains, period_s: float,
-                 delay_periods: int = 0):
+                 delay_periods: int = 0, catch_gain: float = 1.0, catch_rate_s: float = 0.1,
+                 touchdown_detection: bool = True):
         super().__init__()
         self._params, self._layout, self._gains = params, layout, gains
+        self._touchdown = touchdown_detection
+        self._catch = (catch_gain, catch_rate_s)
         self._delay = delay_periods
         self._swing_model = dataclasses.replace(full_model(params), foot_load_N=0.0)
         self._plane = plane_rotation()
@@ -159,8 +170,9 @@ class FootLegController(LeafSystem):
         (legs, 2), stance weights (legs,) and the plant state vector (nx,)."""
         p, lay, g = self._params, self._layout, self._gains
         q, qd = state[lay.q_index], state[lay.v_index + lay.nq]
-        # swing: IK target, its rates and accelerations, inverse-dynamics feed-forward
-        pose_des = inverse(p.leg, targets)
+        # swing: IK target (moved by the catch reflex), its rates and accelerations,
+        # inverse-dynamics feed-forward
+        pose_des = inverse(p.leg, targets + self._catch_offset(state))
         lj_des = link_jacobians(p.leg, p.links, pose_des)
         qd_des = np.linalg.solve(lj_des.jf, velocities[..., None])[..., 0]
         _, _, af = bias_accelerations(p.leg, p.links, pose_des, qd_des)
@@ -171,6 +183,8 @@ class FootLegController(LeafSystem):
         # stance: virtual model, links' weight at the measured pose
         pose = forward(p.leg, q)
         lj = link_jacobians(p.leg, p.links, pose)
+        if self._touchdown:
+            weights = np.maximum(weights, self._early_touchdown(pose, velocities, state))
         links = static_torques(p, self._swing_model, pose, lj)
         forces = self._ground_forces(targets, velocities, accelerations, weights, pose, state)
         stance = links - np.einsum("lji,lj->li", lj.jf, forces)
@@ -178,6 +192,37 @@ class FootLegController(LeafSystem):
         tau = w * stance + (1.0 - w) * swing
         out = np.zeros(lay.q_index.size)
         out[lay.actuators.ravel()] = tau.ravel()
+        return out
+
+    def _early_touchdown(self, pose, velocities, state) -> np.ndarray:
+        """Support weight (legs,) of swing feet that meet the ground early: a foot on its way
+        down (target y' < 0) whose lowest point is within TOUCHDOWN_BAND_M of flat ground at
+        z = 0 (kinematic contact estimate: body pose and leg angles) joins the support: fully
+        within half the band, fading out linearly to none at the band."""
+        lay = self._layout
+        r_wb = body_rotation(state[lay.body_q:lay.body_q + 4])
+        feet_b = lay.hips_m + np.column_stack([pose.f, np.zeros(len(pose.f))]) @ self._plane.T
+        clearance = (state[lay.body_q + 6] + feet_b @ r_wb[2]) - self._params.body.foot_radius_m
+        weight = np.clip(2.0 - clearance / (0.5 * TOUCHDOWN_BAND_M), 0.0, 1.0)
+        return np.where(velocities[:, 1] < 0.0, weight, 0.0)
+
+    def _catch_offset(self, state) -> np.ndarray:
+        """Swing foot target offsets (legs, 2) in m: a swing leg under a hip that the body's
+        tilt lowers by dz reaches down by catch_gain (dz + catch_rate dz') (and up under a
+        rising hip), limited to the step height, so the foot on the side the body falls to
+        lands early and catches it."""
+        lay = self._layout
+        gain, rate = self._catch
+        out = np.zeros((len(lay.hips_m), 2))
+        if gain == 0.0:
+            return out
+        r_wb = body_rotation(state[lay.body_q:lay.body_q + 4])
+        hips_w = lay.hips_m @ r_wb.T
+        omega = state[lay.nq + lay.body_v:lay.nq + lay.body_v + 3]
+        dz = hips_w[:, 2] - lay.hips_m[:, 2]
+        dz_dot = omega[0] * hips_w[:, 1] - omega[1] * hips_w[:, 0]      # (omega x r)_z
+        limit = self._params.gait.b_m
+        out[:, 1] = np.clip(gain * (dz + rate * dz_dot), -limit, limit)
         return out
 
     def _ground_forces(self, targets, velocities, accelerations, weights, pose, state):
