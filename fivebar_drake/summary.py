@@ -40,7 +40,7 @@ MIN_CYCLES = 3            # fewer whole cycles than this give no verdict
 PERCENTILE = 99.0
 SWING_CONTACT_N = 1.0     # a swing foot pressing harder than this (~1.5 % of the weight) drags
 # Mid-swing, where a foot on the ground drags: after lift-off and before the descent to an early
-# touchdown (the trot path's foot is 3.9 mm up at 10 % of its swing, 21 mm at 70 %).
+# touchdown (the trot path lifts a foot 1.4 mm by 10 % of its swing, 18 mm by 70 %).
 MID_SWING = (0.1, 0.7)
 
 
