@@ -93,7 +93,10 @@ def signals(result: SimResult, setup: Setup, params: Params, scenario: Scenario)
     qd = per_leg(table["speed"])
     period = np.median(np.diff(t)) if len(t) > 1 else scenario.log_period_s
     q = st[:, lay.q_index] - qd * period / 2        # pose at the middle of each interval
-    qdd = np.gradient(qd, t, axis=0) if len(t) > 2 else np.zeros_like(qd)
+    # the mean acceleration over each interval is exactly its change of speed over its length
+    # (the run starts at rest), consistent with the impulse-averaged contact forces
+    qd_end = st[:, lay.v_index + lay.nq]
+    qdd = np.diff(qd_end, axis=0, prepend=0.0 * qd_end[:1]) / np.diff(t, prepend=0.0)[:, None, None]
     pose = forward(params.leg, q)
     lj = link_jacobians(params.leg, params.links, pose)
     quat = st[:, lay.body_q:lay.body_q + 4]

@@ -371,46 +371,55 @@ class StepRecorder(LeafSystem):
     rows live in this system, one simulation per Diagram).
 
     Input ports: "contact_results", "plant_state" (nx), "torque_command", "motor_torque",
-    "clipped_peak", "clipped_line" (n each). Every plant step (period step_s) it adds the
-    step's ground force on each foot times step_s (impulse), the joint speeds, the command,
-    the motor torque and the clip flags, and the largest loop gap; every steps_per_row steps it
-    stores their means over the interval (so contact spikes count for the time they last), the
-    worst gap and the plant state at the interval's end. Memory grows with the number of
-    intervals, not of steps."""
+    "clipped_peak", "clipped_line" (n each). At each plant step time t it adds what acts on the
+    step [t, t + step_s] (the ground force on each foot, the command, the motor torque, the clip
+    flags) and the joint speeds at t, which the step from t - step_s produced (the discrete plant
+    moves its positions with the speeds at the step's end). Every steps_per_row steps it stores
+    their means over the interval (so a contact spike counts for the time it lasts: the mean
+    force is the interval's impulse over its length), the worst loop gap and the plant state at
+    the interval's end. Memory grows with the number of intervals, not of steps."""
 
     def __init__(self, feet_body_indices, nx: int, n_act: int, step_s: float,
                  steps_per_row: int, speed_index, gap_fn):
         super().__init__()
         self._feet = {int(b): i for i, b in enumerate(feet_body_indices)}
         self._speed_index, self._gap = np.asarray(speed_index), gap_fn
-        self._per_row, self._step = steps_per_row, step_s
+        self._per_row = steps_per_row
         self.DeclareAbstractInputPort("contact_results", AbstractValue.Make(ContactResults()))
         self.DeclareVectorInputPort("plant_state", nx)
         for name in ("torque_command", "motor_torque", "clipped_peak", "clipped_line"):
             self.DeclareVectorInputPort(name, n_act)
         n_feet = len(self._feet)
         self._widths = (3 * n_feet, len(self._speed_index), n_act, n_act, n_act, n_act)
-        self._sum = np.zeros(sum(self._widths))
+        self._acting = np.zeros(sum(self._widths) - len(self._speed_index))
+        self._speed = np.zeros(len(self._speed_index))
         self._gap_max = np.zeros(n_feet)
-        self._count = 0
+        self._count, self._started = 0, False
         self.rows, self.states, self.gaps, self.times = [], [], [], []
-        self.DeclarePeriodicPublishEvent(step_s, step_s, self._on_step)
+        self.DeclarePeriodicPublishEvent(step_s, 0.0, self._on_step)
 
     def _on_step(self, context):
         state = self.get_input_port(1).Eval(context)
-        forces = contact_forces(self.get_input_port(0).Eval(context), self._feet)
-        self._sum += np.concatenate([forces.ravel(), state[self._speed_index]]
-                                    + [self.get_input_port(i).Eval(context) for i in range(2, 6)])
-        self._gap_max = np.maximum(self._gap_max, self._gap(state))
+        if self._started:                  # the step that ended at t
+            self._speed += state[self._speed_index]
+            self._gap_max = np.maximum(self._gap_max, self._gap(state))
+            if self._count == self._per_row:
+                n_feet = 3 * len(self._feet)
+                mean = self._acting / self._count
+                self.rows.append(np.concatenate([mean[:n_feet], self._speed / self._count,
+                                                 mean[n_feet:]]))
+                self.gaps.append(self._gap_max)
+                self.states.append(state.copy())
+                self.times.append(context.get_time())
+                self._acting = np.zeros_like(self._acting)
+                self._speed = np.zeros_like(self._speed)
+                self._gap_max = np.zeros_like(self._gap_max)
+                self._count = 0
+        self._started = True
+        forces = contact_forces(self.get_input_port(0).Eval(context), self._feet)  # step ahead
+        self._acting += np.concatenate([forces.ravel()]
+                                       + [self.get_input_port(i).Eval(context) for i in range(2, 6)])
         self._count += 1
-        if self._count == self._per_row:
-            self.rows.append(self._sum / self._count)
-            self.gaps.append(self._gap_max)
-            self.states.append(state.copy())
-            self.times.append(context.get_time())
-            self._sum = np.zeros_like(self._sum)
-            self._gap_max = np.zeros_like(self._gap_max)
-            self._count = 0
 
     def table(self) -> dict:
         """The rows so far: t (rows,) s at each interval's end, state (rows, nx), gap (rows,
