@@ -6,6 +6,7 @@ measures every plant step and keeps the means of each log interval.
 
 from __future__ import annotations
 
+import math
 import sys
 import time
 from dataclasses import dataclass
@@ -63,7 +64,9 @@ def closure_parameters(scenario: Scenario, params: Params):
             f"scenario.time_step_s = {scenario.time_step_s!r}: the bushing (k = "
             f"{bushing.stiffness_N_m:.3g} N/m, m_eff = {m_eff * 1e3:.2f} g) is stable up to "
             f"{dt:.3g} s; use 0 (derived) or a smaller step, or a larger target_loop_gap_m")
-    return scenario.time_step_s or dt, bushing, m_eff, force
+    # the largest stable step that divides the log period, so every log interval has whole steps
+    derived = scenario.log_period_s / math.ceil(scenario.log_period_s / dt - 1e-9)
+    return scenario.time_step_s or derived, bushing, m_eff, force
 
 
 def robot_layout(plant, instance, legs, params: Params) -> RobotLayout:

@@ -220,9 +220,11 @@ def summarize(sig: Signals, scenario: Scenario, params: Params, setup: Setup,
     """The summary.json dictionary (SI units). seed_analysis: the analysis results of the seed
     model on the seed's ellipse (report.json's results.seed)."""
     t_end = float(sig.t[-1]) if len(sig.t) else 0.0
-    start, end, cycles = cycle_window(scenario, params, t_end)
-    win = (sig.t > start + 1e-9) & (sig.t <= end + 1e-9)
-    cycle = np.floor((sig.t[win] - start - 1e-9) / params.gait.period_s).astype(int)
+    half_row = 0.5 * float(np.median(np.diff(sig.t))) if len(sig.t) > 1 else 0.0
+    start, end, cycles = cycle_window(scenario, params, t_end + half_row)
+    win = (sig.t > start + half_row) & (sig.t <= end + half_row)
+    cycle = np.clip(np.floor((sig.t[win] - start - half_row) / params.gait.period_s), 0,
+                    max(cycles - 1, 0)).astype(int)
     legs = {leg: {name: motor_summary(sig, params, win, cycle, cycles, i, j)
                   for j, name in enumerate(MOTORS)} for i, leg in enumerate(setup.legs)}
     completed = not result.error
