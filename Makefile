@@ -13,9 +13,18 @@ $(STAMP): pyproject.toml
 	$(BIN)/pip install --quiet -e '.[test]'
 	touch $(STAMP)
 
+# demo runs: 0.5 s standing, 1 s ramp, 3 whole gait cycles
+DEMO_S ?= 4.5
+
+# simulate exits 1 when a run stops early or has no verdict (it still writes its summary):
+# the seed's ellipse may do that, and the comparison reports it; any other failure stops make.
 demo: $(STAMP)
 	$(BIN)/fivebar-drake analyze --out $(OUT)/analysis
-	$(BIN)/fivebar-drake simulate --duration 3 --out $(OUT)/simulation
+	$(BIN)/fivebar-drake simulate --gait trot --duration $(DEMO_S) --out $(OUT)/simulation/trot
+	$(BIN)/fivebar-drake simulate --gait seed_ellipse --duration $(DEMO_S) \
+		--out $(OUT)/simulation/seed_ellipse || [ $$? -eq 1 ]
+	$(BIN)/fivebar-drake compare $(OUT)/simulation/trot $(OUT)/simulation/seed_ellipse \
+		--out $(OUT)/gait_comparison.md
 
 test: $(STAMP)
 	$(BIN)/pytest

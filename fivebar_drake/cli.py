@@ -9,7 +9,9 @@ import time
 from pathlib import Path
 
 from .kinematics import UnreachableError
+from .footpath import PATHS
 from .params import ParameterError, load_params
+from .plant_model import CLOSURES
 
 
 def _analyze(args) -> int:
@@ -48,7 +50,8 @@ def _simulate(args) -> int:
     from .simulation import simulate
     from .summary import signals, summarize, write_summary
 
-    scenario = load_scenario(args.scenario, duration_s=args.duration, closure=args.closure)
+    scenario = load_scenario(args.scenario, duration_s=args.duration, closure=args.closure,
+                             gait=args.gait)
     params = scenario.load_params()
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
@@ -84,6 +87,17 @@ def _simulate(args) -> int:
     return 0
 
 
+def _compare(args) -> int:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from .comparison import write_comparison
+
+    for path in write_comparison(args.runs, Path(args.out)):
+        print(f"wrote {path}")
+    return 0
+
+
 def _models(args) -> int:
     from .scenario import load_scenario
     from .sdf_model import write_models
@@ -107,9 +121,17 @@ def main(argv=None) -> int:
     s = sub.add_parser("simulate", help="Drake simulation of the trotting quadruped")
     s.add_argument("--scenario", help="scenario file (YAML); default: built-in trot scenario")
     s.add_argument("--duration", type=float, help="simulated time in s (overrides the scenario)")
-    s.add_argument("--closure", help="loop closure: bushing or ball (overrides the scenario)")
+    s.add_argument("--gait", choices=PATHS,
+                   help="foot path (overrides the scenario's, default trot)")
+    s.add_argument("--closure", choices=CLOSURES,
+                   help="loop closure (overrides the scenario's, default bushing)")
     s.add_argument("--out", default="out/simulation", help="output folder (default: %(default)s)")
     s.set_defaults(run=_simulate)
+    c = sub.add_parser("compare", help="simulated runs side by side: what the foot path costs")
+    c.add_argument("runs", nargs="+", help="output folders of `simulate` runs")
+    c.add_argument("--out", default="out/gait_comparison.md",
+                   help="markdown file; a PNG is written beside it (default: %(default)s)")
+    c.set_defaults(run=_compare)
     m = sub.add_parser("models", help="write the SDF models generated from the parameters")
     m.add_argument("--scenario", help="scenario file (YAML) for the bushing design")
     m.add_argument("--out", default="sdf", help="output folder (default: %(default)s)")
