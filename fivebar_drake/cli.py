@@ -25,14 +25,16 @@ def _analyze(args) -> int:
     start = time.perf_counter()
     params = load_params(args.config)
     print(f"parameters: {args.config or 'packaged default'}")
-    analysis = analyze(params)
+    analysis = analyze(params, path=args.gait)
     out = Path(args.out)
     written = write_report(analysis, out) + write_plots(analysis, out)
-    for model in ("seed", "full"):
-        for motor, m in analysis.results["results"][model].items():
-            print(f"  {model:>4} motor {motor}: peak {m['peak_torque_Nm']:.3f} N m, "
-                  f"static {m['static_torque_Nm']:.3f} N m, SF {m['safety_factor']:.2f} "
-                  f"({m['verdict']}), peak speed {m['peak_speed_rad_s']:.2f} rad/s")
+    readings = [(model, motor, m) for model, motors in analysis.results["results"].items()
+                for motor, m in motors.items()]
+    print(f"foot path: {args.gait}; every reading, the lowest safety factor first:")
+    for model, motor, m in sorted(readings, key=lambda r: r[2]["safety_factor"]):
+        print(f"  {model:>9} motor {motor}: peak {m['peak_torque_Nm']:.3f} N m, "
+              f"static {m['static_torque_Nm']:.3f} N m, SF {m['safety_factor']:.2f} "
+              f"({m['verdict'].upper()}), peak speed {m['peak_speed_rad_s']:.2f} rad/s")
     print(f"wrote {len(written)} files to {out.resolve()} in {time.perf_counter() - start:.1f} s:")
     for path in written:
         print(f"  {path}")
@@ -115,6 +117,8 @@ def main(argv=None) -> int:
     parser = argparse.ArgumentParser(prog="fivebar-drake", description=__doc__)
     sub = parser.add_subparsers(dest="command", required=True)
     p = sub.add_parser("analyze", help="the seed's torque analysis over the elliptical gait")
+    p.add_argument("--gait", choices=PATHS, default="seed_ellipse",
+                   help="foot path to analyse (default: %(default)s, the seed's)")
     p.add_argument("--config", help="parameter file (TOML); default: the packaged parameters")
     p.add_argument("--out", default="out/analysis", help="output folder (default: %(default)s)")
     p.set_defaults(run=_analyze)

@@ -3,10 +3,12 @@
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 
 from .analysis import MOTORS, Analysis
 from .dynamics import physical_izz
+from .footpath import stance_speed
 from .params import LINK_NAMES
 from .plots import FIGURES
 
@@ -26,14 +28,32 @@ def assumptions(analysis: Analysis) -> list[str]:
         f"0 in the `seed` model and the thin-rod estimate m L^2/12 = {izz['AC']:.3g} kg m^2 in "
         "the `full` models.",
         f"The {p.motor.peak_torque_Nm:g} N m motor torque is taken at the gearbox output "
-        f"(gear {p.motor.gear_ratio:g}:1); {p.motor.no_load_speed_rad_s:.2f} rad/s (120 RPM) is "
-        "taken as the no-load output speed of a linear torque-speed line.",
+        f"(gear {p.motor.gear_ratio:g}:1); {p.motor.no_load_speed_rad_s:.2f} rad/s "
+        f"({p.motor.no_load_speed_rad_s * 60 / (2 * math.pi):.0f} RPM) is taken as the no-load "
+        "output speed of a linear torque-speed line.",
         "Joint rates and accelerations are periodic central differences over the N samples "
         "(seed 000 section 5); the IK mode follows seed 000 appendix B from the knees-out mode.",
         "Safety factor = motor torque / peak dynamic torque; verdict: SF >= "
         f"{p.checks.sf_pass:g} pass, {p.checks.sf_warn:g} <= SF < {p.checks.sf_pass:g} warn, "
         "else fail.",
     ]
+
+
+def path_name(analysis: Analysis) -> str:
+    return {"seed_ellipse": "seed's elliptical gait", "trot": "trot foot path"}[
+        analysis.samples.path]
+
+
+def path_text(analysis: Analysis) -> str:
+    """The analysed foot path in words, with its numbers (mm, s)."""
+    g = analysis.params.gait
+    if analysis.samples.path == "seed_ellipse":
+        return (f"the seed's ellipse x = {g.x_center_m * 1e3:g} + {g.a_m * 1e3:g} cos(wt) mm, "
+                f"y = {g.y_home_m * 1e3:g} + {g.b_m * 1e3:g} sin(wt) mm")
+    return (f"the trot path (footpath.py): stance flat at y = {g.y_home_m * 1e3:g} mm over the "
+            f"stride {2 * g.a_m * 1e3:g} mm at {stance_speed(g, 'trot'):.3f} m/s for "
+            f"{g.duty_factor:g} of the cycle, swing lifted {g.b_m * 1e3:g} mm with matched "
+            "touchdown speed")
 
 
 def _where(at: dict) -> str:
@@ -46,12 +66,10 @@ def markdown(analysis: Analysis) -> str:
     p = analysis.params
     g = p.gait
     lines = [
-        "# 5-bar leg: dynamic torque analysis over the elliptical gait",
+        f"# 5-bar leg: dynamic torque analysis over the {path_name(analysis)}",
         "",
-        f"Gait: x = {g.x_center_m * 1e3:g} + {g.a_m * 1e3:g} cos(wt) mm, "
-        f"y = {g.y_home_m * 1e3:g} + {g.b_m * 1e3:g} sin(wt) mm, f = {g.frequency_hz:g} Hz, "
-        f"N = {g.samples} samples. Motor: {p.motor.peak_torque_Nm:g} N m, "
-        f"{p.motor.no_load_speed_rad_s:.2f} rad/s.",
+        f"Foot path: {path_text(analysis)}, f = {g.frequency_hz:g} Hz, N = {g.samples} samples. "
+        f"Motor: {p.motor.peak_torque_Nm:g} N m, {p.motor.no_load_speed_rad_s:.2f} rad/s.",
         "",
         "Models, side by side (SPEC.md section 3):",
         "",

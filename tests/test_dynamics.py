@@ -112,10 +112,21 @@ def test_seed_and_full_gravity_differ_only_in_link_weight_sign(params, rng):
     assert np.allclose(seed.foot_load, full.foot_load)
 
 
-def test_trot_model_loads_stance_only(params):
-    an = analyze(params)
-    foot = an.samples.foot
+@pytest.mark.parametrize("path", ["seed_ellipse", "trot"])
+def test_trot_model_loads_stance_only(params, path):
+    """FL's scheduled load: half the weight when only its diagonal pair is in stance, a quarter
+    when all four feet are, none in swing; stance read from the path's own definition."""
+    an = analyze(params, path)
     load = an.models["full_trot"].foot_load_N
-    stance = foot[:, 1] < params.gait.y_home_m - 1e-12
+    weight = params.robot.total_mass_kg * params.robot.gravity_m_s2
+    u = np.mod(an.samples.t * params.gait.frequency_hz, 1.0)           # FL phase 0
+    u_other = np.mod(u + 0.5, 1.0)                                    # FR, RL half a cycle on
+    start = 0.5 if path == "seed_ellipse" else 1.0 - params.gait.duty_factor
+    stance, other = u >= start, u_other >= start
+    if path == "seed_ellipse":                                       # lower half of the ellipse
+        stance = an.samples.foot[:, 1] < params.gait.y_home_m - 1e-12
+        other = an.samples.foot[:, 1] > params.gait.y_home_m + 1e-12
     assert np.all(load[~stance] == 0)
-    assert np.allclose(load[stance], params.robot.total_mass_kg * params.robot.gravity_m_s2 / 2)
+    assert np.allclose(load[stance & ~other], weight / 2)
+    assert np.allclose(load[stance & other], weight / 4)
+    assert (stance & other).any() == (path == "trot")

@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 from fivebar_drake.bushing import bushing_parameters
-from fivebar_drake.systems import motor_torque, weight_shares
+from fivebar_drake.footpath import stance_weight
+from fivebar_drake.systems import motor_torque
 
 
 @pytest.fixture()
@@ -15,18 +16,20 @@ def motor(params):
                                coulomb_friction_Nm=0.02, viscous_friction_Nm_s=0.002)
 
 
-@pytest.mark.parametrize("command, speed, applied, saturated", [
-    (3.0, 0.0, 3.0, False),                                   # inside the limits, no friction
-    (10.0, 0.0, 5.0, True),                                   # stall: peak torque
-    (10.0, 2 * np.pi, 2.5 - 0.02 - 0.002 * 2 * np.pi, True),  # half no-load speed: half torque
-    (-10.0, 2 * np.pi, -5.0 - 0.02 - 0.002 * 2 * np.pi, True),  # braking: full torque
-    (4.0, 20.0, 0.0 - 0.02 - 0.04, True),                     # beyond no-load speed: nothing
-    (-1.0, -1.0, -1.0 + 0.02 + 0.002, False),                 # friction opposes the motion
+@pytest.mark.parametrize("command, speed, applied, clip", [
+    (3.0, 0.0, 3.0, ""),                                      # inside the limits, no friction
+    (10.0, 0.0, 5.0, "peak"),                                 # stall: peak torque
+    (10.0, 2 * np.pi, 2.5 - 0.02 - 0.002 * 2 * np.pi, "line"),  # half no-load speed: half torque
+    (-10.0, 2 * np.pi, -5.0 - 0.02 - 0.002 * 2 * np.pi, "peak"),  # braking: full torque
+    (4.0, 20.0, 0.0 - 0.02 - 0.04, "line"),                   # beyond no-load speed: nothing
+    (-1.0, -1.0, -1.0 + 0.02 + 0.002, ""),                    # friction opposes the motion
 ])
-def test_motor_model_points(motor, command, speed, applied, saturated):
-    out, sat = motor_torque(motor, command, speed, smoothing_rad_s=1e-9)
-    assert out == pytest.approx(applied, abs=1e-12)
-    assert bool(sat) == saturated
+def test_motor_model_points(motor, command, speed, applied, clip):
+    out = motor_torque(motor, command, speed, smoothing_rad_s=1e-9)
+    assert out.joint == pytest.approx(applied, abs=1e-12)
+    assert out.delivered - out.friction == pytest.approx(out.joint, abs=1e-15)
+    assert bool(out.clipped_peak) == (clip == "peak")
+    assert bool(out.clipped_line) == (clip == "line")
 
 
 def step_growth(k, d, m, dt, steps=4000):
@@ -60,9 +63,14 @@ def test_bushing_rejects_bad_input():
         bushing_parameters(0.01, 30.0, 0.0)
 
 
-def test_weight_shares_hand_over_smoothly():
-    y_home, band = -0.2, 0.005
-    assert np.allclose(weight_shares([y_home] * 4, y_home, band), 0.25)
-    assert np.allclose(weight_shares([-0.22, -0.18, -0.18, -0.22], y_home, band), [0.5, 0, 0, 0.5])
-    mid = weight_shares([-0.2025, -0.18, -0.18, -0.22], y_home, band)   # touching down
-    assert mid == pytest.approx([0.75 / 1.75, 0, 0, 1 / 1.75])
+def test_stance_weight_hands_load_over_smoothly(params):
+    """0 in swing, 1 in mid-stance, rising and falling smoothly over the transfer time."""
+    import dataclasses
+
+    gait = dataclasses.replace(params.gait, duty_factor=0.75, frequency_hz=1.0)
+    t = np.linspace(0.0, 1.0, 100001)
+    w = stance_weight(gait, "trot", t, 0.0, 0.04)
+    assert np.all(w[t < 0.25] == 0.0)                       # swing: u < 1 - beta
+    assert np.all(w[(t > 0.29) & (t < 0.96)] == 1.0)        # 40 ms after touchdown .. before lift-off
+    assert np.max(np.abs(np.diff(w))) < 1e-3                # continuous at 10 us steps
+    assert w[np.searchsorted(t, 0.27)] == pytest.approx(0.5, abs=1e-3)   # halfway up at 20 ms

@@ -28,7 +28,9 @@ def test_default_matches_spec(params):
     (r"^izz_kg_m2 = 1.0e-5", "izz_kg_m2 = 1.0", "links.BD.izz_kg_m2 = 1.0: cannot be physical: "
      "allowed 0 .. m*c*(L-c) = 7.03e-05"),
     (r"^y_home_m = -0.200", "y_home_m = -0.400",
-     "gait leaves the workspace: foot target [60.0, -400.0] mm is out of reach: |BF|"),
+     "gait leaves the workspace (seed_ellipse path): foot target [60.0, -400.0] mm is out of "
+     "reach: |BF|"),
+    (r"^duty_factor = 0.75", "duty_factor = 1.0", "gait.duty_factor = 1.0: must be in (0, 1)"),
     (r"^samples = 60", "samples = 2", "gait.samples = 2: must be an integer >= 3"),
     (r"^frequency_hz = 1.0", "frequency_hz = 0", "gait.frequency_hz = 0.0: must be > 0"),
     (r"^sf_warn = 1.5", "sf_warn = 2.5", "checks.sf_warn = 2.5: must be <= checks.sf_pass = 2.0"),
