@@ -159,6 +159,10 @@ def _rms(x) -> float:
     return float(np.sqrt(np.mean(np.square(x)))) if np.size(x) else float("nan")
 
 
+def _mean(x) -> float:
+    return float(np.mean(x)) if np.size(x) else float("nan")
+
+
 def _ratio(a: float, b: float) -> float:
     return a / b if b else float("nan")
 
@@ -189,10 +193,9 @@ def motor_summary(sig: Signals, params: Params, win, cycle, cycles: int, i: int,
         "dynamic_to_seed_static": _ratio(demand_p99, static_seed),
         "dynamic_to_trot_static": _ratio(demand_p99, static_trot),
         "safety_factor": sf, "verdict": verdict(params, sf),
-        "saturated_fraction": float(np.mean(sig.clipped_peak[win, i, j]
-                                            + sig.clipped_line[win, i, j])),
-        "clipped_peak_fraction": float(np.mean(sig.clipped_peak[win, i, j])),
-        "clipped_line_fraction": float(np.mean(sig.clipped_line[win, i, j])),
+        "saturated_fraction": _mean(sig.clipped_peak[win, i, j] + sig.clipped_line[win, i, j]),
+        "clipped_peak_fraction": _mean(sig.clipped_peak[win, i, j]),
+        "clipped_line_fraction": _mean(sig.clipped_line[win, i, j]),
         "peak_speed_rad_s": _peak(speed), "p99_speed_rad_s": _p(speed),
         "no_load_speed_rad_s": motor.no_load_speed_rad_s,
         "speed_ok": bool(_peak(speed) <= motor.no_load_speed_rad_s),
