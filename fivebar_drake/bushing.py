@@ -27,7 +27,7 @@ DAMPING_RATIO = 0.3
 
 def _fixed_leg(params: Params):
     plant = MultibodyPlant(0.0)
-    instance, _ = add_model(plant, params, "leg", "ball")
+    instance, _ = add_model(plant, params, "leg", None)
     plant.Finalize()
     context = plant.CreateDefaultContext()
     return plant, context, instance, leg_indices(plant, instance, "leg")

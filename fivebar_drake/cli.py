@@ -105,7 +105,7 @@ def _models(args) -> int:
     from .sdf_model import write_models
     from .simulation import closure_parameters
 
-    scenario = load_scenario(args.scenario, closure="bushing")
+    scenario = load_scenario(args.scenario, closure="bushing_rpy")
     params = scenario.load_params()
     _, bushing, _, _ = closure_parameters(scenario, params)
     for path in write_models(params, bushing, Path(args.out)):

@@ -18,8 +18,12 @@ from .kinematics import LegPose
 from .params import Params
 from .sdf_model import LEGS, Bushing, quadruped_sdf, single_leg_sdf
 
-CLOSURES = ("bushing", "ball")
+# Loop closures at E: "bushing", the bushing's force law (a translational spring-damper at E, free
+# about the hinge) as two compliant SAP distance constraints, treated implicitly; "bushing_rpy",
+# Drake's explicit LinearBushingRollPitchYaw; "ball", a rigid SAP ball constraint.
+CLOSURES = ("bushing", "bushing_rpy", "ball")
 JOINTS = ("A", "B", "C", "D")
+OFFSET_M = 0.02   # the second distance constraint's point on DE: this far off the link at E
 
 
 def check_closure(closure: str) -> None:
@@ -27,23 +31,33 @@ def check_closure(closure: str) -> None:
         raise ValueError(f"closure = {closure!r}: allowed {list(CLOSURES)}")
 
 
-def add_model(plant: MultibodyPlant, params: Params, model: str, closure: str,
+def add_model(plant: MultibodyPlant, params: Params, model: str, closure: str | None,
               bushing: Bushing | None = None):
     """Parse the generated SDF ("leg": one fixed-hip leg named "leg"; "quadruped": body + legs
-    FL, FR, RL, RR) into plant and close each loop. Returns (model instance, leg names)."""
-    check_closure(closure)
-    if closure == "bushing" and bushing is None:
-        raise ValueError("closure 'bushing' needs bushing parameters")
+    FL, FR, RL, RR) into plant and close each loop (closure None: the open tree, for kinematics
+    and mass properties). Returns (model instance, leg names).
+
+    The "bushing" closure joins E on CE to D on DE at the length DE and to the point Q 20 mm off
+    DE at E (perpendicular, in the leg plane) at 20 mm: both springs have the bushing's stiffness
+    and damping, their directions at E are orthogonal, so E feels an isotropic in-plane spring,
+    and both lines of action pass through E: no torque about the hinge."""
+    if closure is not None:
+        check_closure(closure)
+    if closure in ("bushing", "bushing_rpy") and bushing is None:
+        raise ValueError(f"closure {closure!r} needs bushing parameters")
     text = (single_leg_sdf if model == "leg" else quadruped_sdf)(params, closure, bushing)
     parser = Parser(plant)
     parser.SetStrictParsing()
     (instance,) = parser.AddModelsFromString(text, "sdf")
     legs = ("leg",) if model == "leg" else LEGS
-    if closure == "ball":
+    if closure == "bushing":
+        g, k, d = params.leg, bushing.stiffness_N_m, bushing.damping_N_s_m
         for leg in legs:
-            plant.AddBallConstraint(
-                plant.GetBodyByName(f"{leg}_CE", instance), [params.leg.ce_m, 0.0, 0.0],
-                plant.GetBodyByName(f"{leg}_DE", instance), [params.leg.de_m, 0.0, 0.0])
+            ce = plant.GetBodyByName(f"{leg}_CE", instance)
+            de = plant.GetBodyByName(f"{leg}_DE", instance)
+            plant.AddDistanceConstraint(ce, [g.ce_m, 0.0, 0.0], de, [0.0, 0.0, 0.0], g.de_m, k, d)
+            plant.AddDistanceConstraint(ce, [g.ce_m, 0.0, 0.0], de, [g.de_m, OFFSET_M, 0.0],
+                                        OFFSET_M, k, d)
     return instance, legs
 
 

@@ -5,8 +5,10 @@ Every leg lives in a *leg-plane frame* `<leg>_plane` whose x-y plane is the seed
 counter-clockwise motor angle. Each link's frame sits at its first joint with x along the link
 in the zero configuration; the knee joints C and D measure the lower link relative to the upper
 one. The loop E is cut: frames `<leg>_E_on_CE` and `<leg>_E_on_DE` (z along the hinge) are joined
-by a `<drake:linear_bushing_rpy>` (closure "bushing") or by a SAP ball constraint added by the
-builder (closure "ball"). Only the foot spheres (and the body box) collide.
+by a `<drake:linear_bushing_rpy>` (closure "bushing_rpy"), a `<drake:ball_constraint>` (closure
+"ball"), or by two compliant SAP distance constraints that SDFormat cannot declare and the plant
+builder adds (closure "bushing", see plant_model.add_model). Only the foot spheres (and the body
+box) collide.
 """
 
 from __future__ import annotations
@@ -111,7 +113,14 @@ def leg_sdf(params: Params, leg: str, parent: str, hip_xyz, closure: str,
              f"{_fmt(g.ce_m)} 0 0 0 0 0</pose></frame>",
              f"<frame name='{leg}_E_on_DE' attached_to='{leg}_DE'><pose relative_to='{leg}_DE'>"
              f"{_fmt(g.de_m)} 0 0 0 0 0</pose></frame>"]
-    if closure == "bushing":
+    if closure == "ball":
+        parts.append(
+            f"<drake:ball_constraint><drake:ball_constraint_body_A>{leg}_CE"
+            f"</drake:ball_constraint_body_A><drake:ball_constraint_p_AP>{_fmt(g.ce_m)} 0 0"
+            f"</drake:ball_constraint_p_AP><drake:ball_constraint_body_B>{leg}_DE"
+            f"</drake:ball_constraint_body_B><drake:ball_constraint_p_BQ>{_fmt(g.de_m)} 0 0"
+            "</drake:ball_constraint_p_BQ></drake:ball_constraint>")
+    if closure == "bushing_rpy":
         k, d = bushing.stiffness_N_m, bushing.damping_N_s_m
         parts.append(
             f"<drake:linear_bushing_rpy><drake:bushing_frameA>{leg}_E_on_CE</drake:bushing_frameA>"
@@ -206,10 +215,17 @@ def single_leg_sdf(params: Params, closure: str, bushing: Bushing | None) -> str
     return _document("leg", hip + "\n" + leg_sdf(params, "leg", "hip", (0, 0, 0), closure, bushing))
 
 
+MODEL_FILES = {"leg.sdf": (single_leg_sdf, "bushing_rpy"),
+               "quadruped.sdf": (quadruped_sdf, "bushing_rpy"),
+               "quadruped_ball.sdf": (quadruped_sdf, "ball")}
+
+
 def write_models(params: Params, bushing: Bushing, out_dir: Path) -> list[Path]:
-    """Write sdf/leg.sdf and sdf/quadruped.sdf (bushing closure)."""
+    """Write the MODEL_FILES into out_dir: the fixed-hip leg and the quadruped closed by the
+    explicit bushing, and the quadruped closed by ball constraints."""
     out_dir.mkdir(parents=True, exist_ok=True)
-    paths = [out_dir / "leg.sdf", out_dir / "quadruped.sdf"]
-    paths[0].write_text(single_leg_sdf(params, "bushing", bushing))
-    paths[1].write_text(quadruped_sdf(params, "bushing", bushing))
+    paths = []
+    for name, (make, closure) in MODEL_FILES.items():
+        paths.append(out_dir / name)
+        paths[-1].write_text(make(params, closure, bushing))
     return paths

@@ -29,7 +29,7 @@ from .sdf_model import hip_positions
 from .systems import (ControlGains, FootLegController, GaitSource, MotorModel, RobotLayout,
                       StepRecorder, derive_gains)
 
-BALL_TIME_STEP_S = 1e-3
+IMPLICIT_TIME_STEP_S = 1e-3   # plant step of the closures SAP treats implicitly
 FALL_TILT_DEG = 45.0   # a body tilted further has fallen: the run stops
 GROUND_SIZE_M = 40.0   # flat ground, top face at z = 0
 GROUND_DEPTH_M = 1.0
@@ -54,16 +54,23 @@ class Setup:
 
 
 def closure_parameters(scenario: Scenario, params: Params):
-    """(time step s, Bushing or None, m_eff kg, loop force N) for the scenario's closure."""
+    """(time step s, Bushing or None, m_eff kg, loop force N) for the scenario's closure. The
+    bushing's stiffness and damping come from the knee's effective mass, the loop force and the
+    accepted gap (bushing.bushing_parameters); SAP treats the compliant "bushing" implicitly, so
+    it runs at IMPLICIT_TIME_STEP_S, while the explicit "bushing_rpy" needs the step its
+    stability bound allows."""
     m_eff, force = loop_load(params)
     if scenario.closure == "ball":
-        return scenario.time_step_s or BALL_TIME_STEP_S, None, m_eff, force
+        return scenario.time_step_s or IMPLICIT_TIME_STEP_S, None, m_eff, force
     bushing, dt = bushing_parameters(m_eff, force, scenario.target_loop_gap_m)
+    if scenario.closure == "bushing":
+        return scenario.time_step_s or IMPLICIT_TIME_STEP_S, bushing, m_eff, force
     if scenario.time_step_s > dt:
         raise ValueError(
-            f"scenario.time_step_s = {scenario.time_step_s!r}: the bushing (k = "
+            f"scenario.time_step_s = {scenario.time_step_s!r}: the explicit bushing (k = "
             f"{bushing.stiffness_N_m:.3g} N/m, m_eff = {m_eff * 1e3:.2f} g) is stable up to "
-            f"{dt:.3g} s; use 0 (derived) or a smaller step, or a larger target_loop_gap_m")
+            f"{dt:.3g} s; use 0 (derived) or a smaller step, a larger target_loop_gap_m, or the "
+            "implicit closure 'bushing'")
     # the largest stable step that divides the log period, so every log interval has whole steps
     derived = scenario.log_period_s / math.ceil(scenario.log_period_s / dt - 1e-9)
     return scenario.time_step_s or derived, bushing, m_eff, force

@@ -16,7 +16,7 @@ from fivebar_drake.plant_model import add_model, leg_indices, tree_positions
 
 def fixed_leg(params):
     plant = MultibodyPlant(0.0)
-    instance, _ = add_model(plant, params, "leg", "ball")
+    instance, _ = add_model(plant, params, "leg", None)
     plant.Finalize()
     return plant, plant.CreateDefaultContext(), instance, leg_indices(plant, instance, "leg")
 

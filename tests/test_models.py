@@ -4,37 +4,38 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from pydrake.multibody.plant import MultibodyPlant
+from pydrake.multibody.plant import DiscreteContactApproximation, MultibodyPlant
 from pydrake.visualization import ModelVisualizer
 
 from fivebar_drake.plant_model import add_model
 from fivebar_drake.scenario import load_scenario
-from fivebar_drake.sdf_model import body_mass_properties, quadruped_sdf, single_leg_sdf
+from fivebar_drake.sdf_model import MODEL_FILES, body_mass_properties
 from fivebar_drake.simulation import closure_parameters
 
 SDF = Path(__file__).parent.parent / "sdf"
 
 
 def test_committed_models_match_the_parameter_file(params):
-    scenario = load_scenario(closure="bushing")
-    _, bushing, _, _ = closure_parameters(scenario, params)
-    assert (SDF / "leg.sdf").read_text() == single_leg_sdf(params, "bushing", bushing), \
-        "sdf/leg.sdf is stale: run `fivebar-drake models`"
-    assert (SDF / "quadruped.sdf").read_text() == quadruped_sdf(params, "bushing", bushing), \
-        "sdf/quadruped.sdf is stale: run `fivebar-drake models`"
+    _, bushing, _, _ = closure_parameters(load_scenario(closure="bushing_rpy"), params)
+    for name, (make, closure) in MODEL_FILES.items():
+        assert (SDF / name).read_text() == make(params, closure, bushing), \
+            f"sdf/{name} is stale: run `fivebar-drake models`"
 
 
-@pytest.mark.parametrize("name", ["leg.sdf", "quadruped.sdf"])
+@pytest.mark.parametrize("name", sorted(MODEL_FILES))
 def test_models_load_in_model_visualizer_without_warnings(name):
     visualizer = ModelVisualizer(publish_contacts=False)
+    visualizer.parser().plant().set_discrete_contact_approximation(
+        DiscreteContactApproximation.kSap)                   # ball constraints need SAP
     visualizer.parser().SetStrictParsing()      # any parser warning becomes an error
     visualizer.AddModels(SDF / name)
     visualizer.Run(loop_once=True)
 
 
-@pytest.mark.parametrize("closure", ["bushing", "ball"])
+@pytest.mark.parametrize("closure", ["bushing", "bushing_rpy", "ball"])
 def test_quadruped_plant_is_physical(params, closure):
     plant = MultibodyPlant(1e-3)
+    plant.set_discrete_contact_approximation(DiscreteContactApproximation.kSap)
     instance, legs = add_model(plant, params, "quadruped", closure,
                                closure_parameters(load_scenario(closure="bushing"), params)[1])
     plant.Finalize()
@@ -48,8 +49,13 @@ def test_quadruped_plant_is_physical(params, closure):
         inertia = plant.get_body(body).default_rotational_inertia()
         assert inertia.CouldBePhysicallyValid(), plant.get_body(body).name()
     n_bushings = plant.num_force_elements() - 1               # minus gravity
-    assert n_bushings == (4 if closure == "bushing" else 0)
-    assert plant.num_constraints() == (4 if closure == "ball" else 0)
+    assert n_bushings == (4 if closure == "bushing_rpy" else 0)
+    assert plant.num_constraints() == {"ball": 4, "bushing": 8, "bushing_rpy": 0}[closure]
+    if closure == "bushing":                                  # two springs per leg, as designed
+        springs = plant.GetDefaultDistanceConstraintParams().values()
+        assert len(springs) == 8
+        assert all(np.isfinite(c.stiffness()) and c.stiffness() > 0 and c.damping() > 0
+                   for c in springs)
 
 
 def test_body_mass_layout(params):
