@@ -18,6 +18,7 @@ from pydrake.multibody.plant import (AddMultibodyPlantSceneGraph, CoulombFrictio
                                      MultibodyPlantConfig, ApplyMultibodyPlantConfig)
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder
+from pydrake.systems.primitives import DiscreteTimeIntegrator, Multiplexer
 
 from .bushing import bushing_parameters, loop_load
 from .dynamics import mass_matrix, physical_izz
@@ -26,8 +27,8 @@ from .params import Params
 from .plant_model import add_model, leg_indices, loop_gaps, tree_positions
 from .scenario import Scenario
 from .sdf_model import hip_positions
-from .systems import (ControlGains, FootLegController, GaitSource, MotorModel, RobotLayout,
-                      StepRecorder, derive_gains)
+from .systems import (ControlGains, FootLegController, GaitSource, IntervalRecorder, MotorModel,
+                      RobotLayout, derive_gains)
 
 IMPLICIT_TIME_STEP_S = 1e-3   # plant step of the closures SAP treats implicitly
 FALL_TILT_DEG = 45.0   # a body tilted further has fallen: the run stops
@@ -49,7 +50,7 @@ class Setup:
     loop_force_N: float
     layout: RobotLayout
     gains: ControlGains
-    recorder: StepRecorder
+    recorder: IntervalRecorder
     controller: FootLegController
 
 
@@ -140,11 +141,13 @@ def build_diagram(scenario: Scenario, params: Params):
     speed_index[layout.actuators.ravel()] = layout.v_index.ravel() + layout.nq
     motor = builder.AddNamedSystem("motor_model", MotorModel(
         params.motor, speed_index, layout.nx, scenario.motor_period_s))
-    tree_q = np.array([indices[leg].q for leg in legs])
-    recorder = builder.AddNamedSystem("recorder", StepRecorder(
-        [plant.GetBodyByName(f"{leg}_DE", instance).index() for leg in legs], layout.nx,
-        plant.num_actuators(), time_step, max(1, round(scenario.log_period_s / time_step)),
-        speed_index, lambda state: loop_gaps(params, state[tree_q])))
+    # every plant step counted in C++: the integrals of what acts on each step
+    n_act, nv = plant.num_actuators(), plant.num_velocities()
+    mux = builder.AddNamedSystem("measured", Multiplexer([nv] + [n_act] * 4))
+    integrator = builder.AddNamedSystem("step_integrals", DiscreteTimeIntegrator(
+        nv + 4 * n_act, time_step))
+    recorder = builder.AddNamedSystem("recorder", IntervalRecorder(
+        layout.nx, nv + 4 * n_act, time_step * max(1, round(scenario.log_period_s / time_step))))
 
     state = plant.get_state_output_port(instance)
     for name in ("foot_targets", "foot_velocities", "foot_accelerations", "stance_weights"):
@@ -153,13 +156,14 @@ def build_diagram(scenario: Scenario, params: Params):
     builder.Connect(controller.GetOutputPort("torque_command"), motor.GetInputPort("torque_command"))
     builder.Connect(state, motor.GetInputPort("plant_state"))
     builder.Connect(motor.GetOutputPort("applied_torque"), plant.get_actuation_input_port())
-    builder.Connect(plant.get_contact_results_output_port(),
-                    recorder.GetInputPort("contact_results"))
+    builder.Connect(plant.get_generalized_contact_forces_output_port(instance),
+                    mux.get_input_port(0))
+    builder.Connect(controller.GetOutputPort("torque_command"), mux.get_input_port(1))
+    for i, name in enumerate(("motor_torque", "clipped_peak", "clipped_line")):
+        builder.Connect(motor.GetOutputPort(name), mux.get_input_port(2 + i))
+    builder.Connect(mux.get_output_port(), integrator.get_input_port())
+    builder.Connect(integrator.get_output_port(), recorder.GetInputPort("integrals"))
     builder.Connect(state, recorder.GetInputPort("plant_state"))
-    builder.Connect(controller.GetOutputPort("torque_command"),
-                    recorder.GetInputPort("torque_command"))
-    for name in ("motor_torque", "clipped_peak", "clipped_line"):
-        builder.Connect(motor.GetOutputPort(name), recorder.GetInputPort(name))
     setup = Setup(plant=plant, instance=instance, legs=legs, indices=indices,
                   time_step_s=time_step, bushing=bushing, m_eff_kg=m_eff, loop_force_N=force,
                   layout=layout, gains=gains, recorder=recorder, controller=controller)
@@ -184,11 +188,33 @@ def set_standing_pose(plant, context, instance, legs, params: Params) -> None:
                           RigidTransform([0.0, 0.0, standing_height(params)]))
 
 
+def interval_table(setup: Setup, params: Params) -> dict:
+    """The recorder's rows as one row per log interval (arrays, SI): t (s, the interval's end),
+    state (nx) at t, gap (legs) m at t, and the interval means of the joint speeds of the
+    actuators (rad/s, from the positions: the discrete plant moves them with each step's end
+    speed), the generalized contact forces (nv; J^T F of every contact), the command and motor
+    torque (n, N*m) and the clip flags (n, fraction of the steps)."""
+    times, states, integrals = setup.recorder.rows()
+    lay, nv = setup.layout, setup.plant.num_velocities()
+    dt = np.diff(times)[:, None]
+    means = np.diff(integrals, axis=0) / dt
+    q_act = np.zeros((len(times), lay.q_index.size))
+    q_act[:, lay.actuators.ravel()] = states[:, lay.q_index.ravel()]
+    tree_q = np.array([setup.indices[leg].q for leg in setup.legs])
+    n = lay.q_index.size
+    parts = np.split(means, [nv, nv + n, nv + 2 * n, nv + 3 * n], axis=1)
+    return {"t": times[1:], "state": states[1:],
+            "gap": loop_gaps(params, states[1:, tree_q]).reshape(len(dt), -1),
+            "speed": np.diff(q_act, axis=0) / dt,
+            **dict(zip(("contact_generalized", "command", "motor_torque", "clipped_peak",
+                        "clipped_line"), parts))}
+
+
 @dataclass
 class SimResult:
-    """What the recorder measured (systems.StepRecorder.table: t, state, gap, foot_force,
-    speed, command, motor_torque, clipped_peak, clipped_line), wall time (s), the error text if
-    the run stopped early."""
+    """What the recorder measured (interval_table: t, state, gap, speed, contact_generalized,
+    command, motor_torque, clipped_peak, clipped_line), wall time (s), the error text if the run
+    stopped early."""
 
     table: dict
     wall_s: float
@@ -229,4 +255,4 @@ def simulate(scenario: Scenario, params: Params, progress=True):
         error = str(err)
         say(f"simulation stopped early: {error}")
     wall = time.perf_counter() - start
-    return SimResult(table=setup.recorder.table(), wall_s=wall, error=error), setup
+    return SimResult(table=interval_table(setup, params), wall_s=wall, error=error), setup

@@ -101,9 +101,10 @@ def signals(result: SimResult, setup: Setup, params: Params, scenario: Scenario)
     lj = link_jacobians(params.leg, params.links, pose)
     quat = st[:, lay.body_q:lay.body_q + 4]
     r_world_plane = np.array([body_rotation(v) @ plane_rotation() for v in quat])
-    force = np.einsum("sji,slj->sli", r_world_plane, table["foot_force"])[..., :2]
     # contact point: the bottom of the foot sphere, (0, 0, -r) from its centre in the world
     down = -params.body.foot_radius_m * r_world_plane[:, 2, :2]          # leg plane (x, y)
+    force = foot_forces(table["contact_generalized"], setup, params, pose, down)
+    force_world = np.einsum("sij,slj->sli", r_world_plane[..., :2], force)
     jw_de = lj.jw[..., 3, :]                                            # (rows, legs, 2)
     j_contact = lj.jf.copy()
     j_contact[..., 0, :] -= down[:, None, 1:2] * jw_de
@@ -132,10 +133,23 @@ def signals(result: SimResult, setup: Setup, params: Params, scenario: Scenario)
         static_trot=trot_static, static_contact=static_contact, links=links, rotor=rotor,
         friction=friction, clipped_peak=per_leg(table["clipped_peak"]),
         clipped_line=per_leg(table["clipped_line"]), foot_force_plane=force,
-        foot_force_world=table["foot_force"], gap=table["gap"],
+        foot_force_world=force_world, gap=table["gap"],
         stance=stance, swing_fraction=swing_fraction,
-        swing_contact=(~stance) & gaiting & (table["foot_force"][..., 2] > SWING_CONTACT_N))
+        swing_contact=(~stance) & gaiting & (force_world[..., 2] > SWING_CONTACT_N))
 
+
+
+def foot_forces(generalized, setup: Setup, params: Params, pose, down) -> np.ndarray:
+    """Mean ground force on each foot (rows, legs, 2) in N, leg plane, from the interval means
+    of the generalized contact forces (rows, nv): the contact point P (foot centre + down, leg
+    plane) on link DE gives tau[theta_B] = (P - B)_perp . F and tau[phi_D] = (P - D)_perp . F
+    (perp: turned +90 deg about the hinge); the A side of the loop is not touched."""
+    perp = lambda v: np.stack([-v[..., 1], v[..., 0]], -1)  # noqa: E731
+    p = pose.f + down[:, None, :]
+    jac_t = np.stack([perp(p - params.leg.b), perp(p - pose.d)], -2)      # rows of J_P^T
+    tau = np.stack([generalized[:, [setup.indices[leg].v[k] for leg in setup.legs]]
+                    for k in (1, 3)], -1)
+    return np.linalg.solve(jac_t, tau[..., None])[..., 0]
 
 
 def cycle_window(scenario: Scenario, params: Params, t_end: float) -> tuple[float, float, int]:

@@ -1,4 +1,4 @@
-"""The Diagram's blocks: gait source, leg controller, motor model, per-step recorder.
+"""The Diagram's blocks: gait source, leg controller, motor model, interval recorder.
 
 Legs are ordered FL, FR, RL, RR; per leg the motors A, B and foot coordinates (x, y) in the leg
 plane (m). Torque vectors (8) are in the plant's actuation order (LegIndices.actuators).
@@ -11,9 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from pydrake.common.eigen_geometry import Quaternion
-from pydrake.common.value import AbstractValue
 from pydrake.math import RotationMatrix
-from pydrake.multibody.plant import ContactResults
 from pydrake.systems.framework import BasicVector, LeafSystem
 
 from .dynamics import full_model, static_torques, torques
@@ -352,85 +350,31 @@ class MotorModel(LeafSystem):
             [m.joint, m.delivered, m.clipped_peak, m.clipped_line]).astype(float))
 
 
-def contact_forces(results: ContactResults, feet: dict) -> np.ndarray:
-    """Ground force on each foot (legs, 3) in N, world frame, from the point contacts;
-    feet maps a foot body's index (int) to its leg number."""
-    forces = np.zeros((len(feet), 3))
-    for i in range(results.num_point_pair_contacts()):
-        info = results.point_pair_contact_info(i)
-        a, b = int(info.bodyA_index()), int(info.bodyB_index())
-        if b in feet:
-            forces[feet[b]] += info.contact_force()
-        elif a in feet:
-            forces[feet[a]] -= info.contact_force()
-    return forces
+class IntervalRecorder(LeafSystem):
+    """Keeps one row per log interval (a sink: the rows live in this system, one simulation per
+    Diagram): the time, the plant state and the integrals since t = 0 of what acted on the plant
+    at every step.
 
+    Input ports: "plant_state" (nx) and "integrals" (m): the output of a DiscreteTimeIntegrator
+    stepping with the plant, so every plant step is counted (generalized contact forces, the
+    command, the motor torque, the clip flags); their interval means are differences of
+    integrals over the interval's length, so a contact spike counts for the time it lasts.
+    Memory grows with the number of intervals, not of steps."""
 
-class StepRecorder(LeafSystem):
-    """Measures the run at every plant step and keeps one row per log interval (a sink: the
-    rows live in this system, one simulation per Diagram).
-
-    Input ports: "contact_results", "plant_state" (nx), "torque_command", "motor_torque",
-    "clipped_peak", "clipped_line" (n each). At each plant step time t it adds what acts on the
-    step [t, t + step_s] (the ground force on each foot, the command, the motor torque, the clip
-    flags) and the joint speeds at t, which the step from t - step_s produced (the discrete plant
-    moves its positions with the speeds at the step's end). Every steps_per_row steps it stores
-    their means over the interval (so a contact spike counts for the time it lasts: the mean
-    force is the interval's impulse over its length), the worst loop gap and the plant state at
-    the interval's end. Memory grows with the number of intervals, not of steps."""
-
-    def __init__(self, feet_body_indices, nx: int, n_act: int, step_s: float,
-                 steps_per_row: int, speed_index, gap_fn):
+    def __init__(self, nx: int, n_integrals: int, period_s: float):
         super().__init__()
-        self._feet = {int(b): i for i, b in enumerate(feet_body_indices)}
-        self._speed_index, self._gap = np.asarray(speed_index), gap_fn
-        self._per_row = steps_per_row
-        self.DeclareAbstractInputPort("contact_results", AbstractValue.Make(ContactResults()))
         self.DeclareVectorInputPort("plant_state", nx)
-        for name in ("torque_command", "motor_torque", "clipped_peak", "clipped_line"):
-            self.DeclareVectorInputPort(name, n_act)
-        n_feet = len(self._feet)
-        self._widths = (3 * n_feet, len(self._speed_index), n_act, n_act, n_act, n_act)
-        self._acting = np.zeros(sum(self._widths) - len(self._speed_index))
-        self._speed = np.zeros(len(self._speed_index))
-        self._gap_max = np.zeros(n_feet)
-        self._count, self._started = 0, False
-        self.rows, self.states, self.gaps, self.times = [], [], [], []
-        self.DeclarePeriodicPublishEvent(step_s, 0.0, self._on_step)
+        self.DeclareVectorInputPort("integrals", n_integrals)
+        self.times, self.states, self.integrals = [], [], []
+        self.DeclarePeriodicPublishEvent(period_s, 0.0, self._on_interval)
 
-    def _on_step(self, context):
-        state = self.get_input_port(1).Eval(context)
-        if self._started:                  # the step that ended at t
-            self._speed += state[self._speed_index]
-            self._gap_max = np.maximum(self._gap_max, self._gap(state))
-            if self._count == self._per_row:
-                n_feet = 3 * len(self._feet)
-                mean = self._acting / self._count
-                self.rows.append(np.concatenate([mean[:n_feet], self._speed / self._count,
-                                                 mean[n_feet:]]))
-                self.gaps.append(self._gap_max)
-                self.states.append(state.copy())
-                self.times.append(context.get_time())
-                self._acting = np.zeros_like(self._acting)
-                self._speed = np.zeros_like(self._speed)
-                self._gap_max = np.zeros_like(self._gap_max)
-                self._count = 0
-        self._started = True
-        forces = contact_forces(self.get_input_port(0).Eval(context), self._feet)  # step ahead
-        self._acting += np.concatenate([forces.ravel()]
-                                       + [self.get_input_port(i).Eval(context) for i in range(2, 6)])
-        self._count += 1
+    def _on_interval(self, context):
+        self.times.append(context.get_time())
+        self.states.append(self.get_input_port(0).Eval(context).copy())
+        self.integrals.append(self.get_input_port(1).Eval(context).copy())
 
-    def table(self) -> dict:
-        """The rows so far: t (rows,) s at each interval's end, state (rows, nx), gap (rows,
-        legs) m, and the interval means foot_force (rows, legs, 3) N world, speed (rows, n)
-        rad/s, command, motor_torque (rows, n) N*m, clipped_peak, clipped_line (rows, n)
-        fractions of the steps."""
-        rows = np.array(self.rows).reshape(len(self.rows), sum(self._widths))
-        parts = np.split(rows, np.cumsum(self._widths)[:-1], axis=1)
-        names = ("foot_force", "speed", "command", "motor_torque", "clipped_peak", "clipped_line")
-        out = dict(zip(names, parts))
-        out["foot_force"] = out["foot_force"].reshape(len(rows), -1, 3)
-        out.update(t=np.array(self.times), state=np.array(self.states).reshape(len(rows), -1),
-                   gap=np.array(self.gaps).reshape(len(rows), -1))
-        return out
+    def rows(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Times (rows,) s, states (rows, nx) and integrals (rows, m) recorded so far."""
+        n = len(self.times)
+        return (np.array(self.times), np.array(self.states).reshape(n, -1),
+                np.array(self.integrals).reshape(n, -1))
