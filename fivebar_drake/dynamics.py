@@ -126,11 +126,12 @@ def _mass_matrix(params, izz, lj):
             + np.einsum("k,...kj,...kl->...jl", np.asarray(izz), lj.jw, lj.jw))
 
 
-def coriolis(params: Params, izz, pose: LegPose, qd, lj=None) -> np.ndarray:
+def coriolis(params: Params, izz, pose: LegPose, qd, lj=None, bias=None) -> np.ndarray:
     """c(q, q_dot) (..., 2) in N*m: sum_i m_i Jv_i^T a_i + Izz_i Jw_i^T alpha_i with a_i, alpha_i
-    the velocity-product accelerations of link i (lj: the poses' LinkJacobians if computed)."""
+    the velocity-product accelerations of link i (lj, bias: the poses' LinkJacobians and
+    bias_accelerations at qd, if already computed)."""
     lj = lj or link_jacobians(params.leg, params.links, pose)
-    av, aw, _ = bias_accelerations(params.leg, params.links, pose, qd)
+    av, aw, _ = bias or bias_accelerations(params.leg, params.links, pose, qd)
     return (np.einsum("k,...kij,...ki->...j", _masses(params), lj.jv, av)
             + np.einsum("k,...kj,...k->...j", np.asarray(izz), lj.jw, aw))
 
@@ -149,12 +150,14 @@ def static_torques(params: Params, model: DynamicsModel, pose: LegPose, lj=None)
     return sum(_static(params, model, lj or link_jacobians(params.leg, params.links, pose)))
 
 
-def torques(params: Params, model: DynamicsModel, pose: LegPose, qd, qdd) -> TorqueBreakdown:
-    """Motor torques (N*m) for poses with motor rates qd (rad/s) and accelerations qdd (rad/s^2)."""
-    lj = link_jacobians(params.leg, params.links, pose)
+def torques(params: Params, model: DynamicsModel, pose: LegPose, qd, qdd, lj=None,
+            bias=None) -> TorqueBreakdown:
+    """Motor torques (N*m) for poses with motor rates qd (rad/s) and accelerations qdd (rad/s^2)
+    (lj, bias: the poses' LinkJacobians and bias_accelerations at qd, if already computed)."""
+    lj = lj or link_jacobians(params.leg, params.links, pose)
     link_weight, foot_load = _static(params, model, lj)
     inertial = _mv(_mass_matrix(params, model.izz, lj), np.asarray(qdd, dtype=float))
-    cor = (coriolis(params, model.izz, pose, qd, lj) if model.coriolis
+    cor = (coriolis(params, model.izz, pose, qd, lj, bias) if model.coriolis
            else np.zeros_like(inertial))
     return TorqueBreakdown(inertial=inertial, coriolis=cor, link_weight=link_weight,
                            foot_load=foot_load)

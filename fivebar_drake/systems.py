@@ -12,7 +12,8 @@ from dataclasses import dataclass
 import numpy as np
 from pydrake.common.eigen_geometry import Quaternion
 from pydrake.math import RotationMatrix
-from pydrake.systems.framework import BasicVector, LeafSystem
+from pydrake.common.value import AbstractValue
+from pydrake.systems.framework import BasicVector, LeafSystem, ValueProducer
 
 from .dynamics import full_model, static_torques, torques
 from .footpath import evaluate, stance_weight
@@ -43,10 +44,18 @@ class GaitSource(LeafSystem):
         self._start, self._ramp, self._transfer = start_s, ramp_s, transfer_s
         self._home = np.array([gait.x_center_m, gait.y_home_m])
         n = len(self._phases)
+        # computed once per time for all four ports
+        self._cache = self.DeclareCacheEntry(
+            "foot references", ValueProducer(
+                allocate=lambda: AbstractValue.Make(dict()),
+                calc=lambda c, value: value.set_value(self.targets(c.get_time()))),
+            prerequisites_of_calc={self.time_ticket()})
         for name, size in (("foot_targets", 2 * n), ("foot_velocities", 2 * n),
                            ("foot_accelerations", 2 * n), ("stance_weights", n)):
-            self.DeclareVectorOutputPort(name, size, lambda c, o, name=name: o.SetFromVector(
-                self.targets(c.get_time())[name].ravel()))
+            self.DeclareVectorOutputPort(
+                name, size, lambda c, o, name=name: o.SetFromVector(
+                    self._cache.Eval(c)[name].ravel()),
+                prerequisites_of_calc={self._cache.ticket()})
 
     def targets(self, t: float) -> dict:
         """The output ports' values at time t (s), each (legs, 2) or (legs,)."""
@@ -173,9 +182,9 @@ class FootLegController(LeafSystem):
         pose_des = inverse(p.leg, targets + self._catch_offset(state))
         lj_des = link_jacobians(p.leg, p.links, pose_des)
         qd_des = np.linalg.solve(lj_des.jf, velocities[..., None])[..., 0]
-        _, _, af = bias_accelerations(p.leg, p.links, pose_des, qd_des)
-        qdd_des = np.linalg.solve(lj_des.jf, (accelerations - af)[..., None])[..., 0]
-        ff = torques(p, self._swing_model, pose_des, qd_des, qdd_des).total
+        bias = bias_accelerations(p.leg, p.links, pose_des, qd_des)
+        qdd_des = np.linalg.solve(lj_des.jf, (accelerations - bias[2])[..., None])[..., 0]
+        ff = torques(p, self._swing_model, pose_des, qd_des, qdd_des, lj_des, bias).total
         ff = ff + p.motor.reflected_inertia_kg_m2 * qdd_des
         swing = g.kp * wrap(pose_des.q - q) + g.kd * (qd_des - qd) + ff
         # stance: virtual model, links' weight at the measured pose
