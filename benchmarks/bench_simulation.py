@@ -1,51 +1,138 @@
-"""Simulation benchmark: a trot of --duration seconds (default 10) with each loop closure.
-Prints the real-time factor, the worst loop gap, and the share of wall time spent writing the
-Rerun recording (simulation + post-processing + recording = the whole `simulate` job).
-Run with `make bench`."""
+"""Simulation benchmark (`make bench`): in one process, the default trot of --duration seconds
+(default 10) with each loop closure, the plant alone replaying the default run's actuation,
+and the peak memory of a 10 s and a 60 s default run (each in a fresh process). Prints a table,
+then, as its last line, one JSON object:
+rtf (per closure), plant_alone_rtf, diagram_to_plant_ratio, max_loop_gap_m (per closure),
+rms_torque_agreement (largest per-motor relative RMS difference against `ball`),
+logging_share (recording time / whole simulate job), peak_rss_mb_10s, peak_rss_mb_60s."""
 
 from __future__ import annotations
 
 import argparse
+import json
+import subprocess
+import sys
 import tempfile
 import time
 from pathlib import Path
 
 import numpy as np
+from pydrake.geometry import AddContactMaterial, Box, ProximityProperties
+from pydrake.math import RigidTransform
+from pydrake.multibody.plant import (AddMultibodyPlantSceneGraph, ApplyMultibodyPlantConfig,
+                                     CoulombFriction, MultibodyPlantConfig)
+from pydrake.systems.analysis import Simulator
+from pydrake.systems.framework import DiagramBuilder
+from pydrake.systems.primitives import TrajectorySource
+from pydrake.trajectories import PiecewisePolynomial
 
 from fivebar_drake.analysis import analyze
+from fivebar_drake.plant_model import CLOSURES, add_model
 from fivebar_drake.recording import write_recording
 from fivebar_drake.scenario import load_scenario
-from fivebar_drake.simulation import simulate
+from fivebar_drake.simulation import GROUND_DEPTH_M, GROUND_SIZE_M, set_standing_pose, simulate
 from fivebar_drake.summary import signals, summarize
+
+MEMORY_RUN = """
+import resource, sys
+from fivebar_drake.scenario import load_scenario
+from fivebar_drake.simulation import simulate
+scenario = load_scenario(duration_s=float(sys.argv[1]))
+simulate(scenario, scenario.load_params(), progress=False)
+print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024)
+"""
+
+
+def run_closure(closure: str, duration: float):
+    scenario = load_scenario(duration_s=duration, closure=closure)
+    params = scenario.load_params()
+    result, setup = simulate(scenario, params, progress=False)
+    start = time.perf_counter()
+    sig = signals(result, setup, params, scenario)
+    summary = summarize(sig, scenario, params, setup, result,
+                        analyze(params).results["results"]["seed"])
+    post = time.perf_counter() - start
+    with tempfile.TemporaryDirectory() as tmp:
+        start = time.perf_counter()
+        write_recording(Path(tmp) / "run.rrd", sig, setup, params, scenario,
+                        result.table["state"], summary)
+        rec = time.perf_counter() - start
+    return scenario, params, result, setup, summary, post, rec
+
+
+def plant_alone_rtf(scenario, params, setup, result, duration: float) -> float:
+    """The same plant, closure, contact and step fed the run's joint torques (interval means,
+    held) with no Python systems."""
+    builder = DiagramBuilder()
+    plant, _ = AddMultibodyPlantSceneGraph(builder, setup.time_step_s)
+    ApplyMultibodyPlantConfig(MultibodyPlantConfig(
+        time_step=setup.time_step_s, discrete_contact_approximation="sap",
+        use_sampled_output_ports=False), plant)
+    instance, legs = add_model(plant, params, "quadruped", scenario.closure, setup.bushing)
+    ground = ProximityProperties()
+    mu = params.body.foot_friction
+    AddContactMaterial(friction=CoulombFriction(mu, mu), properties=ground)
+    plant.RegisterCollisionGeometry(plant.world_body(), RigidTransform([0, 0, -GROUND_DEPTH_M / 2]),
+                                    Box(GROUND_SIZE_M, GROUND_SIZE_M, GROUND_DEPTH_M), "ground",
+                                    ground)
+    plant.Finalize()
+    table = result.table
+    t = np.concatenate([[0.0], table["t"]])
+    torque = np.vstack([table["motor_torque"][:1], table["motor_torque"]])
+    source = builder.AddSystem(TrajectorySource(PiecewisePolynomial.ZeroOrderHold(t, torque.T)))
+    builder.Connect(source.get_output_port(), plant.get_actuation_input_port())
+    diagram = builder.Build()
+    simulator = Simulator(diagram)
+    context = plant.GetMyMutableContextFromRoot(simulator.get_mutable_context())
+    set_standing_pose(plant, context, instance, legs, params)
+    simulator.Initialize()
+    start = time.perf_counter()
+    simulator.AdvanceTo(duration)
+    return duration / (time.perf_counter() - start)
+
+
+def peak_rss_mb(duration: float) -> float:
+    out = subprocess.run([sys.executable, "-c", MEMORY_RUN, str(duration)], check=True,
+                         capture_output=True, text=True).stdout
+    return float(out.strip().splitlines()[-1])
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--duration", type=float, default=10.0)
     args = parser.parse_args()
-    print(f"{args.duration:g} s trot, default scenario; one core")
-    print(f"{'closure':>8} {'step (ms)':>9} {'sim wall (s)':>12} {'real-time':>9} "
-          f"{'worst gap (mm)':>14} {'rec (s)':>8} {'logging share':>13} {'rrd (MB)':>8}")
-    for closure in ("bushing", "ball"):
-        scenario = load_scenario(duration_s=args.duration, closure=closure)
-        params = scenario.load_params()
-        result, setup = simulate(scenario, params, progress=False)
-        start = time.perf_counter()
-        sig = signals(result, setup, params, scenario)
-        post = time.perf_counter() - start
-        with tempfile.TemporaryDirectory() as tmp:
-            path = Path(tmp) / "run.rrd"
-            start = time.perf_counter()
-            summary = summarize(sig, scenario, params, setup, result,
-                                analyze(params).results["results"]["seed"])
-            write_recording(path, sig, setup, params, scenario, result.table["state"], summary)
-            rec = time.perf_counter() - start
-            size = path.stat().st_size / 1e6
-        total = result.wall_s + post + rec
-        print(f"{closure:>8} {setup.time_step_s * 1e3:9.4f} {result.wall_s:12.2f} "
-              f"{sig.t[-1] / result.wall_s:8.2f}x {np.max(sig.gap) * 1e3:14.4f} "
-              f"{rec:8.2f} {rec / total * 100:12.1f}% {size:8.1f}"
-              + (f"  stopped early: {result.error}" if result.error else ""))
+    print(f"{args.duration:g} s default trot per closure; one core")
+    print(f"{'closure':>12} {'step (ms)':>9} {'sim wall (s)':>12} {'real-time':>9} "
+          f"{'worst gap (mm)':>14} {'rec (s)':>8} {'logging share':>13}")
+    runs, rtf, gap, share = {}, {}, {}, {}
+    for closure in CLOSURES:
+        scenario, params, result, setup, summary, post, rec = run_closure(closure, args.duration)
+        runs[closure] = (scenario, params, result, setup, summary)
+        rtf[closure] = summary["real_time_factor"]
+        gap[closure] = summary["max_loop_gap_m"]
+        share[closure] = rec / (result.wall_s + post + rec)
+        print(f"{closure:>12} {setup.time_step_s * 1e3:9.4f} {result.wall_s:12.2f} "
+              f"{rtf[closure]:8.2f}x {gap[closure] * 1e3:14.4f} {rec:8.2f} "
+              f"{share[closure] * 100:12.1f}%" + (f"  stopped: {result.error}" if result.error
+                                                  else ""))
+    scenario, params, result, setup, _ = runs["bushing"]
+    alone = plant_alone_rtf(scenario, params, setup, result, args.duration)
+    print(f"plant alone (bushing closure, recorded actuation): {alone:.2f}x real time; "
+          f"diagram / plant = {rtf['bushing'] / alone:.2f}")
+    ball = runs["ball"][4]["legs"]
+    agreement = {c: max(abs(runs[c][4]["legs"][leg][m]["rms_torque_Nm"]
+                            / ball[leg][m]["rms_torque_Nm"] - 1)
+                        for leg in ball for m in ball[leg]) for c in CLOSURES if c != "ball"}
+    print("per-motor RMS torque against ball, largest difference: "
+          + ", ".join(f"{c} {v * 100:.1f} %" for c, v in agreement.items()))
+    rss10, rss60 = peak_rss_mb(10.0), peak_rss_mb(60.0)
+    print(f"peak memory (fresh process): 10 s run {rss10:.0f} MB, 60 s run {rss60:.0f} MB "
+          f"({rss60 / rss10:.2f}x)")
+    print(json.dumps({"rtf": rtf, "plant_alone_rtf": alone,
+                      "diagram_to_plant_ratio": rtf["bushing"] / alone,
+                      "max_loop_gap_m": gap, "rms_torque_agreement": agreement,
+                      "logging_share": share["bushing"], "peak_rss_mb_10s": rss10,
+                      "peak_rss_mb_60s": rss60}))
 
 
 if __name__ == "__main__":
