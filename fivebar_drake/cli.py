@@ -1,5 +1,10 @@
-"""Command line: `fivebar-drake analyze [--config FILE] [--out DIR]` and
-`fivebar-drake simulate [--scenario FILE] [--duration S] [--closure bushing|ball] [--out DIR]`."""
+"""Command line of fivebar_drake:
+
+  fivebar-drake analyze  [--gait seed_ellipse|trot] [--config FILE] [--out DIR]
+  fivebar-drake simulate [--gait trot|seed_ellipse] [--scenario FILE] [--duration S]
+                         [--closure bushing|bushing_rpy|ball] [--out DIR]
+  fivebar-drake compare  RUN_DIR [RUN_DIR ...] [--out FILE]
+  fivebar-drake models   [--scenario FILE] [--out DIR]"""
 
 from __future__ import annotations
 
@@ -114,9 +119,10 @@ def _models(args) -> int:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(prog="fivebar-drake", description=__doc__)
+    parser = argparse.ArgumentParser(prog="fivebar-drake", description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True)
-    p = sub.add_parser("analyze", help="the seed's torque analysis over the elliptical gait")
+    p = sub.add_parser("analyze", help="the seed's torque analysis over one cycle of a foot path")
     p.add_argument("--gait", choices=PATHS, default="seed_ellipse",
                    help="foot path to analyse (default: %(default)s, the seed's)")
     p.add_argument("--config", help="parameter file (TOML); default: the packaged parameters")

@@ -79,7 +79,8 @@ def trot_model(params: Params, path: str, t, phases_rad=TROT_PHASES_RAD,
     return DynamicsModel(
         name="full_trot",
         description="full model, trot loading: the robot's weight shared by the feet the trot "
-                    "schedule has in stance (half on each of a diagonal pair), none in swing",
+                    "schedule has in stance (half on each foot of a diagonal pair alone, a quarter "
+                    "while all four are down), none in swing",
         izz=physical_izz(params), link_weight_sign=1.0, coriolis=True,
         foot_load_N=np.asarray(foot_load_N, dtype=float))
 

@@ -3,6 +3,7 @@ vertical speed, continuous velocity), the seed's ellipse is the seed's, loads ad
 
 import dataclasses
 import json
+import re
 
 import numpy as np
 import pytest
@@ -10,20 +11,21 @@ import pytest
 from fivebar_drake.analysis import analyze
 from fivebar_drake.cli import main
 from fivebar_drake.footpath import TROT_PHASES_RAD, evaluate, stance_loads
+from fivebar_drake.plots import FIGURES
+from fivebar_drake.report import markdown
 
 DT = 1e-5
 
 
-def _gait(params, duty, freq):
-    return dataclasses.replace(params.gait, duty_factor=duty, frequency_hz=freq)
+GAITS = [None, (0.6, 1.0), (0.5, 2.0), (0.85, 0.5)]          # None: the packaged default
 
 
-GAITS = [(0.75, 1.0), (0.6, 1.0), (0.5, 2.0), (0.85, 0.5)]
-
-
-@pytest.fixture(params=GAITS, ids=[f"beta{d}-f{f}" for d, f in GAITS])
+@pytest.fixture(params=GAITS, ids=["default"] + [f"beta{d}-f{f}" for d, f in GAITS[1:]])
 def gait(request, params):
-    return _gait(params, *request.param)
+    if request.param is None:
+        return params.gait
+    duty, freq = request.param
+    return dataclasses.replace(params.gait, duty_factor=duty, frequency_hz=freq)
 
 
 def _fd(x, dt=DT):
@@ -105,7 +107,49 @@ def test_analyze_cli_gait(tmp_path, capsys):
     data = json.loads((tmp_path / "report.json").read_text())
     assert data["path"]["gait"] == "trot"
     printed = capsys.readouterr().out
-    assert "full_trot" in printed and printed.index("full_trot") < printed.index(" seed ")
+    readings = re.findall(r"^\s*(\w+) motor ([AB]):.* SF ([\d.]+) \((PASS|WARN|FAIL)\)", printed,
+                          re.MULTILINE)
+    assert sorted((m, j) for m, j, _, _ in readings) == sorted(
+        (m, j) for m in ("seed", "full", "full_trot") for j in "AB")      # every reading once
+    sf = [float(r[2]) for r in readings]
+    assert sf == sorted(sf)                                                # worst first
+    for _, _, f, v in readings:                                            # verdict from SF
+        assert v == ("PASS" if float(f) >= 2 else "WARN" if float(f) >= 1.5 else "FAIL")
     with pytest.raises(SystemExit) as err:
         main(["analyze", "--gait", "hop", "--out", str(tmp_path)])
     assert err.value.code == 2
+
+
+def _figure_texts(fig):
+    texts = [fig._suptitle.get_text() if fig._suptitle else ""]
+    for ax in fig.axes:
+        texts += [ax.get_title(), ax.get_xlabel(), ax.get_ylabel()]
+        if ax.get_legend():
+            texts += [t.get_text() for t in ax.get_legend().get_texts()]
+    return " ".join(texts)
+
+
+def test_report_and_plots_describe_the_path_analysed(params):
+    import matplotlib
+    import matplotlib.pyplot as plt
+
+    matplotlib.use("Agg")
+    g = params.gait
+    md = markdown(analyze(params, "trot"))
+    head = md.split("## Table 3")[0]
+    speed = 2 * g.a_m / (g.duty_factor * g.period_s)
+    for text in (f"{2 * g.a_m * 1e3:g} mm", f"{g.b_m * 1e3:g} mm", f"duty factor {g.duty_factor:g}",
+                 f"{speed:.3f} m/s", "trot"):
+        assert text in head, text
+    assert "ellip" not in md.lower() and "cos(" not in md
+    slow = dataclasses.replace(params, motor=dataclasses.replace(params.motor,
+                                                                 no_load_speed_rad_s=10.0))
+    assert f"({10.0 * 60 / (2 * np.pi):.0f} RPM)" in markdown(analyze(slow, "trot"))
+    trot = analyze(params, "trot")
+    for name, figure in FIGURES.items():
+        fig = figure(trot)
+        assert "ellip" not in _figure_texts(fig).lower(), name
+        plt.close(fig)
+    seed_md = markdown(analyze(params))
+    assert f"{g.a_m * 1e3:g} cos(wt)" in seed_md and f"{g.b_m * 1e3:g} sin(wt)" in seed_md
+    assert "duty factor" not in seed_md.split("## Table 3")[0]
