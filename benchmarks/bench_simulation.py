@@ -17,20 +17,16 @@ import time
 from pathlib import Path
 
 import numpy as np
-from pydrake.geometry import AddContactMaterial, Box, ProximityProperties
-from pydrake.math import RigidTransform
-from pydrake.multibody.plant import (AddMultibodyPlantSceneGraph, ApplyMultibodyPlantConfig,
-                                     CoulombFriction, MultibodyPlantConfig)
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import TrajectorySource
 from pydrake.trajectories import PiecewisePolynomial
 
 from fivebar_drake.analysis import analyze
-from fivebar_drake.plant_model import CLOSURES, add_model
+from fivebar_drake.plant_model import CLOSURES
 from fivebar_drake.recording import write_recording
 from fivebar_drake.scenario import load_scenario
-from fivebar_drake.simulation import GROUND_DEPTH_M, GROUND_SIZE_M, set_standing_pose, simulate
+from fivebar_drake.simulation import add_robot, set_standing_pose, simulate
 from fivebar_drake.summary import signals, summarize
 
 MEMORY_RUN = """
@@ -64,18 +60,8 @@ def plant_alone_rtf(scenario, params, setup, result, duration: float) -> float:
     """The same plant, closure, contact and step fed the run's joint torques (interval means,
     held) with no Python systems."""
     builder = DiagramBuilder()
-    plant, _ = AddMultibodyPlantSceneGraph(builder, setup.time_step_s)
-    ApplyMultibodyPlantConfig(MultibodyPlantConfig(
-        time_step=setup.time_step_s, discrete_contact_approximation="sap",
-        use_sampled_output_ports=False), plant)
-    instance, legs = add_model(plant, params, "quadruped", scenario.closure, setup.bushing)
-    ground = ProximityProperties()
-    mu = params.body.foot_friction
-    AddContactMaterial(friction=CoulombFriction(mu, mu), properties=ground)
-    plant.RegisterCollisionGeometry(plant.world_body(), RigidTransform([0, 0, -GROUND_DEPTH_M / 2]),
-                                    Box(GROUND_SIZE_M, GROUND_SIZE_M, GROUND_DEPTH_M), "ground",
-                                    ground)
-    plant.Finalize()
+    plant, instance, legs = add_robot(builder, params, scenario.closure, setup.bushing,
+                                      setup.time_step_s)
     table = result.table
     t = np.concatenate([[0.0], table["t"]])
     torque = np.vstack([table["motor_torque"][:1], table["motor_torque"]])

@@ -140,6 +140,11 @@ def hip_positions(params: Params) -> dict[str, tuple[float, float, float]]:
                   (b.hip_y_m if leg[1] == "L" else -b.hip_y_m), b.hip_z_m) for leg in LEGS}
 
 
+def body_height(params: Params, foot_y):
+    """Body height (m) at which feet at leg-plane height foot_y (m) touch flat ground."""
+    return params.body.foot_radius_m - params.body.hip_z_m - np.asarray(foot_y)
+
+
 def motor_positions(params: Params) -> np.ndarray:
     """Positions (8, 3) in m of the motor axes A and B of every leg in the body frame."""
     rot = plane_rotation()

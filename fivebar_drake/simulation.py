@@ -26,9 +26,9 @@ from .kinematics import inverse
 from .params import Params
 from .plant_model import add_model, leg_indices, loop_gaps, tree_positions
 from .scenario import Scenario
-from .sdf_model import hip_positions
+from .sdf_model import body_height, hip_positions
 from .systems import (ControlGains, FootLegController, GaitSource, IntervalRecorder, MotorModel,
-                      RobotLayout, derive_gains)
+                      RobotLayout, derive_gains, tilt_deg)
 
 IMPLICIT_TIME_STEP_S = 1e-3   # plant step of the closures SAP treats implicitly
 FALL_TILT_DEG = 45.0   # a body tilted further has fallen: the run stops
@@ -95,8 +95,7 @@ def robot_layout(plant, instance, legs, params: Params) -> RobotLayout:
         body_q=body.floating_positions_start(), body_v=body.floating_velocities_start_in_v(),
         nq=plant.num_positions(), nx=plant.num_multibody_states(),
         hips_m=np.array([hip_positions(params)[leg] for leg in legs]), com_m=np.asarray(com),
-        mass_kg=spatial.get_mass(), inertia_kg_m2=inertia,
-        stand_height_m=standing_height(params))
+        mass_kg=spatial.get_mass(), inertia_kg_m2=inertia)
 
 
 def controller_gains(scenario: Scenario, params: Params, layout: RobotLayout) -> ControlGains:
@@ -110,16 +109,15 @@ def controller_gains(scenario: Scenario, params: Params, layout: RobotLayout) ->
                         scenario.damping_ratio)
 
 
-def build_diagram(scenario: Scenario, params: Params):
-    """Assemble the Diagram for the scenario; returns (diagram, Setup)."""
-    time_step, bushing, m_eff, force = closure_parameters(scenario, params)
-    builder = DiagramBuilder()
-    plant, scene_graph = AddMultibodyPlantSceneGraph(builder, time_step)
+def add_robot(builder: DiagramBuilder, params: Params, closure: str, bushing, time_step: float):
+    """Add the finalized quadruped plant (SAP, closed loops) and flat ground to builder;
+    returns (plant, model instance, leg names)."""
+    plant, _ = AddMultibodyPlantSceneGraph(builder, time_step)
     # unsampled output ports: a block updating at tick t reads the state at t, as a driver would
     ApplyMultibodyPlantConfig(MultibodyPlantConfig(
         time_step=time_step, discrete_contact_approximation="sap",
         use_sampled_output_ports=False), plant)
-    instance, legs = add_model(plant, params, "quadruped", scenario.closure, bushing)
+    instance, legs = add_model(plant, params, "quadruped", closure, bushing)
     ground = ProximityProperties()
     mu = params.body.foot_friction
     AddContactMaterial(friction=CoulombFriction(mu, mu), properties=ground)
@@ -127,6 +125,14 @@ def build_diagram(scenario: Scenario, params: Params):
                                     Box(GROUND_SIZE_M, GROUND_SIZE_M, GROUND_DEPTH_M), "ground",
                                     ground)
     plant.Finalize()
+    return plant, instance, legs
+
+
+def build_diagram(scenario: Scenario, params: Params):
+    """Assemble the Diagram for the scenario; returns (diagram, Setup)."""
+    time_step, bushing, m_eff, force = closure_parameters(scenario, params)
+    builder = DiagramBuilder()
+    plant, instance, legs = add_robot(builder, params, scenario.closure, bushing, time_step)
     indices = {leg: leg_indices(plant, instance, leg) for leg in legs}
     layout = robot_layout(plant, instance, legs, params)
     gains = controller_gains(scenario, params, layout)
@@ -172,7 +178,7 @@ def build_diagram(scenario: Scenario, params: Params):
 
 def standing_height(params: Params) -> float:
     """Body height (m) at which the feet, at (x_center, y_home), touch flat ground."""
-    return params.body.foot_radius_m - params.gait.y_home_m - params.body.hip_z_m
+    return float(body_height(params, params.gait.y_home_m))
 
 
 def set_standing_pose(plant, context, instance, legs, params: Params) -> None:
@@ -246,9 +252,7 @@ def simulate(scenario: Scenario, params: Params, progress=True):
                 setup.plant.GetMyContextFromRoot(context))
             if not np.all(np.isfinite(plant_state)):
                 raise RuntimeError(f"the plant state is not finite at t = {t:.3f} s (diverged)")
-            quat = plant_state[setup.layout.body_q:setup.layout.body_q + 4]
-            tilt = np.degrees(np.arccos(np.clip(1 - 2 * (quat[1]**2 + quat[2]**2)
-                                                / (quat @ quat), -1, 1)))
+            tilt = tilt_deg(plant_state[setup.layout.body_q:setup.layout.body_q + 4])
             if tilt > FALL_TILT_DEG:
                 raise RuntimeError(f"the robot fell over: tilt {tilt:.0f} deg at t = {t:.2f} s")
     except (RuntimeError, ValueError) as err:   # divergence, unreachable targets

@@ -33,7 +33,7 @@ from .params import Params
 from .scenario import Scenario
 from .sdf_model import plane_rotation
 from .simulation import Setup, SimResult
-from .systems import body_rotation, motor_torque
+from .systems import body_rotation, motor_torque, tilt_deg
 
 MOTORS = ("A", "B")
 MIN_CYCLES = 3            # fewer whole cycles than this give no verdict
@@ -78,12 +78,6 @@ class Signals:
     stance: np.ndarray
     swing_fraction: np.ndarray
     swing_contact: np.ndarray
-
-
-def tilt_deg(quat_wxyz) -> np.ndarray:
-    """Angle (deg) between the body's z axis and the vertical, for quaternions (..., 4)."""
-    q = np.asarray(quat_wxyz) / np.linalg.norm(quat_wxyz, axis=-1, keepdims=True)
-    return np.degrees(np.arccos(np.clip(1 - 2 * (q[..., 1] ** 2 + q[..., 2] ** 2), -1, 1)))
 
 
 def signals(result: SimResult, setup: Setup, params: Params, scenario: Scenario) -> Signals:

@@ -21,7 +21,7 @@ from .gait import wrap
 from .jacobians import bias_accelerations, link_jacobians
 from .kinematics import forward, inverse
 from .params import Gait, Motor, Params
-from .sdf_model import plane_rotation
+from .sdf_model import body_height, plane_rotation
 
 
 TOUCHDOWN_BAND_M = 0.004   # a descending swing foot this close to the ground joins the support
@@ -109,7 +109,7 @@ class RobotLayout:
     indices of motors A and B and their actuation indices; the body's first position index
     (quaternion w, x, y, z, then position) and velocity index (angular then linear, world
     frame); nq, nx; hip positions (legs, 3) m and the robot's COM (3,) m in the body frame;
-    robot mass (kg) and inertia about the COM (3, 3) kg*m^2; standing body height (m)."""
+    robot mass (kg) and inertia about the COM (3, 3) kg*m^2."""
 
     q_index: np.ndarray
     v_index: np.ndarray
@@ -122,7 +122,6 @@ class RobotLayout:
     com_m: np.ndarray
     mass_kg: float
     inertia_kg_m2: np.ndarray
-    stand_height_m: float
 
 
 class FootLegController(LeafSystem):
@@ -151,13 +150,12 @@ class FootLegController(LeafSystem):
     - The links' weight is compensated on every leg."""
 
     def __init__(self, params: Params, layout: RobotLayout, gains: ControlGains, period_s: float,
-                 delay_periods: int = 0, catch_gain: float = 1.0, catch_rate_s: float = 0.1,
-                 touchdown_detection: bool = True):
+                 delay_periods: int, catch_gain: float, catch_rate_s: float,
+                 touchdown_detection: bool):
         super().__init__()
         self._params, self._layout, self._gains = params, layout, gains
         self._touchdown = touchdown_detection
         self._catch = (catch_gain, catch_rate_s)
-        self._delay = delay_periods
         self._swing_model = dataclasses.replace(full_model(params), foot_load_N=0.0)
         self._plane = plane_rotation()
         self._mu = params.body.foot_friction
@@ -177,9 +175,10 @@ class FootLegController(LeafSystem):
         (legs, 2), stance weights (legs,) and the plant state vector (nx,)."""
         p, lay, g = self._params, self._layout, self._gains
         q, qd = state[lay.q_index], state[lay.v_index + lay.nq]
+        r_wb = body_rotation(state[lay.body_q:lay.body_q + 4])
         # swing: IK target (moved by the catch reflex), its rates and accelerations,
         # inverse-dynamics feed-forward
-        pose_des = inverse(p.leg, targets + self._catch_offset(state))
+        pose_des = inverse(p.leg, targets + self._catch_offset(state, r_wb))
         lj_des = link_jacobians(p.leg, p.links, pose_des)
         qd_des = np.linalg.solve(lj_des.jf, velocities[..., None])[..., 0]
         bias = bias_accelerations(p.leg, p.links, pose_des, qd_des)
@@ -191,9 +190,10 @@ class FootLegController(LeafSystem):
         pose = forward(p.leg, q)
         lj = link_jacobians(p.leg, p.links, pose)
         if self._touchdown:
-            weights = np.maximum(weights, self._early_touchdown(pose, velocities, state))
+            weights = np.maximum(weights, self._early_touchdown(pose, velocities, state, r_wb))
         links = static_torques(p, self._swing_model, pose, lj)
-        forces = self._ground_forces(targets, velocities, accelerations, weights, pose, state)
+        forces = self._ground_forces(targets, velocities, accelerations, weights, pose, state,
+                                     r_wb)
         stance = links - np.einsum("lji,lj->li", lj.jf, forces)
         w = weights[:, None]
         tau = w * stance + (1.0 - w) * swing
@@ -201,19 +201,18 @@ class FootLegController(LeafSystem):
         out[lay.actuators.ravel()] = tau.ravel()
         return out
 
-    def _early_touchdown(self, pose, velocities, state) -> np.ndarray:
+    def _early_touchdown(self, pose, velocities, state, r_wb) -> np.ndarray:
         """Support weight (legs,) of swing feet that meet the ground early: a foot on its way
         down (target y' < 0) whose lowest point is within TOUCHDOWN_BAND_M of flat ground at
         z = 0 (kinematic contact estimate: body pose and leg angles) joins the support: fully
         within half the band, fading out linearly to none at the band."""
         lay = self._layout
-        r_wb = body_rotation(state[lay.body_q:lay.body_q + 4])
         feet_b = lay.hips_m + np.column_stack([pose.f, np.zeros(len(pose.f))]) @ self._plane.T
         clearance = (state[lay.body_q + 6] + feet_b @ r_wb[2]) - self._params.body.foot_radius_m
         weight = np.clip(2.0 - clearance / (0.5 * TOUCHDOWN_BAND_M), 0.0, 1.0)
         return np.where(velocities[:, 1] < 0.0, weight, 0.0)
 
-    def _catch_offset(self, state) -> np.ndarray:
+    def _catch_offset(self, state, r_wb) -> np.ndarray:
         """Swing foot target offsets (legs, 2) in m: a swing leg under a hip that the body's
         tilt lowers by dz reaches down by catch_gain (dz + catch_rate dz') (and up under a
         rising hip), limited to the step height, so the foot on the side the body falls to
@@ -223,7 +222,6 @@ class FootLegController(LeafSystem):
         out = np.zeros((len(lay.hips_m), 2))
         if gain == 0.0:
             return out
-        r_wb = body_rotation(state[lay.body_q:lay.body_q + 4])
         hips_w = lay.hips_m @ r_wb.T
         omega = state[lay.nq + lay.body_v:lay.nq + lay.body_v + 3]
         dz = hips_w[:, 2] - lay.hips_m[:, 2]
@@ -232,27 +230,26 @@ class FootLegController(LeafSystem):
         out[:, 1] = np.clip(gain * (dz + rate * dz_dot), -limit, limit)
         return out
 
-    def _ground_forces(self, targets, velocities, accelerations, weights, pose, state):
-        """Ground forces on the feet (legs, 2) in N, leg-plane (x, y), from the body wrench."""
+    def _ground_forces(self, targets, velocities, accelerations, weights, pose, state, r_wb):
+        """Ground forces on the feet (legs, 2) in N, leg-plane (x, y), from the body wrench
+        (r_wb: the body's rotation in the world)."""
         p, lay, g = self._params, self._layout, self._gains
         total = weights.sum()
         if total <= 0.0:
             return np.zeros((len(weights), 2))
         share = weights / total
-        r_wb = body_rotation(state[lay.body_q:lay.body_q + 4])
         z = state[lay.body_q + 6]
-        omega_w = state[lay.nq + lay.body_v:lay.nq + lay.body_v + 3]
-        v_b = r_wb.T @ state[lay.nq + lay.body_v + 3:lay.nq + lay.body_v + 6]
-        omega_b = r_wb.T @ omega_w
+        omega_b = r_wb.T @ state[lay.nq + lay.body_v:lay.nq + lay.body_v + 3]
+        v_w = state[lay.nq + lay.body_v + 3:lay.nq + lay.body_v + 6]
+        v_b = r_wb.T @ v_w
         roll, pitch = np.arctan2(r_wb[2, 1], r_wb[2, 2]), -np.arcsin(np.clip(r_wb[2, 0], -1, 1))
         # body targets from the stance feet's targets (leg plane: x backwards, y up)
-        foot_clearance = p.body.foot_radius_m - p.body.hip_z_m
-        z_des = foot_clearance - share @ targets[:, 1]
+        z_des = body_height(p, share @ targets[:, 1])
         vz_des, az_des = -share @ velocities[:, 1], -share @ accelerations[:, 1]
         vx_des = share @ velocities[:, 0]
         grav = p.robot.gravity_m_s2
         force_w = np.array([0.0, 0.0, lay.mass_kg * (grav + az_des) + g.kz * (z_des - z)
-                            + g.dz * (vz_des - (r_wb @ v_b)[2])])
+                            + g.dz * (vz_des - v_w[2])])
         force_b = r_wb.T @ force_w
         force_b[0] += g.dx * (vx_des - v_b[0])
         moment_b = np.zeros(3)
@@ -293,6 +290,14 @@ def body_rotation(quaternion_wxyz) -> np.ndarray:
     plant state (normalised first: the state drifts from unit length)."""
     q = np.asarray(quaternion_wxyz, dtype=float)
     return RotationMatrix(Quaternion(q / np.linalg.norm(q))).matrix()
+
+
+def tilt_deg(quat_wxyz) -> np.ndarray:
+    """Angle (deg) between a floating body's z axis and the vertical, for quaternions
+    [w, x, y, z] (..., 4) as stored in the plant state (not necessarily unit length)."""
+    q = np.asarray(quat_wxyz, dtype=float)
+    q = q / np.linalg.norm(q, axis=-1, keepdims=True)
+    return np.degrees(np.arccos(np.clip(1 - 2 * (q[..., 1] ** 2 + q[..., 2] ** 2), -1, 1)))
 
 
 @dataclass(frozen=True)
