@@ -15,7 +15,7 @@ import numpy as np  # noqa: E402
 
 from fivebar_drake.jacobians import foot_jacobian  # noqa: E402
 from fivebar_drake.kinematics import forward, inverse  # noqa: E402
-from fivebar_drake.params import load_params  # noqa: E402
+from fivebar_drake.config import load_params  # noqa: E402
 
 
 def targets(params, n, rng):

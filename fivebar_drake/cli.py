@@ -15,7 +15,8 @@ from pathlib import Path
 
 from .kinematics import UnreachableError
 from .footpath import PATHS
-from .params import ParameterError, load_params
+from .config import load_params
+from .params import ParameterError
 from .plant_model import CLOSURES
 
 

@@ -1,17 +1,14 @@
-"""Parameters of the leg, robot, gait and motor: typed, immutable, validated, loaded from TOML.
+"""Parameters of the leg, robot, gait and motor: typed, immutable, each section validated on
+construction. Loading them from TOML and the checks that need the kinematics are in config.py.
 
-The packaged file ``data/default.toml`` is the one source of truth; a user may pass their own file
-with the same layout. All values are SI (m, kg, s, rad, N, N*m), and every key names its unit.
+All values are SI (m, kg, s, rad, N, N*m), and every key names its unit.
 """
 
 from __future__ import annotations
 
 import dataclasses
 import math
-import tomllib
 from dataclasses import dataclass
-from importlib import resources
-from pathlib import Path
 
 import numpy as np
 
@@ -22,7 +19,7 @@ class ParameterError(ValueError):
     """A parameter file is malformed or describes something that cannot exist."""
 
 
-def _require(ok: bool, field: str, value, rule: str) -> None:
+def require(ok: bool, field: str, value, rule: str) -> None:
     if not ok:
         raise ParameterError(f"{field} = {value!r}: {rule}")
 
@@ -31,7 +28,7 @@ def _positive(section: str, obj) -> None:
     for f in dataclasses.fields(obj):
         value = getattr(obj, f.name)
         if isinstance(value, float):
-            _require(math.isfinite(value) and value > 0, f"{section}.{f.name}", value, "must be > 0")
+            require(math.isfinite(value) and value > 0, f"{section}.{f.name}", value, "must be > 0")
 
 
 @dataclass(frozen=True)
@@ -49,11 +46,11 @@ class LegGeometry:
     def __post_init__(self):
         for name in ("ac_m", "bd_m", "ce_m", "de_m"):
             value = getattr(self, name)
-            _require(math.isfinite(value) and value > 0, f"leg.{name}", value, "must be > 0")
-        _require(math.isfinite(self.ef_m) and self.ef_m >= 0, "leg.ef_m", self.ef_m, "must be >= 0")
+            require(math.isfinite(value) and value > 0, f"leg.{name}", value, "must be > 0")
+        require(math.isfinite(self.ef_m) and self.ef_m >= 0, "leg.ef_m", self.ef_m, "must be >= 0")
         for name in ("motor_a_m", "motor_b_m"):
             p = getattr(self, name)
-            _require(len(p) == 2 and all(math.isfinite(v) for v in p), f"leg.{name}", p,
+            require(len(p) == 2 and all(math.isfinite(v) for v in p), f"leg.{name}", p,
                      "must be two finite numbers [x, y]")
 
     @property
@@ -91,7 +88,7 @@ class Robot:
 
     def __post_init__(self):
         _positive("robot", self)
-        _require(isinstance(self.legs, int) and self.legs >= 1, "robot.legs", self.legs,
+        require(isinstance(self.legs, int) and self.legs >= 1, "robot.legs", self.legs,
                  "must be an integer >= 1")
 
     @property
@@ -120,15 +117,15 @@ class Gait:
     def __post_init__(self):
         for name in ("a_m", "b_m"):
             value = getattr(self, name)
-            _require(math.isfinite(value) and value >= 0, f"gait.{name}", value, "must be >= 0")
+            require(math.isfinite(value) and value >= 0, f"gait.{name}", value, "must be >= 0")
         for name in ("x_center_m", "y_home_m"):
             value = getattr(self, name)
-            _require(math.isfinite(value), f"gait.{name}", value, "must be finite")
-        _require(math.isfinite(self.frequency_hz) and self.frequency_hz > 0, "gait.frequency_hz",
+            require(math.isfinite(value), f"gait.{name}", value, "must be finite")
+        require(math.isfinite(self.frequency_hz) and self.frequency_hz > 0, "gait.frequency_hz",
                  self.frequency_hz, "must be > 0")
-        _require(isinstance(self.samples, int) and self.samples >= 3, "gait.samples", self.samples,
+        require(isinstance(self.samples, int) and self.samples >= 3, "gait.samples", self.samples,
                  "must be an integer >= 3 (central differences need neighbours)")
-        _require(math.isfinite(self.duty_factor) and 0.0 < self.duty_factor < 1.0,
+        require(math.isfinite(self.duty_factor) and 0.0 < self.duty_factor < 1.0,
                  "gait.duty_factor", self.duty_factor, "must be in (0, 1)")
 
     @property
@@ -150,10 +147,10 @@ class Motor:
     def __post_init__(self):
         for f in ("peak_torque_Nm", "gear_ratio", "no_load_speed_rad_s"):
             value = getattr(self, f)
-            _require(math.isfinite(value) and value > 0, f"motor.{f}", value, "must be > 0")
+            require(math.isfinite(value) and value > 0, f"motor.{f}", value, "must be > 0")
         for f in ("rotor_inertia_kg_m2", "coulomb_friction_Nm", "viscous_friction_Nm_s"):
             value = getattr(self, f)
-            _require(math.isfinite(value) and value >= 0, f"motor.{f}", value, "must be >= 0")
+            require(math.isfinite(value) and value >= 0, f"motor.{f}", value, "must be >= 0")
 
     def torque_limit(self, speed_rad_s):
         """Largest motoring torque (N*m) at a joint speed (rad/s): the linear torque-speed line
@@ -189,7 +186,7 @@ class Body:
         for f in dataclasses.fields(self):
             if f.name != "hip_z_m":
                 value = getattr(self, f.name)
-                _require(math.isfinite(value) and value > 0, f"body.{f.name}", value, "must be > 0")
+                require(math.isfinite(value) and value > 0, f"body.{f.name}", value, "must be > 0")
 
 
 @dataclass(frozen=True)
@@ -201,7 +198,7 @@ class Checks:
 
     def __post_init__(self):
         _positive("checks", self)
-        _require(self.sf_warn <= self.sf_pass, "checks.sf_warn", self.sf_warn,
+        require(self.sf_warn <= self.sf_pass, "checks.sf_warn", self.sf_warn,
                  f"must be <= checks.sf_pass = {self.sf_pass}")
 
 
@@ -216,102 +213,17 @@ class Params:
     body: Body
 
     def __post_init__(self):
-        _require(sorted(self.links) == sorted(LINK_NAMES), "links", sorted(self.links),
+        require(sorted(self.links) == sorted(LINK_NAMES), "links", sorted(self.links),
                  f"must be exactly {list(LINK_NAMES)}")
         for name, link in self.links.items():
             length = self.leg.link_length(name)
             field = f"links.{name}"
-            _require(math.isfinite(link.mass_kg) and link.mass_kg > 0, f"{field}.mass_kg",
+            require(math.isfinite(link.mass_kg) and link.mass_kg > 0, f"{field}.mass_kg",
                      link.mass_kg, "must be > 0")
-            _require(0 <= link.com_m <= length, f"{field}.com_m", link.com_m,
+            require(0 <= link.com_m <= length, f"{field}.com_m", link.com_m,
                      f"COM outside its link: allowed 0 .. {length} m")
             # A body whose mass lies on the segment [0, L] with COM at c has Izz <= m c (L - c).
             bound = link.mass_kg * link.com_m * (length - link.com_m)
-            _require(math.isfinite(link.izz_kg_m2) and 0 <= link.izz_kg_m2 <= bound,
+            require(math.isfinite(link.izz_kg_m2) and 0 <= link.izz_kg_m2 <= bound,
                      f"{field}.izz_kg_m2", link.izz_kg_m2,
                      f"cannot be physical: allowed 0 .. m*c*(L-c) = {bound:.3g} kg*m^2")
-
-    def with_gait(self, **changes) -> "Params":
-        """A copy with some gait fields changed (validated like a loaded file)."""
-        params = dataclasses.replace(self, gait=dataclasses.replace(self.gait, **changes))
-        check_gait_reachable(params)
-        return params
-
-
-def _build(cls, table: dict, section: str):
-    names = {f.name: f for f in dataclasses.fields(cls)}
-    unknown = sorted(set(table) - set(names))
-    missing = sorted(set(names) - set(table))
-    if unknown:
-        raise ParameterError(f"[{section}] has unknown key(s) {unknown}; allowed: {sorted(names)}")
-    if missing:
-        raise ParameterError(f"[{section}] is missing key(s) {missing}")
-    values = {}
-    for key, value in table.items():
-        kind = names[key].type
-        if kind == "int":
-            _require(isinstance(value, int) and not isinstance(value, bool), f"{section}.{key}",
-                     value, "must be an integer")
-        elif kind == "float":
-            _require(isinstance(value, (int, float)) and not isinstance(value, bool),
-                     f"{section}.{key}", value, "must be a number")
-            value = float(value)
-        else:  # a point [x, y]
-            _require(isinstance(value, list) and len(value) == 2
-                     and all(isinstance(v, (int, float)) for v in value), f"{section}.{key}",
-                     value, "must be [x, y] in m")
-            value = (float(value[0]), float(value[1]))
-        values[key] = value
-    return cls(**values)
-
-
-def params_from_dict(data: dict) -> Params:
-    """Build and validate Params from the nested dict of a parameter file."""
-    sections = {"leg", "links", "robot", "gait", "motor", "checks", "body"}
-    unknown, missing = sorted(set(data) - sections), sorted(sections - set(data))
-    if unknown or missing:
-        raise ParameterError(f"parameter file sections: unknown {unknown}, missing {missing}; "
-                             f"expected {sorted(sections)}")
-    params = Params(
-        leg=_build(LegGeometry, data["leg"], "leg"),
-        links={name: _build(LinkInertia, table, f"links.{name}")
-               for name, table in data["links"].items()},
-        robot=_build(Robot, data["robot"], "robot"),
-        gait=_build(Gait, data["gait"], "gait"),
-        motor=_build(Motor, data["motor"], "motor"),
-        checks=_build(Checks, data["checks"], "checks"),
-        body=_build(Body, data["body"], "body"),
-    )
-    check_gait_reachable(params)
-    return params
-
-
-def check_gait_reachable(params: Params) -> None:
-    """Raise ParameterError if a sample of either foot path lies outside the knees-out
-    workspace."""
-    from .footpath import PATHS, evaluate  # the foot paths need the dataclasses above
-    from .kinematics import KNEES_OUT, UnreachableError, inverse
-
-    for path in PATHS:
-        foot = evaluate(params.gait, path, np.linspace(0.0, params.gait.period_s, 241)).pos
-        try:
-            inverse(params.leg, foot, KNEES_OUT)
-        except UnreachableError as err:
-            raise ParameterError(f"gait leaves the workspace ({path} path): {err}") from None
-
-
-DEFAULT_PATH = resources.files("fivebar_drake") / "data" / "default.toml"
-
-
-def load_params(path: str | Path | None = None) -> Params:
-    """Load and validate a parameter file (TOML); None loads the packaged default."""
-    source = DEFAULT_PATH if path is None else Path(path)
-    try:
-        text = source.read_text()
-    except FileNotFoundError:
-        raise ParameterError(f"parameter file not found: {path}") from None
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as err:
-        raise ParameterError(f"{source}: not valid TOML: {err}") from None
-    return params_from_dict(data)

@@ -16,7 +16,8 @@ from typing import Optional
 from pydrake.common.yaml import yaml_load_typed
 
 from .footpath import TROT_PHASES_RAD, check_path
-from .params import Params, load_params
+from .config import load_params, with_gait
+from .params import Params
 from .plant_model import CLOSURES
 
 
@@ -95,7 +96,7 @@ class Scenario:
         params = load_params(self.params_file or None)
         overrides = {name[len("gait_"):]: value for name, value in dataclasses.asdict(self).items()
                      if name.startswith("gait_") and value is not None}
-        return params.with_gait(**overrides) if overrides else params
+        return with_gait(params, **overrides) if overrides else params
 
 
 def load_scenario(path: "str | Path | None" = None, **overrides) -> "Scenario":

@@ -7,6 +7,7 @@ import pytest
 from pydrake.multibody.plant import MultibodyPlant
 from pydrake.multibody.tree import MultibodyForces
 
+from fivebar_drake.config import with_gait
 from fivebar_drake.dynamics import full_model, torques
 from fivebar_drake.gait import sample_gait
 from fivebar_drake.kinematics import LegPose
@@ -29,7 +30,7 @@ def no_rotor(params):
 
 @pytest.mark.parametrize("frequency", [1.0, 3.0])
 def test_drake_inverse_dynamics_matches_full_model(no_rotor, frequency):
-    p = no_rotor.with_gait(frequency_hz=frequency)
+    p = with_gait(no_rotor, frequency_hz=frequency)
     plant, context, instance, idx = fixed_leg(p)
     s = sample_gait(p.leg, p.gait)
     model = full_model(p)

@@ -2,7 +2,8 @@ import re
 
 import pytest
 
-from fivebar_drake.params import DEFAULT_PATH, ParameterError, load_params
+from fivebar_drake.config import DEFAULT_PATH, load_params, with_gait
+from fivebar_drake.params import ParameterError
 
 
 def edited(tmp_path, old, new):
@@ -58,4 +59,4 @@ def test_user_file_is_used(tmp_path):
 
 def test_with_gait_validates(params):
     with pytest.raises(ParameterError, match="gait leaves the workspace"):
-        params.with_gait(a_m=0.3)
+        with_gait(params, a_m=0.3)
