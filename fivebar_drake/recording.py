@@ -128,6 +128,8 @@ def _log_scene(rec, sig, setup, params, scenario, state):
 def _log_series(rec, sig, setup, params, summary):
     limit = params.motor.peak_torque_Nm
     n = len(sig.t)
+    start, end = summary["window_s"]
+    cycle_ends = start + params.gait.period_s * np.arange(1, summary["cycles_in_window"] + 1)
     for i, leg in enumerate(setup.legs):
         _scalars(rec, f"loop_gap/{leg}", sig.t, sig.gap[:, i], leg)
         _scalars(rec, f"contact/{leg}/tangential", sig.t, sig.foot_force_plane[:, i, 0])
@@ -143,18 +145,12 @@ def _log_series(rec, sig, setup, params, summary):
                 _scalars(rec, f"{base}/{name}", sig.t, values[:, i, j], f"{m} {name}")
             _scalars(rec, f"{base}/limit_pos", sig.t, np.full(n, limit), "+limit")
             _scalars(rec, f"{base}/limit_neg", sig.t, np.full(n, -limit), "-limit")
-            start, _ = summary["window_s"]
-            cycles = summary["cycles_in_window"]
-            if cycles:
-                period = params.gait.period_s
-                ends = start + period * np.arange(1, cycles + 1)
-                peaks = [np.max(np.abs(sig.applied[(sig.t > e - period) & (sig.t <= e), i, j]))
-                         for e in ends]
-                _scalars(rec, f"cycle_peak/{leg}/{m}", ends, peaks, f"{leg} {m}")
+            if len(cycle_ends):
+                _scalars(rec, f"cycle_peak/{leg}/{m}", cycle_ends,
+                         summary["legs"][leg][m]["per_cycle_peak_Nm"], f"{leg} {m}")
     _scalars(rec, "body/height", sig.t, sig.body_p[:, 2], "height (m)")
     _scalars(rec, "body/forward_speed", sig.t, sig.body_v[:, 0], "forward speed (m/s)")
     _scalars(rec, "body/tilt_deg", sig.t, sig.tilt_deg, "tilt (deg)")
-    start, end = summary["window_s"]
     _scalars(rec, "stats/window", sig.t, ((sig.t > start) & (sig.t <= end)).astype(float),
              "statistics window")
 

@@ -116,7 +116,7 @@ def signals(result: SimResult, setup: Setup, params: Params, scenario: Scenario)
                                            scenario.phases_rad, weight).T, weight / len(setup.legs))
     full = full_model(params)
     trot_static = static_torques(params, dataclasses.replace(full, foot_load_N=loads), pose, lj)
-    links = torques(params, dataclasses.replace(full, foot_load_N=0.0), pose, qd, qdd).total
+    links = torques(params, dataclasses.replace(full, foot_load_N=0.0), pose, qd, qdd, lj).total
     rotor = params.motor.reflected_inertia_kg_m2 * qdd
     friction = motor_torque(params.motor, np.zeros_like(qd), qd).friction
     return Signals(
@@ -130,7 +130,6 @@ def signals(result: SimResult, setup: Setup, params: Params, scenario: Scenario)
         foot_force_world=force_world, gap=table["gap"],
         stance=stance, swing_fraction=swing_fraction,
         swing_contact=(~stance) & gaiting & (force_world[..., 2] > SWING_CONTACT_N))
-
 
 
 def foot_forces(generalized, setup: Setup, params: Params, pose, down) -> np.ndarray:
@@ -211,6 +210,7 @@ def motor_summary(sig: Signals, params: Params, win, cycle, cycles: int, i: int,
                                  "residual": _rms(residual)},
         "decomposition_at_peak_Nm": {name: float(v[win, i, j][k]) if applied.size else math.nan
                                      for name, v in parts.items()},
+        "per_cycle_peak_Nm": [_peak(a) for a, _ in per_cycle],
         "per_cycle": {
             "peak_torque_Nm": _spread([_peak(a) for a, _ in per_cycle]),
             "rms_torque_Nm": _spread([_rms(a) for a, _ in per_cycle]),
