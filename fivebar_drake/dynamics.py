@@ -18,7 +18,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from .footpath import TROT_PHASES_RAD, stance_loads
-from .jacobians import bias_accelerations, link_jacobians
+from .compiled import jit
+from .jacobians import LinkJacobians, bias_accelerations, link_jacobians
 from .kinematics import LegPose
 from .params import LINK_NAMES, Params
 
@@ -104,27 +105,61 @@ class TorqueBreakdown:
         return self.inertial + self.coriolis + self.static
 
 
-def _t(jac):
-    return np.swapaxes(jac, -1, -2)
+@jit
+def mass_matrix_arrays(masses, izz, jv, jw):
+    """M (n, 2, 2) = sum_k m_k Jv_k^T Jv_k + Izz_k Jw_k^T Jw_k from link Jacobians jv
+    (n, 4, 2, 2), jw (n, 4, 2); masses, izz (4,)."""
+    m = np.zeros((jv.shape[0], 2, 2))
+    for k in range(4):
+        for j in range(2):
+            for i in range(2):
+                m[:, j, i] += (masses[k] * (jv[:, k, 0, j] * jv[:, k, 0, i]
+                                            + jv[:, k, 1, j] * jv[:, k, 1, i])
+                               + izz[k] * jw[:, k, j] * jw[:, k, i])
+    return m
 
 
-def _mv(mat, vec):
-    return np.einsum("...ij,...j->...i", mat, vec)
+@jit
+def coriolis_arrays(masses, izz, jv, jw, av, aw):
+    """c (n, 2) = sum_k m_k Jv_k^T a_k + Izz_k Jw_k^T alpha_k with the links' velocity-product
+    accelerations av (n, 4, 2), aw (n, 4)."""
+    c = np.zeros((jv.shape[0], 2))
+    for k in range(4):
+        for j in range(2):
+            c[:, j] += (masses[k] * (jv[:, k, 0, j] * av[:, k, 0] + jv[:, k, 1, j] * av[:, k, 1])
+                        + izz[k] * jw[:, k, j] * aw[:, k])
+    return c
 
 
-def mass_matrix(params: Params, izz, pose: LegPose) -> np.ndarray:
-    """M(q) (..., 2, 2) in kg*m^2 = sum_i m_i Jv_i^T Jv_i + Izz_i Jw_i^T Jw_i."""
-    lj = link_jacobians(params.leg, params.links, pose)
-    return _mass_matrix(params, izz, lj)
+@jit
+def static_arrays(masses, weight_sign_g, foot_load, jv, jf):
+    """Torques (n, 2) holding the links' weights (weight_sign_g = link_weight_sign g, m/s^2:
+    weight_sign_g sum_k m_k Jv_k^T [0, 1]) and the upward ground force foot_load (n,) N at the
+    foot (-foot_load J_F^T [0, 1])."""
+    weight = np.zeros((jv.shape[0], 2))
+    for k in range(4):
+        weight += weight_sign_g * masses[k] * jv[:, k, 1, :]
+    return weight, -foot_load[:, None] * jf[:, 1, :]
 
 
 def _masses(params: Params) -> np.ndarray:
     return np.array([params.links[n].mass_kg for n in LINK_NAMES])
 
 
+def _flat_jacobians(lj: LinkJacobians):
+    shape = lj.jf.shape[:-2]
+    return shape, lj.jv.reshape(-1, 4, 2, 2), lj.jw.reshape(-1, 4, 2), lj.jf.reshape(-1, 2, 2)
+
+
+def mass_matrix(params: Params, izz, pose: LegPose) -> np.ndarray:
+    """M(q) (..., 2, 2) in kg*m^2 = sum_i m_i Jv_i^T Jv_i + Izz_i Jw_i^T Jw_i."""
+    return _mass_matrix(params, izz, link_jacobians(params.leg, params.links, pose))
+
+
 def _mass_matrix(params, izz, lj):
-    return (np.einsum("k,...kij,...kil->...jl", _masses(params), lj.jv, lj.jv)
-            + np.einsum("k,...kj,...kl->...jl", np.asarray(izz), lj.jw, lj.jw))
+    shape, jv, jw, _ = _flat_jacobians(lj)
+    m = mass_matrix_arrays(_masses(params), np.asarray(izz, dtype=float), jv, jw)
+    return m.reshape(shape + (2, 2))
 
 
 def coriolis(params: Params, izz, pose: LegPose, qd, lj=None, bias=None) -> np.ndarray:
@@ -133,16 +168,20 @@ def coriolis(params: Params, izz, pose: LegPose, qd, lj=None, bias=None) -> np.n
     bias_accelerations at qd, if already computed)."""
     lj = lj or link_jacobians(params.leg, params.links, pose)
     av, aw, _ = bias or bias_accelerations(params.leg, params.links, pose, qd)
-    return (np.einsum("k,...kij,...ki->...j", _masses(params), lj.jv, av)
-            + np.einsum("k,...kj,...k->...j", np.asarray(izz), lj.jw, aw))
+    shape, jv, jw, _ = _flat_jacobians(lj)
+    c = coriolis_arrays(_masses(params), np.asarray(izz, dtype=float), jv, jw,
+                        np.ascontiguousarray(av).reshape(-1, 4, 2),
+                        np.ascontiguousarray(aw).reshape(-1, 4))
+    return c.reshape(shape + (2,))
 
 
 def _static(params: Params, model: DynamicsModel, lj):
-    up = np.array([0.0, 1.0])
-    link_weight = (model.link_weight_sign * params.robot.gravity_m_s2
-                   * np.einsum("k,...kij,i->...j", _masses(params), lj.jv, up))
-    foot_load = -np.asarray(model.foot_load_N)[..., None] * _mv(_t(lj.jf), up)
-    return link_weight, foot_load
+    shape, jv, _, jf = _flat_jacobians(lj)
+    load = np.ascontiguousarray(np.broadcast_to(np.asarray(model.foot_load_N, dtype=float),
+                                                shape)).ravel()
+    weight, foot = static_arrays(_masses(params), model.link_weight_sign
+                                 * params.robot.gravity_m_s2, load, jv, jf)
+    return weight.reshape(shape + (2,)), foot.reshape(shape + (2,))
 
 
 def static_torques(params: Params, model: DynamicsModel, pose: LegPose, lj=None) -> np.ndarray:
@@ -157,7 +196,8 @@ def torques(params: Params, model: DynamicsModel, pose: LegPose, qd, qdd, lj=Non
     (lj, bias: the poses' LinkJacobians and bias_accelerations at qd, if already computed)."""
     lj = lj or link_jacobians(params.leg, params.links, pose)
     link_weight, foot_load = _static(params, model, lj)
-    inertial = _mv(_mass_matrix(params, model.izz, lj), np.asarray(qdd, dtype=float))
+    inertial = np.einsum("...ij,...j->...i", _mass_matrix(params, model.izz, lj),
+                         np.asarray(qdd, dtype=float))
     cor = (coriolis(params, model.izz, pose, qd, lj, bias) if model.coriolis
            else np.zeros_like(inertial))
     return TorqueBreakdown(inertial=inertial, coriolis=cor, link_weight=link_weight,

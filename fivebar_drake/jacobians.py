@@ -12,68 +12,116 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .compiled import jit
 from .kinematics import LegPose
 from .params import LINK_NAMES, LegGeometry, LinkInertia
 
 
-def _inv_times(a11, a12, a21, a22, x, y):
-    """Solve [[a11, a12], [a21, a22]] [u, v]^T = [x, y]^T elementwise."""
+LINK_ENDS = ((0, 2), (1, 3), (2, 4), (3, 4))   # link i joins points (A, B, C, D, E)[p] -> [q]
+
+
+@jit
+def point_jacobian_arrays(geom, cx, cy, dx, dy, ex, ey):
+    """Velocity Jacobians (n, 2, 2) in m/rad of C, D, E and F for flat pose arrays (n,)."""
+    ax, ay, bx, by, ac, bd, ce, de, ef = geom
+    n = cx.shape[0]
+    ra_x, ra_y = cx - ax, cy - ay                    # A -> C
+    rb_x, rb_y = dx - bx, dy - by                    # B -> D
+    a11, a12, a21, a22 = ex - cx, ey - cy, ex - dx, ey - dy   # rows E - C, E - D of A
+    b11 = ra_x * a12 - ra_y * a11          # l1 [(ye - yc) cos(tA) - (xe - xc) sin(tA)]
+    b22 = rb_x * a22 - rb_y * a21          # l2 [(ye - yd) cos(tB) - (xe - xd) sin(tB)]
     det = a11 * a22 - a12 * a21
-    return (a22 * x - a12 * y) / det, (a11 * y - a21 * x) / det
+    jc, jd, je = np.zeros((n, 2, 2)), np.zeros((n, 2, 2)), np.empty((n, 2, 2))
+    jc[:, 0, 0], jc[:, 1, 0] = -ra_y, ra_x
+    jd[:, 0, 1], jd[:, 1, 1] = -rb_y, rb_x
+    je[:, 0, 0], je[:, 0, 1] = a22 * b11 / det, -a12 * b22 / det
+    je[:, 1, 0], je[:, 1, 1] = -a21 * b11 / det, a11 * b22 / det
+    k = ef / de
+    return jc, jd, je, (1.0 + k) * je - k * jd
 
 
-def _matrix(m11, m12, m21, m22) -> np.ndarray:
-    """Stack elementwise entries (arrays of one shape, or scalars) into matrices (..., 2, 2)."""
-    shape = np.broadcast(m11, m12, m21, m22).shape
-    out = np.empty(shape + (2, 2))
-    out[..., 0, 0], out[..., 0, 1], out[..., 1, 0], out[..., 1, 1] = m11, m12, m21, m22
-    return out
+@jit
+def _points(geom, cx, cy, dx, dy, ex, ey):
+    """Points A, B, C, D, E as (5, n, 2)."""
+    n = cx.shape[0]
+    pts = np.empty((5, n, 2))
+    pts[0, :, 0], pts[0, :, 1], pts[1, :, 0], pts[1, :, 1] = geom[0], geom[1], geom[2], geom[3]
+    pts[2, :, 0], pts[2, :, 1], pts[3, :, 0], pts[3, :, 1] = cx, cy, dx, dy
+    pts[4, :, 0], pts[4, :, 1] = ex, ey
+    return pts
 
 
-def _loop_matrix(pose: LegPose):
-    """Rows (E - C) and (E - D) of the loop-closure matrix A (seed 003 section 3.3)."""
-    e = pose.e
-    return (e[..., 0] - pose.c[..., 0], e[..., 1] - pose.c[..., 1],
-            e[..., 0] - pose.d[..., 0], e[..., 1] - pose.d[..., 1])
+@jit
+def link_jacobian_arrays(geom, com_fraction, cx, cy, dx, dy, ex, ey):
+    """COM Jacobians jv (n, 4, 2, 2) m/rad, angular Jacobians jw (n, 4, 2) and J_F (n, 2, 2)
+    of the links AC, BD, CE, DE for flat pose arrays (n,); com_fraction (4,): COM distance from
+    the first joint over the link's joint distance. A COM at fraction s of link P->Q moves with
+    J_P + s (J_Q - J_P); the link turns at (u x u') / L^2, u = Q - P, L = |PQ|."""
+    n = cx.shape[0]
+    jc, jd, je, jf = point_jacobian_arrays(geom, cx, cy, dx, dy, ex, ey)
+    jac = np.zeros((5, n, 2, 2))
+    jac[2], jac[3], jac[4] = jc, jd, je
+    pts = _points(geom, cx, cy, dx, dy, ex, ey)
+    jv, jw = np.empty((n, 4, 2, 2)), np.empty((n, 4, 2))
+    for i in range(4):
+        p, q = LINK_ENDS[i]
+        rel = jac[q] - jac[p]
+        u = pts[q] - pts[p]
+        length2 = geom[4 + i] ** 2
+        jv[:, i] = jac[p] + com_fraction[i] * rel
+        for j in range(2):
+            jw[:, i, j] = (u[:, 0] * rel[:, 1, j] - u[:, 1] * rel[:, 0, j]) / length2
+    return jv, jw, jf
+
+
+@jit
+def bias_arrays(geom, com_fraction, cx, cy, dx, dy, ex, ey, qda, qdb):
+    """Velocity-product accelerations for motor rates qda, qdb (n,) rad/s: link COMs av
+    (n, 4, 2) m/s^2, link angular aw (n, 4) rad/s^2, foot af (n, 2) m/s^2. From
+    C'' = -tA'^2 (C - A), D'' = -tB'^2 (D - B) and the loop circles differentiated twice:
+    A E'' = [(E-C).C'' - |E'-C'|^2, (E-D).D'' - |E'-D'|^2]."""
+    n = cx.shape[0]
+    jc, jd, je, _ = point_jacobian_arrays(geom, cx, cy, dx, dy, ex, ey)
+    pts = _points(geom, cx, cy, dx, dy, ex, ey)
+    vel = np.empty((3, n, 2))
+    for i, jac in enumerate((jc, jd, je)):
+        vel[i] = jac[:, :, 0] * qda[:, None] + jac[:, :, 1] * qdb[:, None]
+    acc = np.zeros((5, n, 2))
+    acc[2] = -(qda**2)[:, None] * (pts[2] - pts[0])
+    acc[3] = -(qdb**2)[:, None] * (pts[3] - pts[1])
+    a11, a12, a21, a22 = ex - cx, ey - cy, ex - dx, ey - dy
+    rel_c, rel_d = vel[2] - vel[0], vel[2] - vel[1]
+    rhs1 = a11 * acc[2, :, 0] + a12 * acc[2, :, 1] - (rel_c[:, 0] ** 2 + rel_c[:, 1] ** 2)
+    rhs2 = a21 * acc[3, :, 0] + a22 * acc[3, :, 1] - (rel_d[:, 0] ** 2 + rel_d[:, 1] ** 2)
+    det = a11 * a22 - a12 * a21
+    acc[4, :, 0], acc[4, :, 1] = (a22 * rhs1 - a12 * rhs2) / det, (a11 * rhs2 - a21 * rhs1) / det
+    av, aw = np.empty((n, 4, 2)), np.empty((n, 4))
+    for i in range(4):
+        p, q = LINK_ENDS[i]
+        rel = acc[q] - acc[p]
+        u = pts[q] - pts[p]
+        av[:, i] = acc[p] + com_fraction[i] * rel
+        aw[:, i] = (u[:, 0] * rel[:, 1] - u[:, 1] * rel[:, 0]) / geom[4 + i] ** 2
+    k = geom[8] / geom[7]
+    return av, aw, (1.0 + k) * acc[4] - k * acc[3]
+
+
+def com_fractions(leg: LegGeometry, links: dict[str, LinkInertia]) -> np.ndarray:
+    """COM distance from each link's first joint over its joint distance (AC, BD, CE, DE)."""
+    lengths = (leg.ac_m, leg.bd_m, leg.ce_m, leg.de_m)
+    return np.array([links[name].com_m / length for name, length in zip(LINK_NAMES, lengths)])
 
 
 def point_jacobians(leg: LegGeometry, pose: LegPose) -> dict[str, np.ndarray]:
     """Velocity Jacobians (..., 2, 2) of the joints C, D, E and the foot F, in m/rad."""
-    ax, ay = leg.motor_a_m
-    bx, by = leg.motor_b_m
-    ra_x, ra_y = pose.c[..., 0] - ax, pose.c[..., 1] - ay      # A -> C
-    rb_x, rb_y = pose.d[..., 0] - bx, pose.d[..., 1] - by      # B -> D
-    a11, a12, a21, a22 = _loop_matrix(pose)
-    b11 = ra_x * a12 - ra_y * a11          # l1 [(ye - yc) cos(tA) - (xe - xc) sin(tA)]
-    b22 = rb_x * a22 - rb_y * a21          # l2 [(ye - yd) cos(tB) - (xe - xd) sin(tB)]
-    det = a11 * a22 - a12 * a21
-    jc = _matrix(-ra_y, 0.0, ra_x, 0.0)
-    jd = _matrix(0.0, -rb_y, 0.0, rb_x)
-    je = _matrix(a22 * b11 / det, -a12 * b22 / det, -a21 * b11 / det, a11 * b22 / det)
-    k = leg.ef_m / leg.de_m
-    return {"C": jc, "D": jd, "E": je, "F": (1.0 + k) * je - k * jd}
+    shape = pose.c.shape[:-1] + (2, 2)
+    return {name: jac.reshape(shape)
+            for name, jac in zip("CDEF", point_jacobian_arrays(leg.core, *pose.flat()))}
 
 
 def foot_jacobian(leg: LegGeometry, pose: LegPose) -> np.ndarray:
     """J_F (..., 2, 2) in m/rad: foot velocity v_F = J_F q_dot."""
     return point_jacobians(leg, pose)["F"]
-
-
-def _link_ends(leg: LegGeometry):
-    """For each link: (first joint, second joint, length from first to second joint)."""
-    return (("A", "C", leg.ac_m), ("B", "D", leg.bd_m), ("C", "E", leg.ce_m),
-            ("D", "E", leg.de_m))
-
-
-def _points(leg: LegGeometry, pose: LegPose) -> dict[str, np.ndarray]:
-    shape = pose.c.shape
-    return {"A": np.broadcast_to(leg.a, shape), "B": np.broadcast_to(leg.b, shape),
-            "C": pose.c, "D": pose.d, "E": pose.e}
-
-
-def _angular(u, du, length):
-    """Angular rate of a link of fixed length with direction u and rate of change du."""
-    return (u[..., 0] * du[..., 1] - u[..., 1] * du[..., 0]) / length**2
 
 
 @dataclass(frozen=True)
@@ -87,45 +135,21 @@ class LinkJacobians:
 
 
 def link_jacobians(leg: LegGeometry, links: dict[str, LinkInertia], pose: LegPose) -> LinkJacobians:
-    """Analytic COM and angular Jacobians of all four links (the seed differentiates CE and DE
-    numerically). A COM at distance r from the first joint P of link P->Q moves with
-    J_P + (r/|PQ|)(J_Q - J_P)."""
-    pj = point_jacobians(leg, pose)
-    pts = _points(leg, pose)
-    zero = np.zeros(pose.c.shape[:-1] + (2, 2))
-    pj.update(A=zero, B=zero)
-    jv, jw = [], []
-    for name, (p, q, length) in zip(LINK_NAMES, _link_ends(leg)):
-        s = links[name].com_m / length
-        jv.append(pj[p] + s * (pj[q] - pj[p]))
-        u = pts[q] - pts[p]
-        jw.append(_angular(u[..., None, :], np.swapaxes(pj[q] - pj[p], -1, -2), length))
-    return LinkJacobians(jv=np.stack(jv, -3), jw=np.stack(jw, -2), jf=pj["F"])
+    """Analytic COM and angular Jacobians of all four links (link_jacobian_arrays; the seed
+    differentiates CE and DE numerically)."""
+    shape = pose.c.shape[:-1]
+    jv, jw, jf = link_jacobian_arrays(leg.core, com_fractions(leg, links), *pose.flat())
+    return LinkJacobians(jv=jv.reshape(shape + (4, 2, 2)), jw=jw.reshape(shape + (4, 2)),
+                         jf=jf.reshape(shape + (2, 2)))
 
 
 def bias_accelerations(leg: LegGeometry, links: dict[str, LinkInertia], pose: LegPose, qd):
-    """Velocity-product accelerations (the accelerations at q_ddot = 0) for motor rates qd
-    (..., 2) rad/s: link COMs av (..., 4, 2) m/s^2, link angular aw (..., 4) rad/s^2, and the
-    foot af (..., 2) m/s^2. From C'' = -tA'^2 (C - A), D'' = -tB'^2 (D - B) and the second
-    derivative of the loop circles: A E'' = [(E-C).C'' - |E'-C'|^2, (E-D).D'' - |E'-D'|^2]."""
-    qd = np.asarray(qd, dtype=float)
-    pj = point_jacobians(leg, pose)
-    pts = _points(leg, pose)
-    vel = {k: np.einsum("...ij,...j->...i", pj[k], qd) for k in ("C", "D", "E")}
-    vel.update(A=np.zeros_like(pose.c), B=np.zeros_like(pose.c))
-    acc = {"A": np.zeros_like(pose.c), "B": np.zeros_like(pose.c),
-           "C": -qd[..., :1] ** 2 * (pose.c - pts["A"]),
-           "D": -qd[..., 1:] ** 2 * (pose.d - pts["B"])}
-    a11, a12, a21, a22 = _loop_matrix(pose)
-    rel_c, rel_d = vel["E"] - vel["C"], vel["E"] - vel["D"]
-    rhs1 = a11 * acc["C"][..., 0] + a12 * acc["C"][..., 1] - np.sum(rel_c**2, -1)
-    rhs2 = a21 * acc["D"][..., 0] + a22 * acc["D"][..., 1] - np.sum(rel_d**2, -1)
-    acc["E"] = np.stack(_inv_times(a11, a12, a21, a22, rhs1, rhs2), -1)
-    av, aw = [], []
-    for name, (p, q, length) in zip(LINK_NAMES, _link_ends(leg)):
-        s = links[name].com_m / length
-        av.append(acc[p] + s * (acc[q] - acc[p]))
-        aw.append(_angular(pts[q] - pts[p], acc[q] - acc[p], length))
-    k = leg.ef_m / leg.de_m
-    af = (1.0 + k) * acc["E"] - k * acc["D"]
-    return np.stack(av, -2), np.stack(aw, -1), af
+    """Velocity-product accelerations (the accelerations at q_ddot = 0, bias_arrays) for motor
+    rates qd (..., 2) rad/s: link COMs av (..., 4, 2) m/s^2, link angular aw (..., 4) rad/s^2,
+    and the foot af (..., 2) m/s^2."""
+    shape = pose.c.shape[:-1]
+    qd = np.broadcast_to(np.asarray(qd, dtype=float), shape + (2,))
+    av, aw, af = bias_arrays(leg.core, com_fractions(leg, links), *pose.flat(),
+                             np.ascontiguousarray(qd[..., 0]).ravel(),
+                             np.ascontiguousarray(qd[..., 1]).ravel())
+    return av.reshape(shape + (4, 2)), aw.reshape(shape + (4,)), af.reshape(shape + (2,))

@@ -17,6 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .compiled import jit
 from .params import LegGeometry
 
 KNEES_OUT = (1, 1)
@@ -31,25 +32,63 @@ def _cross(ax, ay, bx, by):
     return ax * by - ay * bx
 
 
-def _circle_intersection(p0x, p0y, r0, p1x, p1y, r1, side, what=None):
+@jit
+def circle_points(p0x, p0y, r0, p1x, p1y, r1, side):
     """Point X with |X - P0| = r0 and |X - P1| = r1 on the given side of line P0->P1
-    (side = sign of cross(P1 - P0, X - P0)). Where the circles miss, raises UnreachableError
-    naming the first failure with what(index), or gives NaN if what is None."""
+    (side = sign of cross(P1 - P0, X - P0)), elementwise; NaN where the circles miss."""
     dx, dy = p1x - p0x, p1y - p0y
     d2 = dx * dx + dy * dy
     along = (r0 * r0 - r1 * r1 + d2) / (2.0 * d2)      # fraction of P0->P1 to the chord
     h2 = r0 * r0 / d2 - along * along                  # (half-chord / |P0P1|)^2
-    bad = ~(h2 >= 0.0)
-    if what is not None and np.any(bad):
-        d = np.sqrt(d2)
-        i = np.flatnonzero(np.atleast_1d(bad))[0]
-        dist = float(np.atleast_1d(d)[i])
-        raise UnreachableError(
-            f"{what(i)} = {dist * 1e3:.3f} mm is outside the reach "
-            f"{abs(r0 - r1) * 1e3:.3f} .. {(r0 + r1) * 1e3:.3f} mm"
-            f" ({int(np.count_nonzero(bad))} of {np.size(bad)} poses out of reach)")
-    h = side * np.sqrt(np.where(bad, np.nan, h2))
+    h = side * np.sqrt(np.where(h2 >= 0.0, h2, np.nan))
     return p0x + along * dx - h * dy, p0y + along * dy + h * dx
+
+
+@jit
+def forward_points(geom, ta, tb, side, seed_rule):
+    """Forward kinematics on flat arrays: motor angles ta, tb (n,) rad -> C, D, E, F as
+    (cx, cy, dx, dy, ex, ey, fx, fy) in m; E on the given side (n,) of line C->D, or with
+    seed_rule the seed's E with the lower y. geom: LegGeometry.core."""
+    ax, ay, bx, by, ac, bd, ce, de, ef = geom
+    cx, cy = ax + ac * np.cos(ta), ay + ac * np.sin(ta)
+    dx, dy = bx + bd * np.cos(tb), by + bd * np.sin(tb)
+    if seed_rule:
+        side = np.where(dx - cx > 0, -1.0, 1.0)
+    ex, ey = circle_points(cx, cy, ce, dx, dy, de, side)
+    k = ef / de
+    return cx, cy, dx, dy, ex, ey, ex + k * (ex - dx), ey + k * (ey - dy)
+
+
+@jit
+def inverse_points(geom, fx, fy, mode_c, mode_d):
+    """Inverse kinematics on flat arrays: foot targets fx, fy (n,) m in assembly mode
+    (mode_c, mode_d) -> (theta_A, theta_B, cx, cy, dx, dy, ex, ey), NaN out of reach.
+
+    D lies on the circle of radius BD about B and of radius DE + EF about F; E divides DF; C lies
+    on the circle of radius AC about A and of radius CE about E."""
+    ax, ay, bx, by, ac, bd, ce, de, ef = geom
+    df = de + ef
+    dx, dy = circle_points(bx, by, bd, fx, fy, df, mode_d)
+    k = de / df
+    ex, ey = dx + k * (fx - dx), dy + k * (fy - dy)
+    cx, cy = circle_points(ax, ay, ac, ex, ey, ce, -mode_c)
+    return np.arctan2(cy - ay, cx - ax), np.arctan2(dy - by, dx - bx), cx, cy, dx, dy, ex, ey
+
+
+def _require_reach(x, p0x, p0y, r0, p1x, p1y, r1, what):
+    """Raise UnreachableError naming the first NaN of x (a circle_points result) with what(i)."""
+    bad = np.isnan(x)
+    if np.any(bad):
+        dist = np.broadcast_to(np.hypot(p1x - p0x, p1y - p0y), bad.shape)
+        i = int(np.flatnonzero(bad)[0])
+        raise UnreachableError(
+            f"{what(i)} = {dist[i] * 1e3:.3f} mm is outside the reach "
+            f"{abs(r0 - r1) * 1e3:.3f} .. {(r0 + r1) * 1e3:.3f} mm"
+            f" ({int(np.count_nonzero(bad))} of {bad.size} poses out of reach)")
+
+
+def _flat(x):
+    return np.ascontiguousarray(np.ravel(np.asarray(x, dtype=float)))
 
 
 @dataclass(frozen=True)
@@ -68,60 +107,48 @@ class LegPose:
         u, v = self.d - self.c, self.e - self.c
         return np.sign(_cross(u[..., 0], u[..., 1], v[..., 0], v[..., 1]))
 
+    def flat(self) -> tuple[np.ndarray, ...]:
+        """(cx, cy, dx, dy, ex, ey) as flat arrays, as the compiled kernels take a pose."""
+        return tuple(_flat(p[..., i]) for p in (self.c, self.d, self.e) for i in (0, 1))
 
-def _points(*pairs):
-    return tuple(np.stack(p, axis=-1) for p in pairs)
 
-
-def _foot(leg: LegGeometry, ex, ey, dx, dy):
-    k = leg.ef_m / leg.de_m
-    return ex + k * (ex - dx), ey + k * (ey - dy)
+def _pose(shape, q, *xy) -> LegPose:
+    pts = [np.stack(xy[i:i + 2], axis=-1).reshape(shape + (2,)) for i in range(0, len(xy), 2)]
+    return LegPose(q, *pts)
 
 
 def forward(leg: LegGeometry, q, e_branch=None) -> LegPose:
     """Forward kinematics. q (..., 2) motor angles in rad. e_branch None picks the seed's E
     (lower y); +1/-1 (scalar or array) picks the side of line C->D."""
     q = np.asarray(q, dtype=float)
-    ta, tb = q[..., 0], q[..., 1]
-    ax, ay = leg.motor_a_m
-    bx, by = leg.motor_b_m
-    cx, cy = ax + leg.ac_m * np.cos(ta), ay + leg.ac_m * np.sin(ta)
-    dx, dy = bx + leg.bd_m * np.cos(tb), by + leg.bd_m * np.sin(tb)
-    side = np.where(dx - cx > 0, -1.0, 1.0) if e_branch is None else e_branch
-    ex, ey = _circle_intersection(
-        cx, cy, leg.ce_m, dx, dy, leg.de_m, side,
-        lambda i: f"motor angles {np.degrees(q.reshape(-1, 2)[i]).round(3).tolist()} deg "
-                  f"cannot close the lower links: knee distance |CD|")
-    fx, fy = _foot(leg, ex, ey, dx, dy)
-    c, d, e, f = _points((cx, cy), (dx, dy), (ex, ey), (fx, fy))
-    return LegPose(q=q, c=c, d=d, e=e, f=f)
+    shape = q.shape[:-1]
+    ta, tb = _flat(q[..., 0]), _flat(q[..., 1])
+    side = np.ones_like(ta) if e_branch is None else _flat(np.broadcast_to(e_branch, shape))
+    cx, cy, dx, dy, ex, ey, fx, fy = forward_points(leg.core, ta, tb, side, e_branch is None)
+    _require_reach(ex, cx, cy, leg.ce_m, dx, dy, leg.de_m,
+                   lambda i: f"motor angles {np.degrees(q.reshape(-1, 2)[i]).round(3).tolist()} "
+                             "deg cannot close the lower links: knee distance |CD|")
+    return _pose(shape, q, cx, cy, dx, dy, ex, ey, fx, fy)
 
 
 def inverse(leg: LegGeometry, foot, mode=KNEES_OUT, strict=True) -> LegPose:
-    """Closed-form inverse kinematics for foot targets (..., 2) in m in one assembly mode (c, d).
-
-    D lies on the circle of radius BD about B and of radius DE + EF about F; E divides DF; C lies
-    on the circle of radius AC about A and of radius CE about E. Raises UnreachableError naming
-    the first target out of reach, or with strict=False gives NaN there."""
+    """Closed-form inverse kinematics (inverse_points) for foot targets (..., 2) in m in one
+    assembly mode (c, d). Raises UnreachableError naming the first target out of reach, or
+    with strict=False gives NaN there."""
     foot = np.asarray(foot, dtype=float)
-    fx, fy = foot[..., 0], foot[..., 1]
-    ax, ay = leg.motor_a_m
-    bx, by = leg.motor_b_m
-    mode_c, mode_d = mode
-    df = leg.de_m + leg.ef_m
-
-    def target(joint):
-        return (lambda i: f"foot target {(foot.reshape(-1, 2)[i] * 1e3).round(3).tolist()} mm "
-                          f"is out of reach: |{joint}|") if strict else None
-
-    dx, dy = _circle_intersection(bx, by, leg.bd_m, fx, fy, df, float(mode_d), target("BF"))
-    k = leg.de_m / df
-    ex, ey = dx + k * (fx - dx), dy + k * (fy - dy)
-    cx, cy = _circle_intersection(ax, ay, leg.ac_m, ex, ey, leg.ce_m, -float(mode_c),
-                                  target("AE"))
-    q = np.stack([np.arctan2(cy - ay, cx - ax), np.arctan2(dy - by, dx - bx)], axis=-1)
-    c, d, e = _points((cx, cy), (dx, dy), (ex, ey))
-    return LegPose(q=q, c=c, d=d, e=e, f=foot)
+    shape = foot.shape[:-1]
+    fx, fy = _flat(foot[..., 0]), _flat(foot[..., 1])
+    ta, tb, cx, cy, dx, dy, ex, ey = inverse_points(leg.core, fx, fy, float(mode[0]),
+                                                    float(mode[1]))
+    if strict:
+        def what(joint):
+            return lambda i: (f"foot target {(foot.reshape(-1, 2)[i] * 1e3).round(3).tolist()} "
+                              f"mm is out of reach: |{joint}|")
+        (bx, by), (ax, ay) = leg.motor_b_m, leg.motor_a_m
+        _require_reach(dx, bx, by, leg.bd_m, fx, fy, leg.de_m + leg.ef_m, what("BF"))
+        _require_reach(cx, ax, ay, leg.ac_m, ex, ey, leg.ce_m, what("AE"))
+    q = np.stack([ta, tb], axis=-1).reshape(shape + (2,))
+    return _pose(shape, q, cx, cy, dx, dy, ex, ey, fx, fy)
 
 
 def reachable(leg: LegGeometry, foot, mode=KNEES_OUT) -> np.ndarray:

@@ -61,6 +61,13 @@ class LegGeometry:
     def b(self) -> np.ndarray:
         return np.asarray(self.motor_b_m, dtype=float)
 
+    @property
+    def core(self) -> tuple[float, ...]:
+        """(x_A, y_A, x_B, y_B, AC, BD, CE, DE, EF) in m: the geometry as the compiled kernels
+        take it."""
+        return tuple(float(v) for v in (*self.motor_a_m, *self.motor_b_m, self.ac_m, self.bd_m,
+                                         self.ce_m, self.de_m, self.ef_m))
+
     def link_length(self, link: str) -> float:
         """Length of a link's rigid body in m; DE carries the foot, so it reaches F."""
         return {"AC": self.ac_m, "BD": self.bd_m, "CE": self.ce_m, "DE": self.de_m + self.ef_m}[link]
