@@ -22,6 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .compiled import jit
 from .params import Gait
 
 PATHS = ("seed_ellipse", "trot")
@@ -60,49 +61,49 @@ def stance_speed(gait: Gait, path: str) -> float:
     return 2.0 * gait.a_m / (beta * gait.period_s)
 
 
-def _ellipse(gait: Gait, u):
-    w = 2.0 * np.pi * gait.frequency_hz
+@jit
+def ellipse_arrays(a, b, x_center, y_home, frequency, u):
+    """Seed ellipse at cycle phases u (n,): (x, y, vx, vy, ax, ay) in m, m/s, m/s^2 and the
+    stance flag."""
+    w = 2.0 * np.pi * frequency
     c, s = np.cos(2.0 * np.pi * u), np.sin(2.0 * np.pi * u)
-    a, b = gait.a_m, gait.b_m
-    pos = np.stack([gait.x_center_m + a * c, gait.y_home_m + b * s], -1)
-    vel = np.stack([-a * w * s, b * w * c], -1)
-    acc = np.stack([-a * w * w * c, -b * w * w * s], -1)
-    return PathPoints(pos=pos, vel=vel, acc=acc, stance=s < 0.0)
+    return (x_center + a * c, y_home + b * s, -a * w * s, b * w * c, -a * w * w * c,
+            -b * w * w * s, s < 0.0)
 
 
-def _quintic_parts(s):
-    """min-jerk P (0 -> 1), H (unit start slope) and G (unit end slope) with their first and
-    second derivatives in s; all with zero second derivative at both ends."""
-    p = (10 * s**3 - 15 * s**4 + 6 * s**5, 30 * s**2 - 60 * s**3 + 30 * s**4,
-         60 * s - 180 * s**2 + 120 * s**3)
-    h = lambda r: (r - 6 * r**3 + 8 * r**4 - 3 * r**5, 1 - 18 * r**2 + 32 * r**3 - 15 * r**4,  # noqa: E731
-                   -36 * r + 96 * r**2 - 60 * r**3)
-    h0, h1 = h(s), h(1.0 - s)
-    hg = (h0[0] - h1[0], h0[1] + h1[1], h0[2] - h1[2])    # H(s) + G(s), G(s) = -H(1 - s)
-    return p, hg
+@jit
+def _quintic_h(r):
+    """H (unit start slope, zero end slope, zero second derivative at both ends) and its first
+    and second derivatives at r."""
+    return (r - 6 * r**3 + 8 * r**4 - 3 * r**5, 1 - 18 * r**2 + 32 * r**3 - 15 * r**4,
+            -36 * r + 96 * r**2 - 60 * r**3)
 
 
-def _trot(gait: Gait, u):
-    beta, period, a = gait.duty_factor, gait.period_s, gait.a_m
+@jit
+def trot_arrays(a, b, x_center, y_home, period, beta, u):
+    """Trot path (module docstring) at cycle phases u (n,): (x, y, vx, vy, ax, ay) in m, m/s,
+    m/s^2 and the stance flag. The swing's x is the min-jerk P (0 -> 1) with H and G
+    (G(s) = -H(1 - s)) adding the matched end slopes."""
     v = 2.0 * a / (beta * period)
     t_sw = (1.0 - beta) * period
     swing = u < 1.0 - beta
-    s = np.clip(u / (1.0 - beta), 0.0, 1.0)
-    (p, dp, ddp), (hg, dhg, ddhg) = _quintic_parts(s)
-    sw_x = (a - 2 * a * p + v * t_sw * hg, (-2 * a * dp + v * t_sw * dhg) / t_sw,
-            (-2 * a * ddp + v * t_sw * ddhg) / t_sw**2)
-    bump = (64 * s**3 * (1 - s) ** 3, 192 * s**2 * (1 - s) ** 2 * (1 - 2 * s) / t_sw,
-            384 * s * (1 - s) * ((1 - 2 * s) ** 2 - s * (1 - s)) / t_sw**2)
-    sigma = np.clip((u - (1.0 - beta)) / beta, 0.0, 1.0)
+    s = np.minimum(np.maximum(u / (1.0 - beta), 0.0), 1.0)
+    p, dp, ddp = 10 * s**3 - 15 * s**4 + 6 * s**5, 30 * s**2 - 60 * s**3 + 30 * s**4, \
+        60 * s - 180 * s**2 + 120 * s**3
+    h0, dh0, ddh0 = _quintic_h(s)
+    h1, dh1, ddh1 = _quintic_h(1.0 - s)
+    hg, dhg, ddhg = h0 - h1, dh0 + dh1, ddh0 - ddh1
+    sw_x = a - 2 * a * p + v * t_sw * hg
+    sw_vx = (-2 * a * dp + v * t_sw * dhg) / t_sw
+    sw_ax = (-2 * a * ddp + v * t_sw * ddhg) / t_sw**2
+    bump = 64 * s**3 * (1 - s) ** 3
+    dbump = 192 * s**2 * (1 - s) ** 2 * (1 - 2 * s) / t_sw
+    ddbump = 384 * s * (1 - s) * ((1 - 2 * s) ** 2 - s * (1 - s)) / t_sw**2
+    sigma = np.minimum(np.maximum((u - (1.0 - beta)) / beta, 0.0), 1.0)
     st_x = -a + 2 * a * sigma
-    x = np.where(swing, sw_x[0], st_x) + gait.x_center_m
-    y = gait.y_home_m + np.where(swing, gait.b_m * bump[0], 0.0)
-    vx = np.where(swing, sw_x[1], v)
-    vy = np.where(swing, gait.b_m * bump[1], 0.0)
-    ax = np.where(swing, sw_x[2], 0.0)
-    ay = np.where(swing, gait.b_m * bump[2], 0.0)
-    return PathPoints(pos=np.stack([x, y], -1), vel=np.stack([vx, vy], -1),
-                      acc=np.stack([ax, ay], -1), stance=~swing)
+    return (np.where(swing, sw_x, st_x) + x_center, y_home + np.where(swing, b * bump, 0.0),
+            np.where(swing, sw_vx, v), np.where(swing, b * dbump, 0.0),
+            np.where(swing, sw_ax, 0.0), np.where(swing, b * ddbump, 0.0), ~swing)
 
 
 def evaluate(gait: Gait, path: str, t, phase_rad=0.0) -> PathPoints:
@@ -110,7 +111,16 @@ def evaluate(gait: Gait, path: str, t, phase_rad=0.0) -> PathPoints:
     broadcast against each other."""
     check_path(path)
     u = cycle_phase(gait, t, phase_rad)
-    return _ellipse(gait, u) if path == "seed_ellipse" else _trot(gait, u)
+    flat = np.ascontiguousarray(u, dtype=float).ravel()
+    if path == "seed_ellipse":
+        out = ellipse_arrays(gait.a_m, gait.b_m, gait.x_center_m, gait.y_home_m,
+                             gait.frequency_hz, flat)
+    else:
+        out = trot_arrays(gait.a_m, gait.b_m, gait.x_center_m, gait.y_home_m, gait.period_s,
+                          gait.duty_factor, flat)
+    x, y, vx, vy, ax, ay, stance = (v.reshape(u.shape) for v in out)
+    return PathPoints(pos=np.stack([x, y], -1), vel=np.stack([vx, vy], -1),
+                      acc=np.stack([ax, ay], -1), stance=stance)
 
 
 def stance_start(gait: Gait, path: str) -> float:

@@ -9,13 +9,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from .footpath import cycle_times, evaluate
+from .rotation import wrap
 from .kinematics import ALL_MODES, KNEES_OUT, LegPose, inverse
 from .params import Gait, LegGeometry
-
-
-def wrap(angle):
-    """Angle(s) wrapped to [-pi, pi)."""
-    return (np.asarray(angle) + np.pi) % (2.0 * np.pi) - np.pi
 
 
 def track_modes(leg: LegGeometry, foot, start_mode=KNEES_OUT) -> tuple[LegPose, np.ndarray]:

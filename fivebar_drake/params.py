@@ -12,6 +12,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .compiled import jit
+
 LINK_NAMES = ("AC", "BD", "CE", "DE")
 
 
@@ -140,6 +142,13 @@ class Gait:
         return 1.0 / self.frequency_hz
 
 
+@jit
+def torque_speed_line(peak_Nm, no_load_rad_s, speed_rad_s):
+    """Largest motoring torque (N*m) at joint speeds (rad/s): the linear torque-speed line
+    peak (1 - |w| / w_0), zero beyond the no-load speed w_0."""
+    return peak_Nm * np.minimum(np.maximum(1.0 - np.abs(speed_rad_s) / no_load_rad_s, 0.0), 1.0)
+
+
 @dataclass(frozen=True)
 class Motor:
     """Geared hip motor, values at the gearbox output: torque N*m, speed rad/s."""
@@ -160,10 +169,9 @@ class Motor:
             require(math.isfinite(value) and value >= 0, f"motor.{f}", value, "must be >= 0")
 
     def torque_limit(self, speed_rad_s):
-        """Largest motoring torque (N*m) at a joint speed (rad/s): the linear torque-speed line
-        peak (1 - |w| / w_0), zero beyond the no-load speed w_0."""
-        return self.peak_torque_Nm * np.clip(
-            1.0 - np.abs(speed_rad_s) / self.no_load_speed_rad_s, 0.0, 1.0)
+        """Largest motoring torque (N*m) at joint speeds (rad/s, array): torque_speed_line."""
+        return torque_speed_line(self.peak_torque_Nm, self.no_load_speed_rad_s,
+                                 np.asarray(speed_rad_s, dtype=float))
 
     @property
     def reflected_inertia_kg_m2(self) -> float:

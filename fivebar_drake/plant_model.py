@@ -13,7 +13,7 @@ import numpy as np
 from pydrake.multibody.parsing import Parser
 from pydrake.multibody.plant import MultibodyPlant
 
-from .gait import wrap
+from .rotation import wrap
 from .kinematics import LegPose
 from .params import Params
 from .sdf_model import LEGS, Bushing, quadruped_sdf, single_leg_sdf
@@ -85,7 +85,8 @@ def tree_positions(pose: LegPose) -> np.ndarray:
     ce, de = pose.e - pose.c, pose.e - pose.d
     phi_c = np.arctan2(ce[..., 1], ce[..., 0]) - pose.q[..., 0]
     phi_d = np.arctan2(de[..., 1], de[..., 0]) - pose.q[..., 1]
-    return np.concatenate([pose.q, wrap(phi_c)[..., None], wrap(phi_d)[..., None]], axis=-1)
+    phi = [np.asarray(wrap(phi))[..., None] for phi in (phi_c, phi_d)]
+    return np.concatenate([pose.q, *phi], axis=-1)
 
 
 def loop_gaps(params: Params, x) -> np.ndarray:

@@ -33,7 +33,8 @@ from .params import Params
 from .scenario import Scenario
 from .sdf_model import plane_rotation
 from .simulation import Setup, SimResult
-from .systems import body_rotation, motor_torque, tilt_deg
+from .rotation import body_rotation, tilt_deg
+from .systems import motor_torque
 
 MOTORS = ("A", "B")
 MIN_CYCLES = 3            # fewer whole cycles than this give no verdict

@@ -6,25 +6,20 @@ plane (m). Torque vectors (8) are in the plant's actuation order (LegIndices.act
 
 from __future__ import annotations
 
-import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
-from pydrake.common.eigen_geometry import Quaternion
-from pydrake.math import RotationMatrix
 from pydrake.common.value import AbstractValue
 from pydrake.systems.framework import BasicVector, LeafSystem, ValueProducer
 
-from .dynamics import full_model, static_torques, torques
+from .compiled import jit
+from .dynamics import physical_izz
 from .footpath import evaluate, stance_weight
-from .gait import wrap
-from .jacobians import bias_accelerations, link_jacobians
+from .jacobians import com_fractions
 from .kinematics import forward, inverse
-from .params import Gait, Motor, Params
+from .leg_control import LawConstants, leg_command
+from .params import LINK_NAMES, Gait, Motor, Params, torque_speed_line
 from .sdf_model import body_height, plane_rotation
-
-
-TOUCHDOWN_BAND_M = 0.004   # a descending swing foot this close to the ground joins the support
 
 
 class GaitSource(LeafSystem):
@@ -143,8 +138,9 @@ class FootLegController(LeafSystem):
       forces of least weighted norm (weights w) that produce it, vertical forces >= 0 and
       horizontal ones inside the friction cone; each motor pair gives -J_F(q)^T F.
     - Swing legs catch the body (catch_gain > 0): under a hip that the tilt lowers, the swing
-      foot's target reaches down (see _catch_offset); with touchdown_detection a descending
-      swing foot that meets the ground early joins the support (see _early_touchdown). The legs
+      foot's target reaches down (leg_control.catch_offset); with touchdown_detection a
+      descending swing foot that meets the ground early joins the support
+      (leg_control.early_touchdown). The legs
       are planar and cannot step sideways: with a diagonal pair alone on the ground nothing
       else stops the body tipping about the diagonal.
     - The links' weight is compensated on every leg."""
@@ -153,12 +149,22 @@ class FootLegController(LeafSystem):
                  delay_periods: int, catch_gain: float, catch_rate_s: float,
                  touchdown_detection: bool):
         super().__init__()
-        self._params, self._layout, self._gains = params, layout, gains
-        self._touchdown = touchdown_detection
-        self._catch = (catch_gain, catch_rate_s)
-        self._swing_model = dataclasses.replace(full_model(params), foot_load_N=0.0)
-        self._plane = plane_rotation()
-        self._mu = params.body.foot_friction
+        self._params, self._layout = params, layout
+        self.constants = LawConstants(
+            q_index=layout.q_index, v_index=layout.v_index, actuators=layout.actuators,
+            body_q=layout.body_q, body_v=layout.body_v, nq=layout.nq,
+            hips_m=np.ascontiguousarray(layout.hips_m, dtype=float),
+            com_m=np.asarray(layout.com_m, dtype=float), mass_kg=float(layout.mass_kg),
+            plane=plane_rotation(), geom=params.leg.core,
+            com_fraction=com_fractions(params.leg, params.links),
+            masses=np.array([params.links[n].mass_kg for n in LINK_NAMES]),
+            izz=np.array(physical_izz(params)), gravity=params.robot.gravity_m_s2,
+            reflected_inertia=params.motor.reflected_inertia_kg_m2, kp=gains.kp, kd=gains.kd,
+            kz=gains.kz, dz=gains.dz, dx=gains.dx, k_att=np.asarray(gains.k_att, dtype=float),
+            d_att=np.asarray(gains.d_att, dtype=float), foot_radius_m=params.body.foot_radius_m,
+            stand_offset_m=float(body_height(params, 0.0)), mu=params.body.foot_friction,
+            catch_gain=float(catch_gain), catch_rate_s=float(catch_rate_s),
+            catch_limit_m=params.gait.b_m, touchdown=bool(touchdown_detection))
         n = layout.q_index.size
         for name in ("foot_targets", "foot_velocities", "foot_accelerations"):
             self.DeclareVectorInputPort(name, n)
@@ -172,105 +178,17 @@ class FootLegController(LeafSystem):
 
     def command(self, targets, velocities, accelerations, weights, state) -> np.ndarray:
         """Torque command (8) in actuation order from foot targets, velocities, accelerations
-        (legs, 2), stance weights (legs,) and the plant state vector (nx,)."""
-        p, lay, g = self._params, self._layout, self._gains
-        q, qd = state[lay.q_index], state[lay.v_index + lay.nq]
-        r_wb = body_rotation(state[lay.body_q:lay.body_q + 4])
-        # swing: IK target (moved by the catch reflex), its rates and accelerations,
-        # inverse-dynamics feed-forward
-        pose_des = inverse(p.leg, targets + self._catch_offset(state, r_wb))
-        lj_des = link_jacobians(p.leg, p.links, pose_des)
-        qd_des = np.linalg.solve(lj_des.jf, velocities[..., None])[..., 0]
-        bias = bias_accelerations(p.leg, p.links, pose_des, qd_des)
-        qdd_des = np.linalg.solve(lj_des.jf, (accelerations - bias[2])[..., None])[..., 0]
-        ff = torques(p, self._swing_model, pose_des, qd_des, qdd_des, lj_des, bias).total
-        ff = ff + p.motor.reflected_inertia_kg_m2 * qdd_des
-        swing = g.kp * wrap(pose_des.q - q) + g.kd * (qd_des - qd) + ff
-        # stance: virtual model, links' weight at the measured pose
-        pose = forward(p.leg, q)
-        lj = link_jacobians(p.leg, p.links, pose)
-        if self._touchdown:
-            weights = np.maximum(weights, self._early_touchdown(pose, velocities, state, r_wb))
-        links = static_torques(p, self._swing_model, pose, lj)
-        forces = self._ground_forces(targets, velocities, accelerations, weights, pose, state,
-                                     r_wb)
-        stance = links - np.einsum("lji,lj->li", lj.jf, forces)
-        w = weights[:, None]
-        tau = w * stance + (1.0 - w) * swing
-        out = np.zeros(lay.q_index.size)
-        out[lay.actuators.ravel()] = tau.ravel()
+        (legs, 2), stance weights (legs,) and the plant state vector (nx,) (leg_control.leg_command).
+        Raises UnreachableError naming the target or pose where the legs cannot close."""
+        args = (np.ascontiguousarray(a, dtype=float).reshape(-1, 2)
+                for a in (targets, velocities, accelerations))
+        out, goal = leg_command(self.constants, *args,
+                                np.ascontiguousarray(weights, dtype=float),
+                                np.ascontiguousarray(state, dtype=float))
+        if not np.all(np.isfinite(out)):      # name the reason, if it is a reach
+            inverse(self._params.leg, goal)
+            forward(self._params.leg, state[self._layout.q_index])
         return out
-
-    def _early_touchdown(self, pose, velocities, state, r_wb) -> np.ndarray:
-        """Support weight (legs,) of swing feet that meet the ground early: a foot on its way
-        down (target y' < 0) whose lowest point is within TOUCHDOWN_BAND_M of flat ground at
-        z = 0 (kinematic contact estimate: body pose and leg angles) joins the support: fully
-        within half the band, fading out linearly to none at the band."""
-        lay = self._layout
-        feet_b = lay.hips_m + np.column_stack([pose.f, np.zeros(len(pose.f))]) @ self._plane.T
-        clearance = (state[lay.body_q + 6] + feet_b @ r_wb[2]) - self._params.body.foot_radius_m
-        weight = np.clip(2.0 - clearance / (0.5 * TOUCHDOWN_BAND_M), 0.0, 1.0)
-        return np.where(velocities[:, 1] < 0.0, weight, 0.0)
-
-    def _catch_offset(self, state, r_wb) -> np.ndarray:
-        """Swing foot target offsets (legs, 2) in m: a swing leg under a hip that the body's
-        tilt lowers by dz reaches down by catch_gain (dz + catch_rate dz') (and up under a
-        rising hip), limited to the step height, so the foot on the side the body falls to
-        lands early and catches it."""
-        lay = self._layout
-        gain, rate = self._catch
-        out = np.zeros((len(lay.hips_m), 2))
-        if gain == 0.0:
-            return out
-        hips_w = lay.hips_m @ r_wb.T
-        omega = state[lay.nq + lay.body_v:lay.nq + lay.body_v + 3]
-        dz = hips_w[:, 2] - lay.hips_m[:, 2]
-        dz_dot = omega[0] * hips_w[:, 1] - omega[1] * hips_w[:, 0]      # (omega x r)_z
-        limit = self._params.gait.b_m
-        out[:, 1] = np.clip(gain * (dz + rate * dz_dot), -limit, limit)
-        return out
-
-    def _ground_forces(self, targets, velocities, accelerations, weights, pose, state, r_wb):
-        """Ground forces on the feet (legs, 2) in N, leg-plane (x, y), from the body wrench
-        (r_wb: the body's rotation in the world)."""
-        p, lay, g = self._params, self._layout, self._gains
-        total = weights.sum()
-        if total <= 0.0:
-            return np.zeros((len(weights), 2))
-        share = weights / total
-        z = state[lay.body_q + 6]
-        omega_b = r_wb.T @ state[lay.nq + lay.body_v:lay.nq + lay.body_v + 3]
-        v_w = state[lay.nq + lay.body_v + 3:lay.nq + lay.body_v + 6]
-        v_b = r_wb.T @ v_w
-        roll, pitch = np.arctan2(r_wb[2, 1], r_wb[2, 2]), -np.arcsin(np.clip(r_wb[2, 0], -1, 1))
-        # body targets from the stance feet's targets (leg plane: x backwards, y up)
-        z_des = body_height(p, share @ targets[:, 1])
-        vz_des, az_des = -share @ velocities[:, 1], -share @ accelerations[:, 1]
-        vx_des = share @ velocities[:, 0]
-        grav = p.robot.gravity_m_s2
-        force_w = np.array([0.0, 0.0, lay.mass_kg * (grav + az_des) + g.kz * (z_des - z)
-                            + g.dz * (vz_des - v_w[2])])
-        force_b = r_wb.T @ force_w
-        force_b[0] += g.dx * (vx_des - v_b[0])
-        moment_b = np.zeros(3)
-        moment_b[:2] = -g.k_att * np.array([roll, pitch]) - g.d_att * omega_b[:2]
-        # feet relative to the COM, body frame
-        foot_plane = np.column_stack([pose.f, np.zeros(len(weights))])
-        r = lay.hips_m + foot_plane @ self._plane.T - lay.com_m
-        # unknowns per foot: ground force along body x and z; rows: Fx, Fz, Mx, My, Mz
-        a = np.zeros((5, 2 * len(weights)))
-        a[0, 0::2], a[1, 1::2] = 1.0, 1.0
-        a[2, 1::2] = r[:, 1]                       # Mx = y Fz
-        a[3, 0::2], a[3, 1::2] = r[:, 2], -r[:, 0]  # My = z Fx - x Fz
-        a[4, 0::2] = -r[:, 1]                      # Mz = -y Fx
-        wrench = np.concatenate([force_b[[0, 2]], moment_b])
-        scale = np.array([1, 1, 1 / 0.1, 1 / 0.1, 1 / 0.1])   # moments per 0.1 m lever
-        sw = np.sqrt(np.repeat(weights, 2))
-        sol = np.linalg.lstsq((a * scale[:, None]) * sw, wrench * scale, rcond=1e-6)[0] * sw
-        fx, fz = sol[0::2], np.maximum(sol[1::2], 0.0)
-        fx = np.clip(fx, -self._mu * fz, self._mu * fz)
-        ground_b = np.column_stack([fx, np.zeros_like(fx), fz])
-        return (ground_b @ self._plane)[:, :2]     # body -> leg plane (x, y)
 
     def _update(self, context, discrete_state):
         n = self._layout.q_index.size
@@ -283,21 +201,6 @@ class FootLegController(LeafSystem):
     def _output(self, context, output: BasicVector):
         output.SetFromVector(context.get_discrete_state(self._queue).get_value()[
             :self._layout.q_index.size])
-
-
-def body_rotation(quaternion_wxyz) -> np.ndarray:
-    """Rotation matrix (3, 3) of a floating body's quaternion [w, x, y, z] as stored in the
-    plant state (normalised first: the state drifts from unit length)."""
-    q = np.asarray(quaternion_wxyz, dtype=float)
-    return RotationMatrix(Quaternion(q / np.linalg.norm(q))).matrix()
-
-
-def tilt_deg(quat_wxyz) -> np.ndarray:
-    """Angle (deg) between a floating body's z axis and the vertical, for quaternions
-    [w, x, y, z] (..., 4) as stored in the plant state (not necessarily unit length)."""
-    q = np.asarray(quat_wxyz, dtype=float)
-    q = q / np.linalg.norm(q, axis=-1, keepdims=True)
-    return np.degrees(np.arccos(np.clip(1 - 2 * (q[..., 1] ** 2 + q[..., 2] ** 2), -1, 1)))
 
 
 @dataclass(frozen=True)
@@ -314,22 +217,47 @@ class MotorOutput:
     clipped_line: np.ndarray
 
 
-def motor_torque(motor: Motor, command, speed, smoothing_rad_s: float = 0.05) -> MotorOutput:
-    """Motor at joint speed (rad/s) given a command (N*m). Motoring (torque and speed of the
-    same sign) is limited by the torque-speed line (Motor.torque_limit); braking by the peak
-    torque. Friction: Coulomb tau_c tanh(w / w_s) plus viscous b w."""
-    command, speed = np.asarray(command, dtype=float), np.asarray(speed, dtype=float)
-    peak = motor.peak_torque_Nm
-    line = motor.torque_limit(speed)
+FRICTION_SMOOTHING_RAD_S = 0.05   # Coulomb friction reaches tanh(1) of its value at this speed
+
+
+@jit
+def motor_arrays(peak, no_load, coulomb, viscous, smoothing, command, speed):
+    """(delivered, friction, clipped_peak, clipped_line) for commands and joint speeds (n,):
+    motoring (torque and speed of the same sign) is limited by the torque-speed line
+    (torque_speed_line), braking by the peak torque; friction tau_c tanh(w / w_s) + b w."""
+    line = torque_speed_line(peak, no_load, speed)
     upper = np.where(speed > 0, line, peak)
     lower = np.where(speed < 0, -line, -peak)
-    delivered = np.clip(command, lower, upper)
+    delivered = np.minimum(np.maximum(command, lower), upper)
     clipped = delivered != command
     clipped_peak = clipped & (np.abs(command) > peak) & (np.abs(delivered) >= peak)
-    friction = (motor.coulomb_friction_Nm * np.tanh(speed / smoothing_rad_s)
-                + motor.viscous_friction_Nm_s * speed)
-    return MotorOutput(delivered=delivered, friction=friction, joint=delivered - friction,
-                       clipped_peak=clipped_peak, clipped_line=clipped & ~clipped_peak)
+    friction = coulomb * np.tanh(speed / smoothing) + viscous * speed
+    return delivered, friction, clipped_peak, clipped & ~clipped_peak
+
+
+@jit
+def motor_outputs(peak, no_load, coulomb, viscous, smoothing, command, state, v_index):
+    """[joint torque, delivered, clipped_peak, clipped_line] (4 n) for commands (n) and the
+    joint speeds state[v_index] (motor_arrays)."""
+    delivered, friction, clipped_peak, clipped_line = motor_arrays(
+        peak, no_load, coulomb, viscous, smoothing, command, state[v_index])
+    return np.concatenate((delivered - friction, delivered, clipped_peak.astype(np.float64),
+                           clipped_line.astype(np.float64)))
+
+
+def motor_torque(motor: Motor, command, speed,
+                 smoothing_rad_s: float = FRICTION_SMOOTHING_RAD_S) -> MotorOutput:
+    """Motor at joint speeds (rad/s) given commands (N*m), arrays of one shape (motor_arrays)."""
+    command, speed = np.broadcast_arrays(np.asarray(command, dtype=float),
+                                         np.asarray(speed, dtype=float))
+    delivered, friction, peak, line = motor_arrays(
+        motor.peak_torque_Nm, motor.no_load_speed_rad_s, motor.coulomb_friction_Nm,
+        motor.viscous_friction_Nm_s, smoothing_rad_s, np.ascontiguousarray(command).ravel(),
+        np.ascontiguousarray(speed).ravel())
+    shape = command.shape
+    return MotorOutput(delivered=delivered.reshape(shape), friction=friction.reshape(shape),
+                       joint=(delivered - friction).reshape(shape),
+                       clipped_peak=peak.reshape(shape), clipped_line=line.reshape(shape))
 
 
 class MotorModel(LeafSystem):
@@ -343,7 +271,8 @@ class MotorModel(LeafSystem):
 
     def __init__(self, motor: Motor, v_index_in_state, nx: int, period_s: float):
         super().__init__()
-        self._motor = motor
+        self._motor = (motor.peak_torque_Nm, motor.no_load_speed_rad_s, motor.coulomb_friction_Nm,
+                       motor.viscous_friction_Nm_s, FRICTION_SMOOTHING_RAD_S)
         self._v = np.asarray(v_index_in_state)   # state index of each actuator's joint speed
         n = len(self._v)
         self._command = self.DeclareVectorInputPort("torque_command", n)
@@ -358,10 +287,8 @@ class MotorModel(LeafSystem):
                 prerequisites_of_calc={self.xd_ticket()})
 
     def _update(self, context, discrete_state):
-        speed = self._state.Eval(context)[self._v]
-        m = motor_torque(self._motor, self._command.Eval(context), speed)
-        discrete_state.set_value(self._out, np.concatenate(
-            [m.joint, m.delivered, m.clipped_peak, m.clipped_line]).astype(float))
+        discrete_state.set_value(self._out, motor_outputs(
+            *self._motor, self._command.Eval(context), self._state.Eval(context), self._v))
 
 
 class IntervalRecorder(LeafSystem):

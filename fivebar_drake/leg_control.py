@@ -1,0 +1,229 @@
+"""The quadruped's leg control law, compiled: one controller tick of FootLegController.
+
+Legs are ordered FL, FR, RL, RR; per leg the motors A, B and foot coordinates (x, y) in the leg
+plane (m). The torque vector (8) is in the plant's actuation order. The law (see
+systems.FootLegController for the whole description):
+
+- swing: joint PD to the closed-form IK (knees out) of the target, moved by the catch reflex, with
+  the full model's inverse dynamics of the target's motion (links' M q'' + c + G, reflected rotor
+  inertia) as feed-forward;
+- stance: the links' weight plus -J_F^T F with the ground forces F that produce the body wrench
+  (height, forward speed, roll, pitch) at least weighted norm, F_z >= 0, inside the friction cone;
+- each leg blends the two with its stance weight (raised by early touchdown).
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+
+from .compiled import jit
+from .dynamics import coriolis_arrays, mass_matrix_arrays, static_arrays
+from .jacobians import bias_arrays, link_jacobian_arrays
+from .kinematics import forward_points, inverse_points
+from .rotation import body_rotation, wrap
+
+TOUCHDOWN_BAND_M = 0.004   # a descending swing foot this close to the ground joins the support
+MOMENT_LEVER_M = 0.1       # the wrench fit weighs a moment like a force at this lever
+
+
+class LawConstants(NamedTuple):
+    """Everything the law needs, as plain numbers and arrays (SI). Plant indices: q_index,
+    v_index, actuators (legs, 2) of motors A, B; body_q (quaternion w, x, y, z then position),
+    body_v (angular then linear velocity, world), nq. Robot: hips_m (legs, 3) and com_m (3,) in
+    the body frame, mass_kg, plane (3, 3) = R_body_plane. Leg: geom (LegGeometry.core),
+    com_fraction, masses, izz (4,) of the links, gravity, reflected_inertia (N^2 J_rotor).
+    Gains (ControlGains). Feet: foot_radius_m, friction mu; stand_offset_m: the body height
+    with the feet at leg-plane y = 0 (sdf_model.body_height(params, 0); it drops as y rises). Catch reflex: catch_gain,
+    catch_rate_s, catch_limit_m (the step height); touchdown: early-touchdown detection on."""
+
+    q_index: np.ndarray
+    v_index: np.ndarray
+    actuators: np.ndarray
+    body_q: int
+    body_v: int
+    nq: int
+    hips_m: np.ndarray
+    com_m: np.ndarray
+    mass_kg: float
+    plane: np.ndarray
+    geom: tuple
+    com_fraction: np.ndarray
+    masses: np.ndarray
+    izz: np.ndarray
+    gravity: float
+    reflected_inertia: float
+    kp: float
+    kd: float
+    kz: float
+    dz: float
+    dx: float
+    k_att: np.ndarray
+    d_att: np.ndarray
+    foot_radius_m: float
+    stand_offset_m: float
+    mu: float
+    catch_gain: float
+    catch_rate_s: float
+    catch_limit_m: float
+    touchdown: bool
+
+
+@jit
+def _solve2(m, b):
+    """x (n, 2) with m[i] x[i] = b[i] for (n, 2, 2) matrices."""
+    det = m[:, 0, 0] * m[:, 1, 1] - m[:, 0, 1] * m[:, 1, 0]
+    x = np.empty_like(b)
+    x[:, 0] = (m[:, 1, 1] * b[:, 0] - m[:, 0, 1] * b[:, 1]) / det
+    x[:, 1] = (m[:, 0, 0] * b[:, 1] - m[:, 1, 0] * b[:, 0]) / det
+    return x
+
+
+@jit
+def _mv(m, v):
+    """m[i] v[i] for (n, 2, 2) matrices and (n, 2) vectors; _mv(m.transpose) for m^T v."""
+    return m[:, :, 0] * v[:, 0:1] + m[:, :, 1] * v[:, 1:2]
+
+
+@jit
+def _mtv(m, v):
+    """m[i]^T v[i] for (n, 2, 2) matrices and (n, 2) vectors."""
+    return m[:, 0, :] * v[:, 0:1] + m[:, 1, :] * v[:, 1:2]
+
+
+@jit
+def _feet_body(k, fx, fy):
+    """Foot points (legs, 3) in the body frame from leg-plane feet (legs,)."""
+    out = k.hips_m.copy()
+    for i in range(3):
+        out[:, i] += k.plane[i, 0] * fx + k.plane[i, 1] * fy
+    return out
+
+
+@jit
+def catch_offset(k, state, r_wb):
+    """Swing foot target offsets (legs, 2) in m: a swing leg under a hip that the body's tilt
+    lowers by dz reaches down by catch_gain (dz + catch_rate dz') (and up under a rising hip),
+    limited to the step height, so the foot on the side the body falls to lands early and
+    catches it."""
+    out = np.zeros((k.hips_m.shape[0], 2))
+    if k.catch_gain == 0.0:
+        return out
+    hips_w = k.hips_m @ np.ascontiguousarray(r_wb.T)
+    w0 = k.nq + k.body_v
+    dz = hips_w[:, 2] - k.hips_m[:, 2]
+    dz_dot = state[w0] * hips_w[:, 1] - state[w0 + 1] * hips_w[:, 0]     # (omega x r)_z
+    out[:, 1] = np.minimum(np.maximum(k.catch_gain * (dz + k.catch_rate_s * dz_dot),
+                                      -k.catch_limit_m), k.catch_limit_m)
+    return out
+
+
+@jit
+def early_touchdown(k, fx, fy, velocities, state, r_wb):
+    """Support weight (legs,) of swing feet that meet the ground early: a foot on its way down
+    (target y' < 0) whose lowest point is within TOUCHDOWN_BAND_M of flat ground at z = 0
+    (kinematic contact estimate: body pose and leg angles) joins the support: fully within half
+    the band, fading out linearly to none at the band."""
+    feet_b = _feet_body(k, fx, fy)
+    clearance = state[k.body_q + 6] + feet_b @ r_wb[2] - k.foot_radius_m
+    weight = np.minimum(np.maximum(2.0 - clearance / (0.5 * TOUCHDOWN_BAND_M), 0.0), 1.0)
+    return np.where(velocities[:, 1] < 0.0, weight, 0.0)
+
+
+@jit
+def ground_forces(k, targets, velocities, accelerations, weights, fx, fy, state, r_wb):
+    """Ground forces on the feet (legs, 2) in N, leg-plane (x, y), from the body wrench in the
+    body frame: F_x = m dx (v_x* - v_x), F_z = m (g + z*'') + kz (z* - z) + dz (z*' - z'),
+    M_roll,pitch = -k_att angle - d_att rate; body targets from the stance feet's targets
+    (height stand_offset - y, vertical speed -y', forward speed the feet's x')."""
+    n = weights.shape[0]
+    total = weights.sum()
+    if total <= 0.0:
+        return np.zeros((n, 2))
+    share = weights / total
+    w0 = k.nq + k.body_v
+    z = state[k.body_q + 6]
+    r_bw = np.ascontiguousarray(r_wb.T)
+    omega_b = r_bw @ state[w0:w0 + 3]
+    v_w = state[w0 + 3:w0 + 6]
+    v_b = r_bw @ v_w
+    roll = np.arctan2(r_wb[2, 1], r_wb[2, 2])
+    pitch = -np.arcsin(min(max(r_wb[2, 0], -1.0), 1.0))
+    z_des = k.stand_offset_m - np.sum(share * targets[:, 1])
+    vz_des = -np.sum(share * velocities[:, 1])
+    az_des = -np.sum(share * accelerations[:, 1])
+    vx_des = np.sum(share * velocities[:, 0])
+    force_w = np.array([0.0, 0.0, k.mass_kg * (k.gravity + az_des) + k.kz * (z_des - z)
+                        + k.dz * (vz_des - v_w[2])])
+    force_b = r_bw @ force_w
+    force_b[0] += k.dx * (vx_des - v_b[0])
+    r = _feet_body(k, fx, fy) - k.com_m
+    # unknowns per foot: ground force along body x and z; rows: Fx, Fz, Mx, My, Mz
+    a = np.zeros((5, 2 * n))
+    for i in range(n):
+        a[0, 2 * i], a[1, 2 * i + 1] = 1.0, 1.0
+        a[2, 2 * i + 1] = r[i, 1]                              # Mx = y Fz
+        a[3, 2 * i], a[3, 2 * i + 1] = r[i, 2], -r[i, 0]       # My = z Fx - x Fz
+        a[4, 2 * i] = -r[i, 1]                                 # Mz = -y Fx
+    wrench = np.array([force_b[0], force_b[2],
+                       -k.k_att[0] * roll - k.d_att[0] * omega_b[0],
+                       -k.k_att[1] * pitch - k.d_att[1] * omega_b[1], 0.0])
+    scale = np.array([1.0, 1.0, 1.0 / MOMENT_LEVER_M, 1.0 / MOMENT_LEVER_M, 1.0 / MOMENT_LEVER_M])
+    sw = np.sqrt(np.repeat(weights, 2))
+    sol = np.linalg.lstsq((a * scale[:, None]) * sw, wrench * scale, rcond=1e-6)[0] * sw
+    fz = np.maximum(sol[1::2], 0.0)
+    fxb = np.minimum(np.maximum(sol[0::2], -k.mu * fz), k.mu * fz)
+    out = np.empty((n, 2))
+    for j in range(2):      # body (x, 0, z) -> leg plane: F_plane = R_body_plane^T F_body
+        out[:, j] = k.plane[0, j] * fxb + k.plane[2, j] * fz
+    return out
+
+
+@jit
+def leg_command(k, targets, velocities, accelerations, weights, state):
+    """Torque command (8) in actuation order and the swing IK targets (legs, 2) in m, from foot
+    targets, velocities, accelerations (legs, 2), stance weights (legs,) and the plant state
+    (nx,). NaN where a target is out of reach or the legs cannot close."""
+    n = weights.shape[0]
+    q, qd = np.empty((n, 2)), np.empty((n, 2))
+    for i in range(n):
+        for j in range(2):
+            q[i, j] = state[k.q_index[i, j]]
+            qd[i, j] = state[k.nq + k.v_index[i, j]]
+    r_wb = body_rotation(state[k.body_q:k.body_q + 4])
+    no_load = np.zeros(n)
+    # swing: IK of the target (moved by the catch reflex), its rates and accelerations,
+    # inverse-dynamics feed-forward
+    goal = targets + catch_offset(k, state, r_wb)
+    ta, tb, cx, cy, dx, dy, ex, ey = inverse_points(k.geom, goal[:, 0].copy(),
+                                                    goal[:, 1].copy(), 1.0, 1.0)
+    jv, jw, jf = link_jacobian_arrays(k.geom, k.com_fraction, cx, cy, dx, dy, ex, ey)
+    qd_des = _solve2(jf, velocities)
+    av, aw, af = bias_arrays(k.geom, k.com_fraction, cx, cy, dx, dy, ex, ey,
+                             qd_des[:, 0].copy(), qd_des[:, 1].copy())
+    qdd_des = _solve2(jf, accelerations - af)
+    weight, _ = static_arrays(k.masses, k.gravity, no_load, jv, jf)
+    ff = (_mv(mass_matrix_arrays(k.masses, k.izz, jv, jw), qdd_des)
+          + coriolis_arrays(k.masses, k.izz, jv, jw, av, aw) + weight
+          + k.reflected_inertia * qdd_des)
+    q_des = np.empty((n, 2))
+    q_des[:, 0], q_des[:, 1] = ta, tb
+    swing = k.kp * wrap(q_des - q) + k.kd * (qd_des - qd) + ff
+    # stance: virtual model, links' weight at the measured pose
+    sides = np.ones(n)
+    cx, cy, dx, dy, ex, ey, fx, fy = forward_points(k.geom, q[:, 0].copy(), q[:, 1].copy(),
+                                                    sides, True)
+    jv, jw, jf = link_jacobian_arrays(k.geom, k.com_fraction, cx, cy, dx, dy, ex, ey)
+    if k.touchdown:
+        weights = np.maximum(weights, early_touchdown(k, fx, fy, velocities, state, r_wb))
+    links, _ = static_arrays(k.masses, k.gravity, no_load, jv, jf)
+    forces = ground_forces(k, targets, velocities, accelerations, weights, fx, fy, state, r_wb)
+    stance = links - _mtv(jf, forces)
+    w = weights[:, None]
+    tau = w * stance + (1.0 - w) * swing
+    out = np.zeros(2 * n)
+    for i in range(n):
+        for j in range(2):
+            out[k.actuators[i, j]] = tau[i, j]
+    return out, goal
