@@ -49,8 +49,14 @@ class PathPoints:
 
 def cycle_phase(gait: Gait, t, phase_rad=0.0) -> np.ndarray:
     """Cycle phase u in [0, 1) at times t (s) of a leg with gait phase phase_rad (rad)."""
-    return np.mod(gait.frequency_hz * np.asarray(t, dtype=float)
-                  + np.asarray(phase_rad, dtype=float) / (2.0 * np.pi), 1.0)
+    return np.asarray(phase_of(gait.frequency_hz, np.asarray(t, dtype=float),
+                               np.asarray(phase_rad, dtype=float)))
+
+
+@jit
+def phase_of(frequency_hz, t, phase_rad):
+    """Cycle phase in [0, 1) at times t (s) for gait phases phase_rad (rad), broadcast."""
+    return np.mod(frequency_hz * t + phase_rad / (2.0 * np.pi), 1.0)
 
 
 def stance_speed(gait: Gait, path: str) -> float:
@@ -106,19 +112,29 @@ def trot_arrays(a, b, x_center, y_home, period, beta, u):
             np.where(swing, sw_ax, 0.0), np.where(swing, b * ddbump, 0.0), ~swing)
 
 
+@jit
+def path_arrays(trot, a, b, x_center, y_home, frequency, period, beta, u):
+    """The trot path (trot True) or the seed ellipse at cycle phases u (n,):
+    (x, y, vx, vy, ax, ay, stance flag) (see trot_arrays, ellipse_arrays)."""
+    if trot:
+        return trot_arrays(a, b, x_center, y_home, period, beta, u)
+    return ellipse_arrays(a, b, x_center, y_home, frequency, u)
+
+
+def path_constants(gait: Gait, path: str) -> tuple:
+    """The leading arguments of path_arrays for a path of footpath.PATHS."""
+    check_path(path)
+    return (path == "trot", gait.a_m, gait.b_m, gait.x_center_m, gait.y_home_m,
+            gait.frequency_hz, gait.period_s, gait.duty_factor)
+
+
 def evaluate(gait: Gait, path: str, t, phase_rad=0.0) -> PathPoints:
     """The path at times t (s) for a leg with gait phase phase_rad (rad); t and phase_rad
     broadcast against each other."""
-    check_path(path)
     u = cycle_phase(gait, t, phase_rad)
     flat = np.ascontiguousarray(u, dtype=float).ravel()
-    if path == "seed_ellipse":
-        out = ellipse_arrays(gait.a_m, gait.b_m, gait.x_center_m, gait.y_home_m,
-                             gait.frequency_hz, flat)
-    else:
-        out = trot_arrays(gait.a_m, gait.b_m, gait.x_center_m, gait.y_home_m, gait.period_s,
-                          gait.duty_factor, flat)
-    x, y, vx, vy, ax, ay, stance = (v.reshape(u.shape) for v in out)
+    x, y, vx, vy, ax, ay, stance = (v.reshape(u.shape) for v in
+                                    path_arrays(*path_constants(gait, path), flat))
     return PathPoints(pos=np.stack([x, y], -1), vel=np.stack([vx, vy], -1),
                       acc=np.stack([ax, ay], -1), stance=stance)
 
@@ -134,9 +150,19 @@ def stance_weight(gait: Gait, path: str, t, phase_rad, transfer_s: float) -> np.
     falling smoothly (smoothstep) over transfer_s (s) after touchdown and before lift-off, so
     the load passes from foot to foot without a step."""
     u = cycle_phase(gait, t, phase_rad)
-    u0 = stance_start(gait, path)
-    edge = np.minimum(u - u0, 1.0 - u) * gait.period_s           # s from the nearer stance end
-    x = np.clip(edge / transfer_s, 0.0, 1.0) if transfer_s > 0 else (edge >= 0).astype(float)
+    flat = np.ascontiguousarray(u, dtype=float).ravel()
+    return stance_weight_arrays(flat, stance_start(gait, path), gait.period_s,
+                                float(transfer_s)).reshape(u.shape)
+
+
+@jit
+def stance_weight_arrays(u, u0, period, transfer_s):
+    """stance_weight at cycle phases u (n,) for a stance from u0 to 1 (period s)."""
+    edge = np.minimum(u - u0, 1.0 - u) * period           # s from the nearer stance end
+    if transfer_s > 0:
+        x = np.minimum(np.maximum(edge / transfer_s, 0.0), 1.0)
+    else:
+        x = np.where(edge >= 0, 1.0, 0.0)
     return np.where(u >= u0, x * x * (3.0 - 2.0 * x), 0.0)
 
 

@@ -18,7 +18,7 @@ from pydrake.multibody.plant import (AddMultibodyPlantSceneGraph, CoulombFrictio
                                      MultibodyPlantConfig, ApplyMultibodyPlantConfig)
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder
-from pydrake.systems.primitives import DiscreteTimeIntegrator, Multiplexer
+from pydrake.systems.primitives import DiscreteTimeIntegrator, Multiplexer, VectorLogSink
 
 from .bushing import bushing_parameters, loop_load
 from .dynamics import mass_matrix, physical_izz
@@ -28,8 +28,8 @@ from .plant_model import add_model, leg_indices, loop_gaps, tree_positions
 from .scenario import Scenario
 from .sdf_model import body_height, hip_positions
 from .rotation import tilt_deg
-from .systems import (ControlGains, FootLegController, GaitSource, IntervalRecorder, MotorModel,
-                      RobotLayout, derive_gains)
+from .systems import (ControlGains, FootLegController, GaitSource, MotorModel, RobotLayout,
+                      derive_gains)
 
 IMPLICIT_TIME_STEP_S = 1e-3   # plant step of the closures SAP treats implicitly
 FALL_TILT_DEG = 45.0   # a body tilted further has fallen: the run stops
@@ -51,7 +51,7 @@ class Setup:
     loop_force_N: float
     layout: RobotLayout
     gains: ControlGains
-    recorder: IntervalRecorder
+    recorder: VectorLogSink
     controller: FootLegController
 
 
@@ -140,7 +140,7 @@ def build_diagram(scenario: Scenario, params: Params):
 
     gait = builder.AddNamedSystem("gait_source", GaitSource(
         params.gait, scenario.gait, scenario.phases_rad, scenario.stand_s, scenario.ramp_s,
-        scenario.load_transfer_s))
+        scenario.load_transfer_s, scenario.control_period_s))
     controller = builder.AddNamedSystem("leg_controller", FootLegController(
         params, layout, gains, scenario.control_period_s, scenario.control_delay_periods,
         scenario.catch_gain, scenario.catch_rate_s, scenario.touchdown_detection))
@@ -153,8 +153,11 @@ def build_diagram(scenario: Scenario, params: Params):
     mux = builder.AddNamedSystem("measured", Multiplexer([nv] + [n_act] * 4))
     integrator = builder.AddNamedSystem("step_integrals", DiscreteTimeIntegrator(
         nv + 4 * n_act, time_step))
-    recorder = builder.AddNamedSystem("recorder", IntervalRecorder(
-        layout.nx, nv + 4 * n_act, time_step * max(1, round(scenario.log_period_s / time_step))))
+    # one row per log interval, kept in C++: the plant state and the integrals at its end
+    rows = builder.AddNamedSystem("rows", Multiplexer([layout.nx, nv + 4 * n_act]))
+    recorder = builder.AddNamedSystem("recorder", VectorLogSink(
+        layout.nx + nv + 4 * n_act,
+        time_step * max(1, round(scenario.log_period_s / time_step))))
 
     state = plant.get_state_output_port(instance)
     for name in ("foot_targets", "foot_velocities", "foot_accelerations", "stance_weights"):
@@ -169,8 +172,9 @@ def build_diagram(scenario: Scenario, params: Params):
     for i, name in enumerate(("motor_torque", "clipped_peak", "clipped_line")):
         builder.Connect(motor.GetOutputPort(name), mux.get_input_port(2 + i))
     builder.Connect(mux.get_output_port(), integrator.get_input_port())
-    builder.Connect(integrator.get_output_port(), recorder.GetInputPort("integrals"))
-    builder.Connect(state, recorder.GetInputPort("plant_state"))
+    builder.Connect(state, rows.get_input_port(0))
+    builder.Connect(integrator.get_output_port(), rows.get_input_port(1))
+    builder.Connect(rows.get_output_port(), recorder.get_input_port())
     setup = Setup(plant=plant, instance=instance, legs=legs, indices=indices,
                   time_step_s=time_step, bushing=bushing, m_eff_kg=m_eff, loop_force_N=force,
                   layout=layout, gains=gains, recorder=recorder, controller=controller)
@@ -195,14 +199,17 @@ def set_standing_pose(plant, context, instance, legs, params: Params) -> None:
                           RigidTransform([0.0, 0.0, standing_height(params)]))
 
 
-def interval_table(setup: Setup, params: Params) -> dict:
+def interval_table(setup: Setup, params: Params, context) -> dict:
     """The recorder's rows as one row per log interval (arrays, SI): t (s, the interval's end),
     state (nx) at t, gap (legs) m at t, and the interval means of the joint speeds of the
     actuators (rad/s, from the positions: the discrete plant moves them with each step's end
     speed), the generalized contact forces (nv; J^T F of every contact), the command and motor
-    torque (n, N*m) and the clip flags (n, fraction of the steps)."""
-    times, states, integrals = setup.recorder.rows()
+    torque (n, N*m) and the clip flags (n, fraction of the steps). context: the simulated
+    Diagram's root context."""
+    log = setup.recorder.FindLog(context)
     lay, nv = setup.layout, setup.plant.num_velocities()
+    times, data = log.sample_times(), log.data().T
+    states, integrals = data[:, :lay.nx], data[:, lay.nx:]
     dt = np.diff(times)[:, None]
     means = np.diff(integrals, axis=0) / dt
     q_act = np.zeros((len(times), lay.q_index.size))
@@ -237,6 +244,9 @@ def simulate(scenario: Scenario, params: Params, progress=True):
     set_standing_pose(setup.plant, setup.plant.GetMyMutableContextFromRoot(context),
                       setup.instance, setup.legs, params)
     simulator.Initialize()
+    # every discrete update once, outside the timing: loads (or on a first run compiles) the
+    # compiled kernels
+    diagram.CalcForcedDiscreteVariableUpdate(context, diagram.AllocateDiscreteVariables())
     say = (lambda text: print(text, file=sys.stderr, flush=True)) if progress else (lambda text: None)
     say(f"simulating {scenario.duration_s:g} s, closure {scenario.closure}, "
         f"time step {setup.time_step_s * 1e3:.3f} ms")
@@ -260,4 +270,4 @@ def simulate(scenario: Scenario, params: Params, progress=True):
         error = str(err)
         say(f"simulation stopped early: {error}")
     wall = time.perf_counter() - start
-    return SimResult(table=interval_table(setup, params), wall_s=wall, error=error), setup
+    return SimResult(table=interval_table(setup, params, context), wall_s=wall, error=error), setup

@@ -9,12 +9,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from pydrake.common.value import AbstractValue
-from pydrake.systems.framework import BasicVector, LeafSystem, ValueProducer
+from pydrake.systems.framework import LeafSystem
 
 from .compiled import jit
 from .dynamics import physical_izz
-from .footpath import evaluate, stance_weight
+from .footpath import path_arrays, path_constants, phase_of, stance_start, stance_weight_arrays
 from .jacobians import com_fractions
 from .kinematics import forward, inverse
 from .leg_control import LawConstants, leg_command
@@ -22,52 +21,64 @@ from .params import LINK_NAMES, Gait, Motor, Params, torque_speed_line
 from .sdf_model import body_height, plane_rotation
 
 
+REFERENCES = ("foot_targets", "foot_velocities", "foot_accelerations", "stance_weights")
+
+
+@jit
+def foot_references(path, stance_start_u, transfer_s, home, phases, start_s, ramp_s, t):
+    """(targets, velocities, accelerations) (legs, 2) and stance weights (legs,) at time t (s)
+    (GaitSource); path: footpath.path_constants."""
+    n = phases.shape[0]
+    tau = t - start_s
+    if tau < 0.0:
+        targets = np.empty((n, 2))
+        targets[:, 0], targets[:, 1] = home[0], home[1]
+        return targets, np.zeros((n, 2)), np.zeros((n, 2)), np.ones(n)
+    s, ds = (tau / ramp_s, 1.0 / ramp_s) if ramp_s > 0 and tau < ramp_s else (1.0, 0.0)
+    u = phase_of(path[5], tau, phases)
+    x, y, vx, vy, ax, ay, _ = path_arrays(*path, u)
+    rel, vel, acc = np.empty((n, 2)), np.empty((n, 2)), np.empty((n, 2))
+    rel[:, 0], rel[:, 1], vel[:, 0], vel[:, 1] = x - home[0], y - home[1], vx, vy
+    acc[:, 0], acc[:, 1] = ax, ay
+    weights = stance_weight_arrays(u, stance_start_u, path[6], transfer_s)
+    return (home + s * rel, ds * rel + s * vel, 2.0 * ds * vel + s * acc,
+            1.0 - s * (1.0 - weights))
+
+
 class GaitSource(LeafSystem):
-    """Time (s) -> foot targets of all legs in their leg planes and the stance schedule.
+    """Time (s) -> foot targets of all legs in their leg planes and the stance schedule,
+    sampled every period_s (the controller's period).
 
     Output ports (legs x (x, y) where two values per leg): "foot_targets" (8) m,
     "foot_velocities" (8) m/s, "foot_accelerations" (8) m/s^2, "stance_weights" (4) in [0, 1].
-    The foot path (footpath.evaluate) with gait time tau = t - start_s, each leg at its phase
+    The foot path (footpath.path_arrays) with gait time tau = t - start_s, each leg at its phase
     (rad), about the home point (x_c, y_home) scaled by s ramping 0 -> 1 over ramp_s; the
     stance weights blend from all-stance to the schedule with the same s. While standing
-    (t < start_s) the feet rest at home, all in stance."""
+    (t < start_s) the feet rest at home, all in stance. The path is known ahead, so at each
+    tick t the source stores the values of the next tick: a block sampling it at a tick reads
+    the values at that tick, computed once, with no Python on the output ports."""
 
     def __init__(self, gait: Gait, path: str, phases, start_s: float, ramp_s: float,
-                 transfer_s: float):
+                 transfer_s: float, period_s: float):
         super().__init__()
-        self._gait, self._path, self._phases = gait, path, np.asarray(phases, dtype=float)
-        self._start, self._ramp, self._transfer = start_s, ramp_s, transfer_s
-        self._home = np.array([gait.x_center_m, gait.y_home_m])
-        n = len(self._phases)
-        # computed once per time for all four ports
-        self._cache = self.DeclareCacheEntry(
-            "foot references", ValueProducer(
-                allocate=lambda: AbstractValue.Make(dict()),
-                calc=lambda c, value: value.set_value(self.targets(c.get_time()))),
-            prerequisites_of_calc={self.time_ticket()})
-        for name, size in (("foot_targets", 2 * n), ("foot_velocities", 2 * n),
-                           ("foot_accelerations", 2 * n), ("stance_weights", n)):
-            self.DeclareVectorOutputPort(
-                name, size, lambda c, o, name=name: o.SetFromVector(
-                    self._cache.Eval(c)[name].ravel()),
-                prerequisites_of_calc={self._cache.ticket()})
+        self._args = (path_constants(gait, path), stance_start(gait, path), float(transfer_s),
+                      np.array([gait.x_center_m, gait.y_home_m]),
+                      np.asarray(phases, dtype=float), float(start_s), float(ramp_s))
+        self._period = period_s
+        initial = self.targets(0.0)
+        self._groups = [self.DeclareDiscreteState(initial[name].ravel()) for name in REFERENCES]
+        self.DeclarePeriodicDiscreteUpdateEvent(period_s, 0.0, self._update)
+        for name, group in zip(REFERENCES, self._groups):
+            self.DeclareStateOutputPort(name, group)
 
     def targets(self, t: float) -> dict:
         """The output ports' values at time t (s), each (legs, 2) or (legs,)."""
-        tau = t - self._start
-        if tau < 0.0:
-            zero = np.zeros((len(self._phases), 2))
-            return {"foot_targets": np.tile(self._home, (len(self._phases), 1)),
-                    "foot_velocities": zero, "foot_accelerations": zero,
-                    "stance_weights": np.ones(len(self._phases))}
-        ramping = self._ramp > 0 and tau < self._ramp
-        s, ds = (tau / self._ramp, 1.0 / self._ramp) if ramping else (1.0, 0.0)
-        p = evaluate(self._gait, self._path, tau, self._phases)
-        rel = p.pos - self._home
-        weights = stance_weight(self._gait, self._path, tau, self._phases, self._transfer)
-        return {"foot_targets": self._home + s * rel, "foot_velocities": ds * rel + s * p.vel,
-                "foot_accelerations": 2.0 * ds * p.vel + s * p.acc,
-                "stance_weights": 1.0 - s * (1.0 - weights)}
+        return dict(zip(REFERENCES, foot_references(*self._args, float(t))))
+
+    def _update(self, context, discrete_state):
+        values = foot_references(*self._args, context.get_time() + self._period)
+        for group, value in zip(self._groups, values):
+            discrete_state.set_value(group, value.ravel())
 
 
 @dataclass(frozen=True)
@@ -170,11 +181,11 @@ class FootLegController(LeafSystem):
             self.DeclareVectorInputPort(name, n)
         self.DeclareVectorInputPort("stance_weights", n // 2)
         self.DeclareVectorInputPort("plant_state", layout.nx)
-        # commands of the last delay_periods + 1 ticks, oldest first; the oldest is the output
-        self._queue = self.DeclareDiscreteState((delay_periods + 1) * n)
+        # the released command (the output) and the delay_periods commands after it, oldest first
+        self._released = self.DeclareDiscreteState(n)
+        self._queue = self.DeclareDiscreteState(delay_periods * n)
         self.DeclarePeriodicDiscreteUpdateEvent(period_s, 0.0, self._update)
-        self.DeclareVectorOutputPort("torque_command", n, self._output,
-                                     prerequisites_of_calc={self.xd_ticket()})
+        self.DeclareStateOutputPort("torque_command", self._released)
 
     def command(self, targets, velocities, accelerations, weights, state) -> np.ndarray:
         """Torque command (8) in actuation order from foot targets, velocities, accelerations
@@ -191,16 +202,12 @@ class FootLegController(LeafSystem):
         return out
 
     def _update(self, context, discrete_state):
-        n = self._layout.q_index.size
         inputs = [self.get_input_port(i).Eval(context) for i in range(5)]
-        targets, velocities, accelerations = (x.reshape(-1, 2) for x in inputs[:3])
-        new = self.command(targets, velocities, accelerations, inputs[3], inputs[4])
-        queue = context.get_discrete_state(self._queue).get_value()
-        discrete_state.set_value(self._queue, np.concatenate([queue[n:], new]))
-
-    def _output(self, context, output: BasicVector):
-        output.SetFromVector(context.get_discrete_state(self._queue).get_value()[
-            :self._layout.q_index.size])
+        new = self.command(*inputs)
+        queue = np.concatenate([context.get_discrete_state(self._queue).get_value(), new])
+        n = self._layout.q_index.size
+        discrete_state.set_value(self._released, queue[:n])
+        discrete_state.set_value(self._queue, queue[n:])
 
 
 @dataclass(frozen=True)
@@ -237,12 +244,12 @@ def motor_arrays(peak, no_load, coulomb, viscous, smoothing, command, speed):
 
 @jit
 def motor_outputs(peak, no_load, coulomb, viscous, smoothing, command, state, v_index):
-    """[joint torque, delivered, clipped_peak, clipped_line] (4 n) for commands (n) and the
-    joint speeds state[v_index] (motor_arrays)."""
+    """(joint torque, delivered, clipped_peak, clipped_line) (n each, flags 0.0 / 1.0) for
+    commands (n) and the joint speeds state[v_index] (motor_arrays)."""
     delivered, friction, clipped_peak, clipped_line = motor_arrays(
         peak, no_load, coulomb, viscous, smoothing, command, state[v_index])
-    return np.concatenate((delivered - friction, delivered, clipped_peak.astype(np.float64),
-                           clipped_line.astype(np.float64)))
+    return (delivered - friction, delivered, clipped_peak.astype(np.float64),
+            clipped_line.astype(np.float64))
 
 
 def motor_torque(motor: Motor, command, speed,
@@ -258,6 +265,9 @@ def motor_torque(motor: Motor, command, speed,
     return MotorOutput(delivered=delivered.reshape(shape), friction=friction.reshape(shape),
                        joint=(delivered - friction).reshape(shape),
                        clipped_peak=peak.reshape(shape), clipped_line=line.reshape(shape))
+
+
+MOTOR_OUTPUTS = ("applied_torque", "motor_torque", "clipped_peak", "clipped_line")
 
 
 class MotorModel(LeafSystem):
@@ -277,45 +287,13 @@ class MotorModel(LeafSystem):
         n = len(self._v)
         self._command = self.DeclareVectorInputPort("torque_command", n)
         self._state = self.DeclareVectorInputPort("plant_state", nx)
-        self._out = self.DeclareDiscreteState(4 * n)
+        self._groups = [self.DeclareDiscreteState(n) for _ in MOTOR_OUTPUTS]
         self.DeclarePeriodicDiscreteUpdateEvent(period_s, 0.0, self._update)
-        for i, name in enumerate(("applied_torque", "motor_torque", "clipped_peak",
-                                  "clipped_line")):
-            self.DeclareVectorOutputPort(
-                name, n, lambda c, o, i=i: o.SetFromVector(
-                    c.get_discrete_state(self._out).get_value()[i * n:(i + 1) * n]),
-                prerequisites_of_calc={self.xd_ticket()})
+        for name, group in zip(MOTOR_OUTPUTS, self._groups):
+            self.DeclareStateOutputPort(name, group)
 
     def _update(self, context, discrete_state):
-        discrete_state.set_value(self._out, motor_outputs(
-            *self._motor, self._command.Eval(context), self._state.Eval(context), self._v))
-
-
-class IntervalRecorder(LeafSystem):
-    """Keeps one row per log interval (a sink: the rows live in this system, one simulation per
-    Diagram): the time, the plant state and the integrals since t = 0 of what acted on the plant
-    at every step.
-
-    Input ports: "plant_state" (nx) and "integrals" (m): the output of a DiscreteTimeIntegrator
-    stepping with the plant, so every plant step is counted (generalized contact forces, the
-    command, the motor torque, the clip flags); their interval means are differences of
-    integrals over the interval's length, so a contact spike counts for the time it lasts.
-    Memory grows with the number of intervals, not of steps."""
-
-    def __init__(self, nx: int, n_integrals: int, period_s: float):
-        super().__init__()
-        self.DeclareVectorInputPort("plant_state", nx)
-        self.DeclareVectorInputPort("integrals", n_integrals)
-        self.times, self.states, self.integrals = [], [], []
-        self.DeclarePeriodicPublishEvent(period_s, 0.0, self._on_interval)
-
-    def _on_interval(self, context):
-        self.times.append(context.get_time())
-        self.states.append(self.get_input_port(0).Eval(context).copy())
-        self.integrals.append(self.get_input_port(1).Eval(context).copy())
-
-    def rows(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Times (rows,) s, states (rows, nx) and integrals (rows, m) recorded so far."""
-        n = len(self.times)
-        return (np.array(self.times), np.array(self.states).reshape(n, -1),
-                np.array(self.integrals).reshape(n, -1))
+        values = motor_outputs(*self._motor, self._command.Eval(context),
+                               self._state.Eval(context), self._v)
+        for group, value in zip(self._groups, values):
+            discrete_state.set_value(group, value)
