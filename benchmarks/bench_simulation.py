@@ -1,14 +1,18 @@
-"""Simulation benchmark (`make bench`): in one process, the default trot of --duration seconds
-(default 10) with each loop closure, the plant alone replaying the default run's actuation,
-and the peak memory of a 10 s and a 60 s default run (each in a fresh process). Prints a table,
-then, as its last line, one JSON object:
+"""Simulation benchmark (`make bench`), in one process: the default trot of --duration seconds
+(default 10) with each loop closure; the plant alone replaying the default run's actuation,
+step by step (the replay must end in the run's exact state, or the figure is not of the same
+run); where the default run's time goes (plant, the Python blocks, the rest of the Diagram,
+summary, recording); and the peak memory of a 10 s and a 60 s default run (each in a fresh
+process). Prints tables, then, as its last line, one JSON object:
 rtf (per closure), plant_alone_rtf, diagram_to_plant_ratio, max_loop_gap_m (per closure),
 rms_torque_agreement (largest per-motor relative RMS difference against `ball`),
-logging_share (recording time / whole simulate job), peak_rss_mb_10s, peak_rss_mb_60s."""
+logging_share (recording time / whole simulate job), peak_rss_mb_10s, peak_rss_mb_60s,
+split_us_per_step."""
 
 from __future__ import annotations
 
 import argparse
+import collections
 import json
 import subprocess
 import sys
@@ -22,6 +26,7 @@ from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import TrajectorySource
 from pydrake.trajectories import PiecewisePolynomial
 
+from fivebar_drake import systems
 from fivebar_drake.analysis import analyze
 from fivebar_drake.plant_model import CLOSURES
 from fivebar_drake.recording import write_recording
@@ -37,6 +42,8 @@ scenario = load_scenario(duration_s=float(sys.argv[1]))
 simulate(scenario, scenario.load_params(), progress=False)
 print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024)
 """
+PYTHON_BLOCKS = {"gait source": systems.GaitSource, "leg controller": systems.FootLegController,
+                 "motor model": systems.MotorModel}
 
 
 def run_closure(closure: str, duration: float):
@@ -56,25 +63,47 @@ def run_closure(closure: str, duration: float):
     return scenario, params, result, setup, summary, post, rec
 
 
-def plant_alone_rtf(scenario, params, setup, result, duration: float) -> float:
-    """The same plant, closure, contact and step fed the run's joint torques (interval means,
-    held) with no Python systems."""
+def plant_alone(scenario, params, setup, actuation, duration: float):
+    """(real-time factor, final state) of the same plant, closure, contact and step fed the
+    run's per-step joint torques (zero-order hold) with no Python systems."""
     builder = DiagramBuilder()
     plant, instance, legs = add_robot(builder, params, scenario.closure, setup.bushing,
                                       setup.time_step_s)
-    table = result.table
-    t = np.concatenate([[0.0], table["t"]])
-    torque = np.vstack([table["motor_torque"][:1], table["motor_torque"]])
-    source = builder.AddSystem(TrajectorySource(PiecewisePolynomial.ZeroOrderHold(t, torque.T)))
+    times, torques = actuation
+    source = builder.AddSystem(TrajectorySource(PiecewisePolynomial.ZeroOrderHold(times,
+                                                                                  torques.T)))
     builder.Connect(source.get_output_port(), plant.get_actuation_input_port())
-    diagram = builder.Build()
-    simulator = Simulator(diagram)
+    simulator = Simulator(builder.Build())
     context = plant.GetMyMutableContextFromRoot(simulator.get_mutable_context())
     set_standing_pose(plant, context, instance, legs, params)
     simulator.Initialize()
     start = time.perf_counter()
     simulator.AdvanceTo(duration)
-    return duration / (time.perf_counter() - start)
+    return duration / (time.perf_counter() - start), plant.GetPositionsAndVelocities(context)
+
+
+def python_time_per_block(duration: float) -> tuple[dict, float, float]:
+    """Seconds spent in each Python block's updates during a default run (timers wrapped around
+    the update methods), the run's wall time and its number of plant steps."""
+    spent = collections.Counter()
+    originals = {cls: cls._update for cls in PYTHON_BLOCKS.values()}
+
+    def timed(name, update):
+        def wrapper(*args):
+            start = time.perf_counter()
+            update(*args)
+            spent[name] += time.perf_counter() - start
+        return wrapper
+
+    for name, cls in PYTHON_BLOCKS.items():
+        cls._update = timed(name, originals[cls])
+    try:
+        scenario = load_scenario(duration_s=duration)
+        result, setup = simulate(scenario, scenario.load_params(), progress=False)
+    finally:
+        for cls, update in originals.items():
+            cls._update = update
+    return dict(spent), result.wall_s, duration / setup.time_step_s
 
 
 def peak_rss_mb(duration: float) -> float:
@@ -93,7 +122,7 @@ def main():
     runs, rtf, gap, share = {}, {}, {}, {}
     for closure in CLOSURES:
         scenario, params, result, setup, summary, post, rec = run_closure(closure, args.duration)
-        runs[closure] = (scenario, params, result, setup, summary)
+        runs[closure] = (scenario, params, result, setup, summary, post, rec)
         rtf[closure] = summary["real_time_factor"]
         gap[closure] = summary["max_loop_gap_m"]
         share[closure] = rec / (result.wall_s + post + rec)
@@ -101,10 +130,25 @@ def main():
               f"{rtf[closure]:8.2f}x {gap[closure] * 1e3:14.4f} {rec:8.2f} "
               f"{share[closure] * 100:12.1f}%" + (f"  stopped: {result.error}" if result.error
                                                   else ""))
-    scenario, params, result, setup, _ = runs["bushing"]
-    alone = plant_alone_rtf(scenario, params, setup, result, args.duration)
-    print(f"plant alone (bushing closure, recorded actuation): {alone:.2f}x real time; "
-          f"diagram / plant = {rtf['bushing'] / alone:.2f}")
+    scenario, params, result, setup, _, post, rec = runs["bushing"]
+    logged, logged_setup = simulate(scenario, params, progress=False, log_actuation=True)
+    alone, final = plant_alone(scenario, params, logged_setup, logged.actuation, args.duration)
+    same = np.array_equal(final, logged.table["state"][-1]) and np.array_equal(
+        logged.table["state"][-1], result.table["state"][-1])
+    print(f"plant alone (bushing closure, the run's per-step actuation): {alone:.2f}x real time; "
+          f"diagram / plant = {rtf['bushing'] / alone:.2f}; replay ends in the run's state: "
+          f"{'yes (bit for bit)' if same else 'NO'}")
+    spent, wall, steps = python_time_per_block(args.duration)
+    per_step = {"plant (alone)": args.duration / alone / steps * 1e6}
+    per_step.update({name: t / steps * 1e6 for name, t in spent.items()})
+    per_step["rest of the Diagram (Drake dispatch, C++ blocks, logs)"] = (
+        wall / steps * 1e6 - sum(per_step.values()))
+    per_step["summary (after the run)"] = post / steps * 1e6
+    per_step["Rerun recording (after the run)"] = rec / steps * 1e6
+    print(f"where the time goes, default run with timers (wall {wall / steps * 1e6:.0f} us per "
+          "plant step):")
+    for name, us in per_step.items():
+        print(f"  {name:55s} {us:7.1f} us/step")
     ball = runs["ball"][4]["legs"]
     agreement = {c: max(abs(runs[c][4]["legs"][leg][m]["rms_torque_Nm"]
                             / ball[leg][m]["rms_torque_Nm"] - 1)
@@ -114,11 +158,12 @@ def main():
     rss10, rss60 = peak_rss_mb(10.0), peak_rss_mb(60.0)
     print(f"peak memory (fresh process): 10 s run {rss10:.0f} MB, 60 s run {rss60:.0f} MB "
           f"({rss60 / rss10:.2f}x)")
-    print(json.dumps({"rtf": rtf, "plant_alone_rtf": alone,
+    print(json.dumps({"rtf": rtf, "plant_alone_rtf": alone, "replay_exact": bool(same),
                       "diagram_to_plant_ratio": rtf["bushing"] / alone,
                       "max_loop_gap_m": gap, "rms_torque_agreement": agreement,
                       "logging_share": share["bushing"], "peak_rss_mb_10s": rss10,
-                      "peak_rss_mb_60s": rss60}))
+                      "peak_rss_mb_60s": rss60,
+                      "split_us_per_step": {k: round(v, 1) for k, v in per_step.items()}}))
 
 
 if __name__ == "__main__":

@@ -53,6 +53,7 @@ class Setup:
     gains: ControlGains
     recorder: VectorLogSink
     controller: FootLegController
+    actuation_log: VectorLogSink | None = None
 
 
 def closure_parameters(scenario: Scenario, params: Params):
@@ -129,8 +130,10 @@ def add_robot(builder: DiagramBuilder, params: Params, closure: str, bushing, ti
     return plant, instance, legs
 
 
-def build_diagram(scenario: Scenario, params: Params):
-    """Assemble the Diagram for the scenario; returns (diagram, Setup)."""
+def build_diagram(scenario: Scenario, params: Params, log_actuation: bool = False):
+    """Assemble the Diagram for the scenario; returns (diagram, Setup). log_actuation: also log
+    the joint torques the plant receives at every step (Setup.actuation_log), to replay the run
+    on the plant alone."""
     time_step, bushing, m_eff, force = closure_parameters(scenario, params)
     builder = DiagramBuilder()
     plant, instance, legs = add_robot(builder, params, scenario.closure, bushing, time_step)
@@ -175,9 +178,14 @@ def build_diagram(scenario: Scenario, params: Params):
     builder.Connect(state, rows.get_input_port(0))
     builder.Connect(integrator.get_output_port(), rows.get_input_port(1))
     builder.Connect(rows.get_output_port(), recorder.get_input_port())
+    actuation_log = None
+    if log_actuation:
+        actuation_log = builder.AddNamedSystem("actuation_log", VectorLogSink(n_act, time_step))
+        builder.Connect(motor.GetOutputPort("applied_torque"), actuation_log.get_input_port())
     setup = Setup(plant=plant, instance=instance, legs=legs, indices=indices,
                   time_step_s=time_step, bushing=bushing, m_eff_kg=m_eff, loop_force_N=force,
-                  layout=layout, gains=gains, recorder=recorder, controller=controller)
+                  layout=layout, gains=gains, recorder=recorder, controller=controller,
+                  actuation_log=actuation_log)
     return builder.Build(), setup
 
 
@@ -228,17 +236,19 @@ def interval_table(setup: Setup, params: Params, context) -> dict:
 class SimResult:
     """What the recorder measured (interval_table: t, state, gap, speed, contact_generalized,
     command, motor_torque, clipped_peak, clipped_line), wall time (s), the error text if the run
-    stopped early."""
+    stopped early, and with log_actuation the times (steps,) s and joint torques (steps, n) N*m
+    the plant received at every step."""
 
     table: dict
     wall_s: float
     error: str = ""
+    actuation: tuple | None = None
 
 
-def simulate(scenario: Scenario, params: Params, progress=True):
+def simulate(scenario: Scenario, params: Params, progress=True, log_actuation=False):
     """Build and run the scenario; returns (SimResult, Setup). A failure mid-run keeps what was
-    logged up to it (SimResult.error says what happened)."""
-    diagram, setup = build_diagram(scenario, params)
+    logged up to it (SimResult.error says what happened). log_actuation: see build_diagram."""
+    diagram, setup = build_diagram(scenario, params, log_actuation)
     simulator = Simulator(diagram)
     context = simulator.get_mutable_context()
     set_standing_pose(setup.plant, setup.plant.GetMyMutableContextFromRoot(context),
@@ -270,4 +280,9 @@ def simulate(scenario: Scenario, params: Params, progress=True):
         error = str(err)
         say(f"simulation stopped early: {error}")
     wall = time.perf_counter() - start
-    return SimResult(table=interval_table(setup, params, context), wall_s=wall, error=error), setup
+    actuation = None
+    if setup.actuation_log is not None:
+        log = setup.actuation_log.FindLog(context)
+        actuation = (log.sample_times(), log.data().T)
+    return SimResult(table=interval_table(setup, params, context), wall_s=wall, error=error,
+                     actuation=actuation), setup

@@ -204,8 +204,8 @@ def test_controller_acts_on_the_state_sampled_at_its_tick(delay):
                                          "foot_accelerations")] + [g["stance_weights"]]
     expect = controller.command(*args, state_k)
     later = controller.command(*args, state_next)
-    queue = controller.GetMyContextFromRoot(context).get_discrete_state(0).get_value()
-    newest = queue[-8:]
+    held = controller.GetMyContextFromRoot(context).get_discrete_state()   # released, queue
+    newest = np.concatenate([held.get_vector(0).value(), held.get_vector(1).value()])[-8:]
     assert np.allclose(newest, expect, rtol=1e-9, atol=1e-9)
     assert not np.allclose(newest, later, rtol=1e-6, atol=1e-6)
     released = controller.GetOutputPort("torque_command").Eval(
