@@ -28,6 +28,20 @@ TOUCHDOWN_BAND_M = 0.004   # a descending swing foot this close to the ground jo
 MOMENT_LEVER_M = 0.1       # the wrench fit weighs a moment like a force at this lever
 
 
+class ControlGains(NamedTuple):
+    """Gains of the law (SI). Swing: joint PD kp (N*m/rad), kd (N*m*s/rad). Body (virtual
+    model): height kz (N/m), dz (N*s/m); forward speed dx (N*s/m); roll and pitch k_att
+    (N*m/rad, per axis), d_att (N*m*s/rad, per axis)."""
+
+    kp: float
+    kd: float
+    kz: float
+    dz: float
+    dx: float
+    k_att: np.ndarray
+    d_att: np.ndarray
+
+
 class LawConstants(NamedTuple):
     """Everything the law needs, as plain numbers and arrays (SI). Plant indices: q_index,
     v_index, actuators (legs, 2) of motors A, B; body_q (quaternion w, x, y, z then position),
@@ -54,13 +68,7 @@ class LawConstants(NamedTuple):
     izz: np.ndarray
     gravity: float
     reflected_inertia: float
-    kp: float
-    kd: float
-    kz: float
-    dz: float
-    dx: float
-    k_att: np.ndarray
-    d_att: np.ndarray
+    gains: ControlGains
     foot_radius_m: float
     stand_offset_m: float
     mu: float
@@ -154,10 +162,10 @@ def ground_forces(k, targets, velocities, accelerations, weights, fx, fy, state,
     vz_des = -np.sum(share * velocities[:, 1])
     az_des = -np.sum(share * accelerations[:, 1])
     vx_des = np.sum(share * velocities[:, 0])
-    force_w = np.array([0.0, 0.0, k.mass_kg * (k.gravity + az_des) + k.kz * (z_des - z)
-                        + k.dz * (vz_des - v_w[2])])
+    force_w = np.array([0.0, 0.0, k.mass_kg * (k.gravity + az_des) + k.gains.kz * (z_des - z)
+                        + k.gains.dz * (vz_des - v_w[2])])
     force_b = r_bw @ force_w
-    force_b[0] += k.dx * (vx_des - v_b[0])
+    force_b[0] += k.gains.dx * (vx_des - v_b[0])
     r = _feet_body(k, fx, fy) - k.com_m
     # unknowns per foot: ground force along body x and z; rows: Fx, Fz, Mx, My, Mz
     a = np.zeros((5, 2 * n))
@@ -167,8 +175,8 @@ def ground_forces(k, targets, velocities, accelerations, weights, fx, fy, state,
         a[3, 2 * i], a[3, 2 * i + 1] = r[i, 2], -r[i, 0]       # My = z Fx - x Fz
         a[4, 2 * i] = -r[i, 1]                                 # Mz = -y Fx
     wrench = np.array([force_b[0], force_b[2],
-                       -k.k_att[0] * roll - k.d_att[0] * omega_b[0],
-                       -k.k_att[1] * pitch - k.d_att[1] * omega_b[1], 0.0])
+                       -k.gains.k_att[0] * roll - k.gains.d_att[0] * omega_b[0],
+                       -k.gains.k_att[1] * pitch - k.gains.d_att[1] * omega_b[1], 0.0])
     scale = np.array([1.0, 1.0, 1.0 / MOMENT_LEVER_M, 1.0 / MOMENT_LEVER_M, 1.0 / MOMENT_LEVER_M])
     sw = np.sqrt(np.repeat(weights, 2))
     sol = np.linalg.lstsq((a * scale[:, None]) * sw, wrench * scale, rcond=1e-6)[0] * sw
@@ -209,7 +217,7 @@ def leg_command(k, targets, velocities, accelerations, weights, state):
           + k.reflected_inertia * qdd_des)
     q_des = np.empty((n, 2))
     q_des[:, 0], q_des[:, 1] = ta, tb
-    swing = k.kp * wrap(q_des - q) + k.kd * (qd_des - qd) + ff
+    swing = k.gains.kp * wrap(q_des - q) + k.gains.kd * (qd_des - qd) + ff
     # stance: virtual model, links' weight at the measured pose
     sides = np.ones(n)
     cx, cy, dx, dy, ex, ey, fx, fy = forward_points(k.geom, q[:, 0].copy(), q[:, 1].copy(),

@@ -28,8 +28,8 @@ from .plant_model import add_model, leg_indices, loop_gaps, tree_positions
 from .scenario import Scenario
 from .sdf_model import body_height, hip_positions
 from .rotation import tilt_deg
-from .systems import (ControlGains, FootLegController, GaitSource, MotorModel, RobotLayout,
-                      derive_gains)
+from .leg_control import ControlGains
+from .systems import FootLegController, GaitSource, MotorModel, RobotLayout, derive_gains
 
 IMPLICIT_TIME_STEP_S = 1e-3   # plant step of the closures SAP treats implicitly
 FALL_TILT_DEG = 45.0   # a body tilted further has fallen: the run stops

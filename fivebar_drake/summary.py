@@ -278,7 +278,7 @@ def summarize(sig: Signals, scenario: Scenario, params: Params, setup: Setup,
             "damping_N_s_m": setup.bushing.damping_N_s_m},
         "knee_effective_mass_kg": setup.m_eff_kg, "design_loop_force_N": setup.loop_force_N,
         "controller_gains": {k: np.asarray(v).tolist() for k, v in
-                             dataclasses.asdict(setup.gains).items()},
+                             setup.gains._asdict().items()},
         "seed_peak_torque_Nm": seed_peak,
         "seed_static_estimate_optimistic": bool(worst["demand_p99_Nm"] > seed_peak),
         "motor_peak_torque_Nm": params.motor.peak_torque_Nm,

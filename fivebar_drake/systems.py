@@ -16,7 +16,7 @@ from .dynamics import physical_izz
 from .footpath import path_arrays, path_constants, phase_of, stance_start, stance_weight_arrays
 from .jacobians import com_fractions
 from .kinematics import forward, inverse
-from .leg_control import LawConstants, leg_command
+from .leg_control import ControlGains, LawConstants, leg_command
 from .params import LINK_NAMES, Gait, Motor, Params, torque_speed_line
 from .sdf_model import body_height, plane_rotation
 
@@ -81,21 +81,6 @@ class GaitSource(LeafSystem):
             discrete_state.set_value(group, value.ravel())
 
 
-@dataclass(frozen=True)
-class ControlGains:
-    """Gains of FootLegController (SI). Swing: joint PD kp (N*m/rad), kd (N*m*s/rad). Body
-    (virtual model): height kz (N/m), dz (N*s/m); forward speed dx (N*s/m); roll and pitch
-    k_att (N*m/rad, per axis), d_att (N*m*s/rad, per axis)."""
-
-    kp: float
-    kd: float
-    kz: float
-    dz: float
-    dx: float
-    k_att: np.ndarray
-    d_att: np.ndarray
-
-
 def derive_gains(mass_kg: float, inertia_kg_m2, leg_inertia_kg_m2: float, swing_hz: float,
                  body_hz: float, damping_ratio: float) -> ControlGains:
     """Gains that place a second-order mode at the given frequency and damping ratio: a swing
@@ -104,8 +89,9 @@ def derive_gains(mass_kg: float, inertia_kg_m2, leg_inertia_kg_m2: float, swing_
     at body_hz; the forward speed as a first-order loop at body_hz."""
     ws, wb, z = 2 * np.pi * swing_hz, 2 * np.pi * body_hz, damping_ratio
     i_att = np.array([inertia_kg_m2[0][0], inertia_kg_m2[1][1]])
-    return ControlGains(kp=leg_inertia_kg_m2 * ws**2, kd=2 * z * leg_inertia_kg_m2 * ws,
-                        kz=mass_kg * wb**2, dz=2 * z * mass_kg * wb, dx=mass_kg * wb,
+    return ControlGains(kp=float(leg_inertia_kg_m2 * ws**2),
+                        kd=float(2 * z * leg_inertia_kg_m2 * ws), kz=float(mass_kg * wb**2),
+                        dz=float(2 * z * mass_kg * wb), dx=float(mass_kg * wb),
                         k_att=i_att * wb**2, d_att=2 * z * i_att * wb)
 
 
@@ -170,9 +156,8 @@ class FootLegController(LeafSystem):
             com_fraction=com_fractions(params.leg, params.links),
             masses=np.array([params.links[n].mass_kg for n in LINK_NAMES]),
             izz=np.array(physical_izz(params)), gravity=params.robot.gravity_m_s2,
-            reflected_inertia=params.motor.reflected_inertia_kg_m2, kp=gains.kp, kd=gains.kd,
-            kz=gains.kz, dz=gains.dz, dx=gains.dx, k_att=np.asarray(gains.k_att, dtype=float),
-            d_att=np.asarray(gains.d_att, dtype=float), foot_radius_m=params.body.foot_radius_m,
+            reflected_inertia=params.motor.reflected_inertia_kg_m2, gains=gains,
+            foot_radius_m=params.body.foot_radius_m,
             stand_offset_m=float(body_height(params, 0.0)), mu=params.body.foot_friction,
             catch_gain=float(catch_gain), catch_rate_s=float(catch_rate_s),
             catch_limit_m=params.gait.b_m, touchdown=bool(touchdown_detection))
