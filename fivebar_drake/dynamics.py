@@ -106,40 +106,68 @@ class TorqueBreakdown:
 
 
 @jit
+def mass_matrix_at(masses, izz, jv, jw, m):
+    """One pose: M (2, 2) into m, sum_k m_k Jv_k^T Jv_k + Izz_k Jw_k^T Jw_k from its link
+    Jacobians jv (4, 2, 2), jw (4, 2); masses, izz (4,)."""
+    for j in range(2):
+        for i in range(2):
+            total = 0.0
+            for k in range(4):
+                total += (masses[k] * (jv[k, 0, j] * jv[k, 0, i] + jv[k, 1, j] * jv[k, 1, i])
+                          + izz[k] * jw[k, j] * jw[k, i])
+            m[j, i] = total
+
+
+@jit
 def mass_matrix_arrays(masses, izz, jv, jw):
-    """M (n, 2, 2) = sum_k m_k Jv_k^T Jv_k + Izz_k Jw_k^T Jw_k from link Jacobians jv
-    (n, 4, 2, 2), jw (n, 4, 2); masses, izz (4,)."""
-    m = np.zeros((jv.shape[0], 2, 2))
-    for k in range(4):
-        for j in range(2):
-            for i in range(2):
-                m[:, j, i] += (masses[k] * (jv[:, k, 0, j] * jv[:, k, 0, i]
-                                            + jv[:, k, 1, j] * jv[:, k, 1, i])
-                               + izz[k] * jw[:, k, j] * jw[:, k, i])
+    """M (n, 2, 2) from link Jacobians jv (n, 4, 2, 2), jw (n, 4, 2) (mass_matrix_at)."""
+    m = np.empty((jv.shape[0], 2, 2))
+    for n in range(jv.shape[0]):
+        mass_matrix_at(masses, izz, jv[n], jw[n], m[n])
     return m
 
 
 @jit
+def coriolis_at(masses, izz, jv, jw, av, aw, c):
+    """One pose: c (2,) into c, sum_k m_k Jv_k^T a_k + Izz_k Jw_k^T alpha_k with the links'
+    velocity-product accelerations av (4, 2), aw (4,)."""
+    for j in range(2):
+        total = 0.0
+        for k in range(4):
+            total += (masses[k] * (jv[k, 0, j] * av[k, 0] + jv[k, 1, j] * av[k, 1])
+                      + izz[k] * jw[k, j] * aw[k])
+        c[j] = total
+
+
+@jit
 def coriolis_arrays(masses, izz, jv, jw, av, aw):
-    """c (n, 2) = sum_k m_k Jv_k^T a_k + Izz_k Jw_k^T alpha_k with the links' velocity-product
-    accelerations av (n, 4, 2), aw (n, 4)."""
-    c = np.zeros((jv.shape[0], 2))
-    for k in range(4):
-        for j in range(2):
-            c[:, j] += (masses[k] * (jv[:, k, 0, j] * av[:, k, 0] + jv[:, k, 1, j] * av[:, k, 1])
-                        + izz[k] * jw[:, k, j] * aw[:, k])
+    """c (n, 2) with av (n, 4, 2), aw (n, 4) (coriolis_at)."""
+    c = np.empty((jv.shape[0], 2))
+    for n in range(jv.shape[0]):
+        coriolis_at(masses, izz, jv[n], jw[n], av[n], aw[n], c[n])
     return c
 
 
 @jit
+def static_at(masses, weight_sign_g, foot_load, jv, jf, weight, foot):
+    """One pose: torques (2,) holding the links' weights into weight (weight_sign_g =
+    link_weight_sign g, m/s^2: weight_sign_g sum_k m_k Jv_k^T [0, 1]) and the upward ground
+    force foot_load N at the foot into foot (-foot_load J_F^T [0, 1])."""
+    for j in range(2):
+        total = 0.0
+        for k in range(4):
+            total += weight_sign_g * masses[k] * jv[k, 1, j]
+        weight[j] = total
+        foot[j] = -foot_load * jf[1, j]
+
+
+@jit
 def static_arrays(masses, weight_sign_g, foot_load, jv, jf):
-    """Torques (n, 2) holding the links' weights (weight_sign_g = link_weight_sign g, m/s^2:
-    weight_sign_g sum_k m_k Jv_k^T [0, 1]) and the upward ground force foot_load (n,) N at the
-    foot (-foot_load J_F^T [0, 1])."""
-    weight = np.zeros((jv.shape[0], 2))
-    for k in range(4):
-        weight += weight_sign_g * masses[k] * jv[:, k, 1, :]
-    return weight, -foot_load[:, None] * jf[:, 1, :]
+    """(link weight, foot load) torques (n, 2) for foot loads (n,) N (static_at)."""
+    weight, foot = np.empty((jv.shape[0], 2)), np.empty((jv.shape[0], 2))
+    for n in range(jv.shape[0]):
+        static_at(masses, weight_sign_g, foot_load[n], jv[n], jf[n], weight[n], foot[n])
+    return weight, foot
 
 
 def _masses(params: Params) -> np.ndarray:

@@ -68,9 +68,9 @@ def stance_speed(gait: Gait, path: str) -> float:
 
 
 @jit
-def ellipse_arrays(a, b, x_center, y_home, frequency, u):
-    """Seed ellipse at cycle phases u (n,): (x, y, vx, vy, ax, ay) in m, m/s, m/s^2 and the
-    stance flag."""
+def ellipse_point(a, b, x_center, y_home, frequency, u):
+    """Seed ellipse at cycle phase u: (x, y, vx, vy, ax, ay) in m, m/s, m/s^2 and the stance
+    flag."""
     w = 2.0 * np.pi * frequency
     c, s = np.cos(2.0 * np.pi * u), np.sin(2.0 * np.pi * u)
     return (x_center + a * c, y_home + b * s, -a * w * s, b * w * c, -a * w * w * c,
@@ -86,39 +86,47 @@ def _quintic_h(r):
 
 
 @jit
-def trot_arrays(a, b, x_center, y_home, period, beta, u):
-    """Trot path (module docstring) at cycle phases u (n,): (x, y, vx, vy, ax, ay) in m, m/s,
-    m/s^2 and the stance flag. The swing's x is the min-jerk P (0 -> 1) with H and G
+def trot_point(a, b, x_center, y_home, period, beta, u):
+    """Trot path (module docstring) at cycle phase u: (x, y, vx, vy, ax, ay) in m, m/s, m/s^2
+    and the stance flag. The swing's x is the min-jerk P (0 -> 1) with H and G
     (G(s) = -H(1 - s)) adding the matched end slopes."""
     v = 2.0 * a / (beta * period)
+    if u >= 1.0 - beta:                     # stance: flat, at constant speed
+        sigma = min(max((u - (1.0 - beta)) / beta, 0.0), 1.0)
+        return (-a + 2 * a * sigma) + x_center, y_home, v, 0.0, 0.0, 0.0, True
     t_sw = (1.0 - beta) * period
-    swing = u < 1.0 - beta
-    s = np.minimum(np.maximum(u / (1.0 - beta), 0.0), 1.0)
+    s = min(max(u / (1.0 - beta), 0.0), 1.0)
     p, dp, ddp = 10 * s**3 - 15 * s**4 + 6 * s**5, 30 * s**2 - 60 * s**3 + 30 * s**4, \
         60 * s - 180 * s**2 + 120 * s**3
     h0, dh0, ddh0 = _quintic_h(s)
     h1, dh1, ddh1 = _quintic_h(1.0 - s)
     hg, dhg, ddhg = h0 - h1, dh0 + dh1, ddh0 - ddh1
-    sw_x = a - 2 * a * p + v * t_sw * hg
-    sw_vx = (-2 * a * dp + v * t_sw * dhg) / t_sw
-    sw_ax = (-2 * a * ddp + v * t_sw * ddhg) / t_sw**2
     bump = 64 * s**3 * (1 - s) ** 3
     dbump = 192 * s**2 * (1 - s) ** 2 * (1 - 2 * s) / t_sw
     ddbump = 384 * s * (1 - s) * ((1 - 2 * s) ** 2 - s * (1 - s)) / t_sw**2
-    sigma = np.minimum(np.maximum((u - (1.0 - beta)) / beta, 0.0), 1.0)
-    st_x = -a + 2 * a * sigma
-    return (np.where(swing, sw_x, st_x) + x_center, y_home + np.where(swing, b * bump, 0.0),
-            np.where(swing, sw_vx, v), np.where(swing, b * dbump, 0.0),
-            np.where(swing, sw_ax, 0.0), np.where(swing, b * ddbump, 0.0), ~swing)
+    return (a - 2 * a * p + v * t_sw * hg + x_center, y_home + b * bump,
+            (-2 * a * dp + v * t_sw * dhg) / t_sw, b * dbump,
+            (-2 * a * ddp + v * t_sw * ddhg) / t_sw**2, b * ddbump, False)
+
+
+@jit
+def path_point(trot, a, b, x_center, y_home, frequency, period, beta, u):
+    """The trot path (trot True) or the seed ellipse at cycle phase u:
+    (x, y, vx, vy, ax, ay, stance flag) (see trot_point, ellipse_point)."""
+    if trot:
+        return trot_point(a, b, x_center, y_home, period, beta, u)
+    return ellipse_point(a, b, x_center, y_home, frequency, u)
 
 
 @jit
 def path_arrays(trot, a, b, x_center, y_home, frequency, period, beta, u):
-    """The trot path (trot True) or the seed ellipse at cycle phases u (n,):
-    (x, y, vx, vy, ax, ay, stance flag) (see trot_arrays, ellipse_arrays)."""
-    if trot:
-        return trot_arrays(a, b, x_center, y_home, period, beta, u)
-    return ellipse_arrays(a, b, x_center, y_home, frequency, u)
+    """path_point at cycle phases u (n,): six arrays (n,) and the stance flags (n,)."""
+    out, stance = np.empty((6, u.shape[0])), np.empty(u.shape[0], dtype=np.bool_)
+    for i in range(u.shape[0]):
+        x, y, vx, vy, ax, ay, stance[i] = path_point(trot, a, b, x_center, y_home, frequency,
+                                                     period, beta, u[i])
+        out[0, i], out[1, i], out[2, i], out[3, i], out[4, i], out[5, i] = x, y, vx, vy, ax, ay
+    return out[0], out[1], out[2], out[3], out[4], out[5], stance
 
 
 def path_constants(gait: Gait, path: str) -> tuple:
@@ -156,14 +164,22 @@ def stance_weight(gait: Gait, path: str, t, phase_rad, transfer_s: float) -> np.
 
 
 @jit
+def stance_weight_at(u, u0, period, transfer_s):
+    """stance_weight at cycle phase u for a stance from u0 to 1 (period s)."""
+    if u < u0:
+        return 0.0
+    edge = min(u - u0, 1.0 - u) * period           # s from the nearer stance end
+    x = min(max(edge / transfer_s, 0.0), 1.0) if transfer_s > 0 else 1.0
+    return x * x * (3.0 - 2.0 * x)
+
+
+@jit
 def stance_weight_arrays(u, u0, period, transfer_s):
-    """stance_weight at cycle phases u (n,) for a stance from u0 to 1 (period s)."""
-    edge = np.minimum(u - u0, 1.0 - u) * period           # s from the nearer stance end
-    if transfer_s > 0:
-        x = np.minimum(np.maximum(edge / transfer_s, 0.0), 1.0)
-    else:
-        x = np.where(edge >= 0, 1.0, 0.0)
-    return np.where(u >= u0, x * x * (3.0 - 2.0 * x), 0.0)
+    """stance_weight_at at cycle phases u (n,)."""
+    out = np.empty(u.shape[0])
+    for i in range(u.shape[0]):
+        out[i] = stance_weight_at(u[i], u0, period, transfer_s)
+    return out
 
 
 def cycle_times(gait: Gait) -> np.ndarray:

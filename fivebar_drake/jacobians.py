@@ -21,89 +21,120 @@ LINK_ENDS = ((0, 2), (1, 3), (2, 4), (3, 4))   # link i joins points (A, B, C, D
 
 
 @jit
-def point_jacobian_arrays(geom, cx, cy, dx, dy, ex, ey):
-    """Velocity Jacobians (n, 2, 2) in m/rad of C, D, E and F for flat pose arrays (n,)."""
-    ax, ay, bx, by, ac, bd, ce, de, ef = geom
-    n = cx.shape[0]
+def pose_jacobians(geom, cx, cy, dx, dy, ex, ey, pts, jac):
+    """One pose: the points A, B, C, D, E (m) into pts (5, 2) and their velocity Jacobians
+    (m/rad) into jac (5, 2, 2) (A and B fixed: zero)."""
+    ax, ay, bx, by = geom[0], geom[1], geom[2], geom[3]
+    pts[0, 0], pts[0, 1], pts[1, 0], pts[1, 1] = ax, ay, bx, by
+    pts[2, 0], pts[2, 1], pts[3, 0], pts[3, 1], pts[4, 0], pts[4, 1] = cx, cy, dx, dy, ex, ey
     ra_x, ra_y = cx - ax, cy - ay                    # A -> C
     rb_x, rb_y = dx - bx, dy - by                    # B -> D
     a11, a12, a21, a22 = ex - cx, ey - cy, ex - dx, ey - dy   # rows E - C, E - D of A
     b11 = ra_x * a12 - ra_y * a11          # l1 [(ye - yc) cos(tA) - (xe - xc) sin(tA)]
     b22 = rb_x * a22 - rb_y * a21          # l2 [(ye - yd) cos(tB) - (xe - xd) sin(tB)]
     det = a11 * a22 - a12 * a21
-    jc, jd, je = np.zeros((n, 2, 2)), np.zeros((n, 2, 2)), np.empty((n, 2, 2))
-    jc[:, 0, 0], jc[:, 1, 0] = -ra_y, ra_x
-    jd[:, 0, 1], jd[:, 1, 1] = -rb_y, rb_x
-    je[:, 0, 0], je[:, 0, 1] = a22 * b11 / det, -a12 * b22 / det
-    je[:, 1, 0], je[:, 1, 1] = -a21 * b11 / det, a11 * b22 / det
-    k = ef / de
-    return jc, jd, je, (1.0 + k) * je - k * jd
+    jac[:] = 0.0
+    jac[2, 0, 0], jac[2, 1, 0] = -ra_y, ra_x
+    jac[3, 0, 1], jac[3, 1, 1] = -rb_y, rb_x
+    jac[4, 0, 0], jac[4, 0, 1] = a22 * b11 / det, -a12 * b22 / det
+    jac[4, 1, 0], jac[4, 1, 1] = -a21 * b11 / det, a11 * b22 / det
 
 
 @jit
-def _points(geom, cx, cy, dx, dy, ex, ey):
-    """Points A, B, C, D, E as (5, n, 2)."""
+def foot_from(geom, e, d, out):
+    """F = (1 + k) E - k D with k = EF/DE, elementwise for equal-shaped e, d into out."""
+    k = geom[8] / geom[7]
+    for j in range(e.size):
+        out.flat[j] = (1.0 + k) * e.flat[j] - k * d.flat[j]
+
+
+@jit
+def point_jacobian_arrays(geom, cx, cy, dx, dy, ex, ey):
+    """Velocity Jacobians (n, 2, 2) in m/rad of C, D, E and F for flat pose arrays (n,)."""
     n = cx.shape[0]
-    pts = np.empty((5, n, 2))
-    pts[0, :, 0], pts[0, :, 1], pts[1, :, 0], pts[1, :, 1] = geom[0], geom[1], geom[2], geom[3]
-    pts[2, :, 0], pts[2, :, 1], pts[3, :, 0], pts[3, :, 1] = cx, cy, dx, dy
-    pts[4, :, 0], pts[4, :, 1] = ex, ey
-    return pts
+    jc, jd, je, jf = (np.empty((n, 2, 2)), np.empty((n, 2, 2)), np.empty((n, 2, 2)),
+                      np.empty((n, 2, 2)))
+    pts, jac = np.empty((5, 2)), np.empty((5, 2, 2))
+    for i in range(n):
+        pose_jacobians(geom, cx[i], cy[i], dx[i], dy[i], ex[i], ey[i], pts, jac)
+        jc[i], jd[i], je[i] = jac[2], jac[3], jac[4]
+        foot_from(geom, jac[4], jac[3], jf[i])
+    return jc, jd, je, jf
+
+
+@jit
+def link_jacobians_at(geom, com_fraction, pts, jac, jv, jw):
+    """One pose: COM Jacobians jv (4, 2, 2) m/rad and angular Jacobians jw (4, 2) of the links
+    from its points pts (5, 2) and their Jacobians jac (5, 2, 2) (pose_jacobians). A COM at
+    fraction s of link P->Q moves with J_P + s (J_Q - J_P); the link turns at (u x u') / L^2,
+    u = Q - P, L = |PQ|."""
+    for i in range(4):
+        p, q = LINK_ENDS[i]
+        ux, uy = pts[q, 0] - pts[p, 0], pts[q, 1] - pts[p, 1]
+        for j in range(2):
+            rx, ry = jac[q, 0, j] - jac[p, 0, j], jac[q, 1, j] - jac[p, 1, j]
+            jv[i, 0, j] = jac[p, 0, j] + com_fraction[i] * rx
+            jv[i, 1, j] = jac[p, 1, j] + com_fraction[i] * ry
+            jw[i, j] = (ux * ry - uy * rx) / geom[4 + i] ** 2
 
 
 @jit
 def link_jacobian_arrays(geom, com_fraction, cx, cy, dx, dy, ex, ey):
     """COM Jacobians jv (n, 4, 2, 2) m/rad, angular Jacobians jw (n, 4, 2) and J_F (n, 2, 2)
     of the links AC, BD, CE, DE for flat pose arrays (n,); com_fraction (4,): COM distance from
-    the first joint over the link's joint distance. A COM at fraction s of link P->Q moves with
-    J_P + s (J_Q - J_P); the link turns at (u x u') / L^2, u = Q - P, L = |PQ|."""
+    the first joint over the link's joint distance (link_jacobians_at)."""
     n = cx.shape[0]
-    jc, jd, je, jf = point_jacobian_arrays(geom, cx, cy, dx, dy, ex, ey)
-    jac = np.zeros((5, n, 2, 2))
-    jac[2], jac[3], jac[4] = jc, jd, je
-    pts = _points(geom, cx, cy, dx, dy, ex, ey)
-    jv, jw = np.empty((n, 4, 2, 2)), np.empty((n, 4, 2))
-    for i in range(4):
-        p, q = LINK_ENDS[i]
-        rel = jac[q] - jac[p]
-        u = pts[q] - pts[p]
-        length2 = geom[4 + i] ** 2
-        jv[:, i] = jac[p] + com_fraction[i] * rel
-        for j in range(2):
-            jw[:, i, j] = (u[:, 0] * rel[:, 1, j] - u[:, 1] * rel[:, 0, j]) / length2
+    jv, jw, jf = np.empty((n, 4, 2, 2)), np.empty((n, 4, 2)), np.empty((n, 2, 2))
+    pts, jac = np.empty((5, 2)), np.empty((5, 2, 2))
+    for i in range(n):
+        pose_jacobians(geom, cx[i], cy[i], dx[i], dy[i], ex[i], ey[i], pts, jac)
+        link_jacobians_at(geom, com_fraction, pts, jac, jv[i], jw[i])
+        foot_from(geom, jac[4], jac[3], jf[i])
     return jv, jw, jf
 
 
 @jit
-def bias_arrays(geom, com_fraction, cx, cy, dx, dy, ex, ey, qda, qdb):
-    """Velocity-product accelerations for motor rates qda, qdb (n,) rad/s: link COMs av
-    (n, 4, 2) m/s^2, link angular aw (n, 4) rad/s^2, foot af (n, 2) m/s^2. From
-    C'' = -tA'^2 (C - A), D'' = -tB'^2 (D - B) and the loop circles differentiated twice:
+def bias_at(geom, com_fraction, pts, jac, qda, qdb, acc, av, aw, af):
+    """One pose at motor rates qda, qdb rad/s: velocity-product accelerations of the link COMs
+    av (4, 2) m/s^2, link angular aw (4,) rad/s^2 and the foot af (2,) m/s^2, from its points
+    pts and Jacobians jac (pose_jacobians); acc (5, 2) is scratch. From C'' = -tA'^2 (C - A),
+    D'' = -tB'^2 (D - B) and the loop circles differentiated twice:
     A E'' = [(E-C).C'' - |E'-C'|^2, (E-D).D'' - |E'-D'|^2]."""
-    n = cx.shape[0]
-    jc, jd, je, _ = point_jacobian_arrays(geom, cx, cy, dx, dy, ex, ey)
-    pts = _points(geom, cx, cy, dx, dy, ex, ey)
-    vel = np.empty((3, n, 2))
-    for i, jac in enumerate((jc, jd, je)):
-        vel[i] = jac[:, :, 0] * qda[:, None] + jac[:, :, 1] * qdb[:, None]
-    acc = np.zeros((5, n, 2))
-    acc[2] = -(qda**2)[:, None] * (pts[2] - pts[0])
-    acc[3] = -(qdb**2)[:, None] * (pts[3] - pts[1])
-    a11, a12, a21, a22 = ex - cx, ey - cy, ex - dx, ey - dy
-    rel_c, rel_d = vel[2] - vel[0], vel[2] - vel[1]
-    rhs1 = a11 * acc[2, :, 0] + a12 * acc[2, :, 1] - (rel_c[:, 0] ** 2 + rel_c[:, 1] ** 2)
-    rhs2 = a21 * acc[3, :, 0] + a22 * acc[3, :, 1] - (rel_d[:, 0] ** 2 + rel_d[:, 1] ** 2)
+    acc[:] = 0.0
+    for j in range(2):
+        acc[2, j] = -qda * qda * (pts[2, j] - pts[0, j])
+        acc[3, j] = -qdb * qdb * (pts[3, j] - pts[1, j])
+    # velocities of E relative to C and to D
+    rcx = (jac[4, 0, 0] - jac[2, 0, 0]) * qda + (jac[4, 0, 1] - jac[2, 0, 1]) * qdb
+    rcy = (jac[4, 1, 0] - jac[2, 1, 0]) * qda + (jac[4, 1, 1] - jac[2, 1, 1]) * qdb
+    rdx = (jac[4, 0, 0] - jac[3, 0, 0]) * qda + (jac[4, 0, 1] - jac[3, 0, 1]) * qdb
+    rdy = (jac[4, 1, 0] - jac[3, 1, 0]) * qda + (jac[4, 1, 1] - jac[3, 1, 1]) * qdb
+    a11, a12 = pts[4, 0] - pts[2, 0], pts[4, 1] - pts[2, 1]
+    a21, a22 = pts[4, 0] - pts[3, 0], pts[4, 1] - pts[3, 1]
+    rhs1 = a11 * acc[2, 0] + a12 * acc[2, 1] - (rcx * rcx + rcy * rcy)
+    rhs2 = a21 * acc[3, 0] + a22 * acc[3, 1] - (rdx * rdx + rdy * rdy)
     det = a11 * a22 - a12 * a21
-    acc[4, :, 0], acc[4, :, 1] = (a22 * rhs1 - a12 * rhs2) / det, (a11 * rhs2 - a21 * rhs1) / det
-    av, aw = np.empty((n, 4, 2)), np.empty((n, 4))
+    acc[4, 0], acc[4, 1] = (a22 * rhs1 - a12 * rhs2) / det, (a11 * rhs2 - a21 * rhs1) / det
     for i in range(4):
         p, q = LINK_ENDS[i]
-        rel = acc[q] - acc[p]
-        u = pts[q] - pts[p]
-        av[:, i] = acc[p] + com_fraction[i] * rel
-        aw[:, i] = (u[:, 0] * rel[:, 1] - u[:, 1] * rel[:, 0]) / geom[4 + i] ** 2
-    k = geom[8] / geom[7]
-    return av, aw, (1.0 + k) * acc[4] - k * acc[3]
+        rx, ry = acc[q, 0] - acc[p, 0], acc[q, 1] - acc[p, 1]
+        av[i, 0] = acc[p, 0] + com_fraction[i] * rx
+        av[i, 1] = acc[p, 1] + com_fraction[i] * ry
+        aw[i] = ((pts[q, 0] - pts[p, 0]) * ry - (pts[q, 1] - pts[p, 1]) * rx) / geom[4 + i] ** 2
+    foot_from(geom, acc[4], acc[3], af)
+
+
+@jit
+def bias_arrays(geom, com_fraction, cx, cy, dx, dy, ex, ey, qda, qdb):
+    """Velocity-product accelerations for motor rates qda, qdb (n,) rad/s (bias_at): link COMs
+    av (n, 4, 2) m/s^2, link angular aw (n, 4) rad/s^2, foot af (n, 2) m/s^2."""
+    n = cx.shape[0]
+    av, aw, af = np.empty((n, 4, 2)), np.empty((n, 4)), np.empty((n, 2))
+    pts, jac, acc = np.empty((5, 2)), np.empty((5, 2, 2)), np.empty((5, 2))
+    for i in range(n):
+        pose_jacobians(geom, cx[i], cy[i], dx[i], dy[i], ex[i], ey[i], pts, jac)
+        bias_at(geom, com_fraction, pts, jac, qda[i], qdb[i], acc, av[i], aw[i], af[i])
+    return av, aw, af
 
 
 def com_fractions(leg: LegGeometry, links: dict[str, LinkInertia]) -> np.ndarray:

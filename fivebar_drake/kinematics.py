@@ -33,50 +33,68 @@ def _cross(ax, ay, bx, by):
 
 
 @jit
-def circle_points(p0x, p0y, r0, p1x, p1y, r1, side):
-    """Point X with |X - P0| = r0 and |X - P1| = r1 on the given side of line P0->P1
-    (side = sign of cross(P1 - P0, X - P0)), elementwise; NaN where the circles miss."""
+def circle_point(p0x, p0y, r0, p1x, p1y, r1, side):
+    """Point (x, y) with |X - P0| = r0 and |X - P1| = r1 on the given side of line P0->P1
+    (side = sign of cross(P1 - P0, X - P0)), for one pose; NaN where the circles miss."""
     dx, dy = p1x - p0x, p1y - p0y
     d2 = dx * dx + dy * dy
     along = (r0 * r0 - r1 * r1 + d2) / (2.0 * d2)      # fraction of P0->P1 to the chord
     h2 = r0 * r0 / d2 - along * along                  # (half-chord / |P0P1|)^2
-    h = side * np.sqrt(np.where(h2 >= 0.0, h2, np.nan))
+    h = side * np.sqrt(h2) if h2 >= 0.0 else np.nan
     return p0x + along * dx - h * dy, p0y + along * dy + h * dx
 
 
 @jit
-def forward_points(geom, ta, tb, side, seed_rule):
-    """Forward kinematics on flat arrays: motor angles ta, tb (n,) rad -> C, D, E, F as
-    (cx, cy, dx, dy, ex, ey, fx, fy) in m; E on the given side (n,) of line C->D, or with
-    seed_rule the seed's E with the lower y. geom: LegGeometry.core."""
+def forward_pose(geom, ta, tb, side, seed_rule):
+    """Forward kinematics of one pose: motor angles ta, tb rad -> C, D, E, F as
+    (cx, cy, dx, dy, ex, ey, fx, fy) in m; E on the given side of line C->D, or with seed_rule
+    the seed's E with the lower y. geom: LegGeometry.core."""
     ax, ay, bx, by, ac, bd, ce, de, ef = geom
     cx, cy = ax + ac * np.cos(ta), ay + ac * np.sin(ta)
     dx, dy = bx + bd * np.cos(tb), by + bd * np.sin(tb)
     if seed_rule:
-        side = np.where(dx - cx > 0, -1.0, 1.0)
-    ex, ey = circle_points(cx, cy, ce, dx, dy, de, side)
+        side = -1.0 if dx - cx > 0 else 1.0
+    ex, ey = circle_point(cx, cy, ce, dx, dy, de, side)
     k = ef / de
     return cx, cy, dx, dy, ex, ey, ex + k * (ex - dx), ey + k * (ey - dy)
 
 
 @jit
-def inverse_points(geom, fx, fy, mode_c, mode_d):
-    """Inverse kinematics on flat arrays: foot targets fx, fy (n,) m in assembly mode
-    (mode_c, mode_d) -> (theta_A, theta_B, cx, cy, dx, dy, ex, ey), NaN out of reach.
+def forward_points(geom, ta, tb, side, seed_rule):
+    """forward_pose on flat arrays ta, tb, side (n,): a tuple of 8 arrays (n,)."""
+    out = np.empty((8, ta.shape[0]))
+    for i in range(ta.shape[0]):
+        out[:, i] = forward_pose(geom, ta[i], tb[i], side[i], seed_rule)
+    return out[0], out[1], out[2], out[3], out[4], out[5], out[6], out[7]
+
+
+@jit
+def inverse_pose(geom, fx, fy, mode_c, mode_d):
+    """Inverse kinematics of one foot target fx, fy m in assembly mode (mode_c, mode_d) ->
+    (theta_A, theta_B, cx, cy, dx, dy, ex, ey), NaN out of reach.
 
     D lies on the circle of radius BD about B and of radius DE + EF about F; E divides DF; C lies
     on the circle of radius AC about A and of radius CE about E."""
     ax, ay, bx, by, ac, bd, ce, de, ef = geom
     df = de + ef
-    dx, dy = circle_points(bx, by, bd, fx, fy, df, mode_d)
+    dx, dy = circle_point(bx, by, bd, fx, fy, df, mode_d)
     k = de / df
     ex, ey = dx + k * (fx - dx), dy + k * (fy - dy)
-    cx, cy = circle_points(ax, ay, ac, ex, ey, ce, -mode_c)
+    cx, cy = circle_point(ax, ay, ac, ex, ey, ce, -mode_c)
     return np.arctan2(cy - ay, cx - ax), np.arctan2(dy - by, dx - bx), cx, cy, dx, dy, ex, ey
 
 
+@jit
+def inverse_points(geom, fx, fy, mode_c, mode_d):
+    """inverse_pose on flat arrays fx, fy (n,): a tuple of 8 arrays (n,)."""
+    out = np.empty((8, fx.shape[0]))
+    for i in range(fx.shape[0]):
+        out[:, i] = inverse_pose(geom, fx[i], fy[i], mode_c, mode_d)
+    return out[0], out[1], out[2], out[3], out[4], out[5], out[6], out[7]
+
+
 def _require_reach(x, p0x, p0y, r0, p1x, p1y, r1, what):
-    """Raise UnreachableError naming the first NaN of x (a circle_points result) with what(i)."""
+    """Raise UnreachableError naming the first NaN of x (a circle_point result) with what(i)."""
     bad = np.isnan(x)
     if np.any(bad):
         dist = np.broadcast_to(np.hypot(p1x - p0x, p1y - p0y), bad.shape)

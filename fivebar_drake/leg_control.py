@@ -19,9 +19,9 @@ from typing import NamedTuple
 import numpy as np
 
 from .compiled import jit
-from .dynamics import coriolis_arrays, mass_matrix_arrays, static_arrays
-from .jacobians import bias_arrays, link_jacobian_arrays
-from .kinematics import forward_points, inverse_points
+from .dynamics import coriolis_at, mass_matrix_at, static_at
+from .jacobians import bias_at, foot_from, link_jacobians_at, pose_jacobians
+from .kinematics import forward_pose, inverse_pose
 from .rotation import body_rotation, wrap
 
 TOUCHDOWN_BAND_M = 0.004   # a descending swing foot this close to the ground joins the support
@@ -79,33 +79,20 @@ class LawConstants(NamedTuple):
 
 
 @jit
-def _solve2(m, b):
-    """x (n, 2) with m[i] x[i] = b[i] for (n, 2, 2) matrices."""
-    det = m[:, 0, 0] * m[:, 1, 1] - m[:, 0, 1] * m[:, 1, 0]
-    x = np.empty_like(b)
-    x[:, 0] = (m[:, 1, 1] * b[:, 0] - m[:, 0, 1] * b[:, 1]) / det
-    x[:, 1] = (m[:, 0, 0] * b[:, 1] - m[:, 1, 0] * b[:, 0]) / det
-    return x
-
-
-@jit
-def _mv(m, v):
-    """m[i] v[i] for (n, 2, 2) matrices and (n, 2) vectors; _mv(m.transpose) for m^T v."""
-    return m[:, :, 0] * v[:, 0:1] + m[:, :, 1] * v[:, 1:2]
-
-
-@jit
-def _mtv(m, v):
-    """m[i]^T v[i] for (n, 2, 2) matrices and (n, 2) vectors."""
-    return m[:, 0, :] * v[:, 0:1] + m[:, 1, :] * v[:, 1:2]
+def _solve2(m, b0, b1, x):
+    """x (2,) with m x = (b0, b1) for a (2, 2) matrix m."""
+    det = m[0, 0] * m[1, 1] - m[0, 1] * m[1, 0]
+    x[0] = (m[1, 1] * b0 - m[0, 1] * b1) / det
+    x[1] = (m[0, 0] * b1 - m[1, 0] * b0) / det
 
 
 @jit
 def _feet_body(k, fx, fy):
     """Foot points (legs, 3) in the body frame from leg-plane feet (legs,)."""
     out = k.hips_m.copy()
-    for i in range(3):
-        out[:, i] += k.plane[i, 0] * fx + k.plane[i, 1] * fy
+    for leg in range(out.shape[0]):
+        for i in range(3):
+            out[leg, i] += k.plane[i, 0] * fx[leg] + k.plane[i, 1] * fy[leg]
     return out
 
 
@@ -118,12 +105,16 @@ def catch_offset(k, state, r_wb):
     out = np.zeros((k.hips_m.shape[0], 2))
     if k.catch_gain == 0.0:
         return out
-    hips_w = k.hips_m @ np.ascontiguousarray(r_wb.T)
     w0 = k.nq + k.body_v
-    dz = hips_w[:, 2] - k.hips_m[:, 2]
-    dz_dot = state[w0] * hips_w[:, 1] - state[w0 + 1] * hips_w[:, 0]     # (omega x r)_z
-    out[:, 1] = np.minimum(np.maximum(k.catch_gain * (dz + k.catch_rate_s * dz_dot),
-                                      -k.catch_limit_m), k.catch_limit_m)
+    for leg in range(out.shape[0]):
+        h = k.hips_m[leg]
+        hx, hy, hz = (r_wb[0, 0] * h[0] + r_wb[0, 1] * h[1] + r_wb[0, 2] * h[2],
+                      r_wb[1, 0] * h[0] + r_wb[1, 1] * h[1] + r_wb[1, 2] * h[2],
+                      r_wb[2, 0] * h[0] + r_wb[2, 1] * h[1] + r_wb[2, 2] * h[2])
+        dz = hz - h[2]
+        dz_dot = state[w0] * hy - state[w0 + 1] * hx        # (omega x r)_z
+        out[leg, 1] = min(max(k.catch_gain * (dz + k.catch_rate_s * dz_dot),
+                              -k.catch_limit_m), k.catch_limit_m)
     return out
 
 
@@ -134,9 +125,14 @@ def early_touchdown(k, fx, fy, velocities, state, r_wb):
     (kinematic contact estimate: body pose and leg angles) joins the support: fully within half
     the band, fading out linearly to none at the band."""
     feet_b = _feet_body(k, fx, fy)
-    clearance = state[k.body_q + 6] + feet_b @ r_wb[2] - k.foot_radius_m
-    weight = np.minimum(np.maximum(2.0 - clearance / (0.5 * TOUCHDOWN_BAND_M), 0.0), 1.0)
-    return np.where(velocities[:, 1] < 0.0, weight, 0.0)
+    out = np.zeros(fx.shape[0])
+    for leg in range(fx.shape[0]):
+        if velocities[leg, 1] < 0.0:
+            clearance = (state[k.body_q + 6] + feet_b[leg, 0] * r_wb[2, 0]
+                         + feet_b[leg, 1] * r_wb[2, 1] + feet_b[leg, 2] * r_wb[2, 2]
+                         - k.foot_radius_m)
+            out[leg] = min(max(2.0 - clearance / (0.5 * TOUCHDOWN_BAND_M), 0.0), 1.0)
+    return out
 
 
 @jit
@@ -194,44 +190,47 @@ def leg_command(k, targets, velocities, accelerations, weights, state):
     targets, velocities, accelerations (legs, 2), stance weights (legs,) and the plant state
     (nx,). NaN where a target is out of reach or the legs cannot close."""
     n = weights.shape[0]
-    q, qd = np.empty((n, 2)), np.empty((n, 2))
-    for i in range(n):
-        for j in range(2):
-            q[i, j] = state[k.q_index[i, j]]
-            qd[i, j] = state[k.nq + k.v_index[i, j]]
     r_wb = body_rotation(state[k.body_q:k.body_q + 4])
-    no_load = np.zeros(n)
-    # swing: IK of the target (moved by the catch reflex), its rates and accelerations,
-    # inverse-dynamics feed-forward
     goal = targets + catch_offset(k, state, r_wb)
-    ta, tb, cx, cy, dx, dy, ex, ey = inverse_points(k.geom, goal[:, 0].copy(),
-                                                    goal[:, 1].copy(), 1.0, 1.0)
-    jv, jw, jf = link_jacobian_arrays(k.geom, k.com_fraction, cx, cy, dx, dy, ex, ey)
-    qd_des = _solve2(jf, velocities)
-    av, aw, af = bias_arrays(k.geom, k.com_fraction, cx, cy, dx, dy, ex, ey,
-                             qd_des[:, 0].copy(), qd_des[:, 1].copy())
-    qdd_des = _solve2(jf, accelerations - af)
-    weight, _ = static_arrays(k.masses, k.gravity, no_load, jv, jf)
-    ff = (_mv(mass_matrix_arrays(k.masses, k.izz, jv, jw), qdd_des)
-          + coriolis_arrays(k.masses, k.izz, jv, jw, av, aw) + weight
-          + k.reflected_inertia * qdd_des)
-    q_des = np.empty((n, 2))
-    q_des[:, 0], q_des[:, 1] = ta, tb
-    swing = k.gains.kp * wrap(q_des - q) + k.gains.kd * (qd_des - qd) + ff
-    # stance: virtual model, links' weight at the measured pose
-    sides = np.ones(n)
-    cx, cy, dx, dy, ex, ey, fx, fy = forward_points(k.geom, q[:, 0].copy(), q[:, 1].copy(),
-                                                    sides, True)
-    jv, jw, jf = link_jacobian_arrays(k.geom, k.com_fraction, cx, cy, dx, dy, ex, ey)
+    swing, stance, jf_now = np.empty((n, 2)), np.empty((n, 2)), np.empty((n, 2, 2))
+    fx, fy = np.empty(n), np.empty(n)
+    pts, jac, acc = np.empty((5, 2)), np.empty((5, 2, 2)), np.empty((5, 2))
+    jv, jw, jf = np.empty((4, 2, 2)), np.empty((4, 2)), np.empty((2, 2))
+    av, aw, af = np.empty((4, 2)), np.empty(4), np.empty(2)
+    m, c, weight, foot = np.empty((2, 2)), np.empty(2), np.empty(2), np.empty(2)
+    qd_des, qdd_des = np.empty(2), np.empty(2)
+    for i in range(n):
+        qa, qb = state[k.q_index[i, 0]], state[k.q_index[i, 1]]
+        qda, qdb = state[k.nq + k.v_index[i, 0]], state[k.nq + k.v_index[i, 1]]
+        # swing: IK of the target (moved by the catch reflex), its rates and accelerations,
+        # inverse-dynamics feed-forward
+        ta, tb, cx, cy, dx, dy, ex, ey = inverse_pose(k.geom, goal[i, 0], goal[i, 1], 1.0, 1.0)
+        pose_jacobians(k.geom, cx, cy, dx, dy, ex, ey, pts, jac)
+        link_jacobians_at(k.geom, k.com_fraction, pts, jac, jv, jw)
+        foot_from(k.geom, jac[4], jac[3], jf)
+        _solve2(jf, velocities[i, 0], velocities[i, 1], qd_des)
+        bias_at(k.geom, k.com_fraction, pts, jac, qd_des[0], qd_des[1], acc, av, aw, af)
+        _solve2(jf, accelerations[i, 0] - af[0], accelerations[i, 1] - af[1], qdd_des)
+        static_at(k.masses, k.gravity, 0.0, jv, jf, weight, foot)
+        mass_matrix_at(k.masses, k.izz, jv, jw, m)
+        coriolis_at(k.masses, k.izz, jv, jw, av, aw, c)
+        for j, (q_des, q, qd) in enumerate(((ta, qa, qda), (tb, qb, qdb))):
+            ff = (m[j, 0] * qdd_des[0] + m[j, 1] * qdd_des[1] + c[j] + weight[j]
+                  + k.reflected_inertia * qdd_des[j])
+            swing[i, j] = k.gains.kp * wrap(q_des - q) + k.gains.kd * (qd_des[j] - qd) + ff
+        # stance: virtual model, links' weight at the measured pose
+        cx, cy, dx, dy, ex, ey, fx[i], fy[i] = forward_pose(k.geom, qa, qb, 1.0, True)
+        pose_jacobians(k.geom, cx, cy, dx, dy, ex, ey, pts, jac)
+        link_jacobians_at(k.geom, k.com_fraction, pts, jac, jv, jw)
+        foot_from(k.geom, jac[4], jac[3], jf_now[i])
+        static_at(k.masses, k.gravity, 0.0, jv, jf_now[i], stance[i], foot)
     if k.touchdown:
         weights = np.maximum(weights, early_touchdown(k, fx, fy, velocities, state, r_wb))
-    links, _ = static_arrays(k.masses, k.gravity, no_load, jv, jf)
     forces = ground_forces(k, targets, velocities, accelerations, weights, fx, fy, state, r_wb)
-    stance = links - _mtv(jf, forces)
-    w = weights[:, None]
-    tau = w * stance + (1.0 - w) * swing
     out = np.zeros(2 * n)
     for i in range(n):
+        w = weights[i]
         for j in range(2):
-            out[k.actuators[i, j]] = tau[i, j]
+            push = jf_now[i, 0, j] * forces[i, 0] + jf_now[i, 1, j] * forces[i, 1]
+            out[k.actuators[i, j]] = w * (stance[i, j] - push) + (1.0 - w) * swing[i, j]
     return out, goal

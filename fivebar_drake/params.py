@@ -144,8 +144,8 @@ class Gait:
 
 @jit
 def torque_speed_line(peak_Nm, no_load_rad_s, speed_rad_s):
-    """Largest motoring torque (N*m) at joint speeds (rad/s): the linear torque-speed line
-    peak (1 - |w| / w_0), zero beyond the no-load speed w_0."""
+    """Largest motoring torque (N*m) at a joint speed (rad/s, a number or an array): the linear
+    torque-speed line peak (1 - |w| / w_0), zero beyond the no-load speed w_0."""
     return peak_Nm * np.minimum(np.maximum(1.0 - np.abs(speed_rad_s) / no_load_rad_s, 0.0), 1.0)
 
 

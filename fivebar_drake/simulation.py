@@ -153,7 +153,7 @@ def build_diagram(scenario: Scenario, params: Params, log_actuation: bool = Fals
         params.motor, speed_index, layout.nx, scenario.motor_period_s))
     # every plant step counted in C++: the integrals of what acts on each step
     n_act, nv = plant.num_actuators(), plant.num_velocities()
-    mux = builder.AddNamedSystem("measured", Multiplexer([nv] + [n_act] * 4))
+    mux = builder.AddNamedSystem("measured", Multiplexer([nv, n_act, 3 * n_act]))
     integrator = builder.AddNamedSystem("step_integrals", DiscreteTimeIntegrator(
         nv + 4 * n_act, time_step))
     # one row per log interval, kept in C++: the plant state and the integrals at its end
@@ -163,8 +163,7 @@ def build_diagram(scenario: Scenario, params: Params, log_actuation: bool = Fals
         time_step * max(1, round(scenario.log_period_s / time_step))))
 
     state = plant.get_state_output_port(instance)
-    for name in ("foot_targets", "foot_velocities", "foot_accelerations", "stance_weights"):
-        builder.Connect(gait.GetOutputPort(name), controller.GetInputPort(name))
+    builder.Connect(gait.GetOutputPort("foot_references"), controller.GetInputPort("foot_references"))
     builder.Connect(state, controller.GetInputPort("plant_state"))
     builder.Connect(controller.GetOutputPort("torque_command"), motor.GetInputPort("torque_command"))
     builder.Connect(state, motor.GetInputPort("plant_state"))
@@ -172,8 +171,7 @@ def build_diagram(scenario: Scenario, params: Params, log_actuation: bool = Fals
     builder.Connect(plant.get_generalized_contact_forces_output_port(instance),
                     mux.get_input_port(0))
     builder.Connect(controller.GetOutputPort("torque_command"), mux.get_input_port(1))
-    for i, name in enumerate(("motor_torque", "clipped_peak", "clipped_line")):
-        builder.Connect(motor.GetOutputPort(name), mux.get_input_port(2 + i))
+    builder.Connect(motor.GetOutputPort("motor_record"), mux.get_input_port(2))
     builder.Connect(mux.get_output_port(), integrator.get_input_port())
     builder.Connect(state, rows.get_input_port(0))
     builder.Connect(integrator.get_output_port(), rows.get_input_port(1))

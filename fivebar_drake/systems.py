@@ -13,7 +13,7 @@ from pydrake.systems.framework import LeafSystem
 
 from .compiled import jit
 from .dynamics import physical_izz
-from .footpath import path_arrays, path_constants, phase_of, stance_start, stance_weight_arrays
+from .footpath import path_constants, path_point, phase_of, stance_start, stance_weight_at
 from .jacobians import com_fractions
 from .kinematics import forward, inverse
 from .leg_control import ControlGains, LawConstants, leg_command
@@ -21,42 +21,54 @@ from .params import LINK_NAMES, Gait, Motor, Params, torque_speed_line
 from .sdf_model import body_height, plane_rotation
 
 
-REFERENCES = ("foot_targets", "foot_velocities", "foot_accelerations", "stance_weights")
-
-
 @jit
 def foot_references(path, stance_start_u, transfer_s, home, phases, start_s, ramp_s, t):
-    """(targets, velocities, accelerations) (legs, 2) and stance weights (legs,) at time t (s)
-    (GaitSource); path: footpath.path_constants."""
+    """The foot references at time t (s) as one vector (7 legs / 2, GaitSource): targets,
+    velocities and accelerations (legs x (x, y) each), then stance weights (legs);
+    path: footpath.path_constants."""
     n = phases.shape[0]
+    out = np.zeros(7 * n)
+    targets, vel, acc = (out[:2 * n].reshape(n, 2), out[2 * n:4 * n].reshape(n, 2),
+                         out[4 * n:6 * n].reshape(n, 2))
+    weights = out[6 * n:]
+    weights[:] = 1.0
     tau = t - start_s
     if tau < 0.0:
-        targets = np.empty((n, 2))
         targets[:, 0], targets[:, 1] = home[0], home[1]
-        return targets, np.zeros((n, 2)), np.zeros((n, 2)), np.ones(n)
+        return out
     s, ds = (tau / ramp_s, 1.0 / ramp_s) if ramp_s > 0 and tau < ramp_s else (1.0, 0.0)
-    u = phase_of(path[5], tau, phases)
-    x, y, vx, vy, ax, ay, _ = path_arrays(*path, u)
-    rel, vel, acc = np.empty((n, 2)), np.empty((n, 2)), np.empty((n, 2))
-    rel[:, 0], rel[:, 1], vel[:, 0], vel[:, 1] = x - home[0], y - home[1], vx, vy
-    acc[:, 0], acc[:, 1] = ax, ay
-    weights = stance_weight_arrays(u, stance_start_u, path[6], transfer_s)
-    return (home + s * rel, ds * rel + s * vel, 2.0 * ds * vel + s * acc,
-            1.0 - s * (1.0 - weights))
+    for i in range(n):
+        u = phase_of(path[5], tau, phases[i])
+        x, y, vx, vy, ax, ay, _ = path_point(*path, u)
+        for j, (rel, v, a) in enumerate(((x - home[0], vx, ax), (y - home[1], vy, ay))):
+            targets[i, j] = home[j] + s * rel
+            vel[i, j] = ds * rel + s * v
+            acc[i, j] = 2.0 * ds * v + s * a
+        weights[i] = 1.0 - s * (1.0 - stance_weight_at(u, stance_start_u, path[6], transfer_s))
+    return out
+
+
+def split_references(references) -> tuple:
+    """(targets, velocities, accelerations) (legs, 2) and stance weights (legs,): views of a
+    foot_references vector."""
+    n = len(references) // 7
+    refs = np.asarray(references, dtype=float)
+    return (refs[:2 * n].reshape(n, 2), refs[2 * n:4 * n].reshape(n, 2),
+            refs[4 * n:6 * n].reshape(n, 2), refs[6 * n:])
 
 
 class GaitSource(LeafSystem):
     """Time (s) -> foot targets of all legs in their leg planes and the stance schedule,
     sampled every period_s (the controller's period).
 
-    Output ports (legs x (x, y) where two values per leg): "foot_targets" (8) m,
-    "foot_velocities" (8) m/s, "foot_accelerations" (8) m/s^2, "stance_weights" (4) in [0, 1].
-    The foot path (footpath.path_arrays) with gait time tau = t - start_s, each leg at its phase
+    Output port "foot_references" (7 legs / 2): foot targets (legs x (x, y), m), velocities
+    (m/s), accelerations (m/s^2), then the stance weights (legs, in [0, 1]) (split_references).
+    The foot path (footpath.path_point) with gait time tau = t - start_s, each leg at its phase
     (rad), about the home point (x_c, y_home) scaled by s ramping 0 -> 1 over ramp_s; the
     stance weights blend from all-stance to the schedule with the same s. While standing
     (t < start_s) the feet rest at home, all in stance. The path is known ahead, so at each
     tick t the source stores the values of the next tick: a block sampling it at a tick reads
-    the values at that tick, computed once, with no Python on the output ports."""
+    the values at that tick, computed once, with no Python on the output port."""
 
     def __init__(self, gait: Gait, path: str, phases, start_s: float, ramp_s: float,
                  transfer_s: float, period_s: float):
@@ -65,20 +77,16 @@ class GaitSource(LeafSystem):
                       np.array([gait.x_center_m, gait.y_home_m]),
                       np.asarray(phases, dtype=float), float(start_s), float(ramp_s))
         self._period = period_s
-        initial = self.targets(0.0)
-        self._groups = [self.DeclareDiscreteState(initial[name].ravel()) for name in REFERENCES]
+        self._group = self.DeclareDiscreteState(self.references(0.0))
         self.DeclarePeriodicDiscreteUpdateEvent(period_s, 0.0, self._update)
-        for name, group in zip(REFERENCES, self._groups):
-            self.DeclareStateOutputPort(name, group)
+        self.DeclareStateOutputPort("foot_references", self._group)
 
-    def targets(self, t: float) -> dict:
-        """The output ports' values at time t (s), each (legs, 2) or (legs,)."""
-        return dict(zip(REFERENCES, foot_references(*self._args, float(t))))
+    def references(self, t: float) -> np.ndarray:
+        """The output port's value at time t (s)."""
+        return foot_references(*self._args, float(t))
 
     def _update(self, context, discrete_state):
-        values = foot_references(*self._args, context.get_time() + self._period)
-        for group, value in zip(self._groups, values):
-            discrete_state.set_value(group, value.ravel())
+        discrete_state.set_value(self._group, self.references(context.get_time() + self._period))
 
 
 def derive_gains(mass_kg: float, inertia_kg_m2, leg_inertia_kg_m2: float, swing_hz: float,
@@ -119,10 +127,10 @@ class RobotLayout:
 class FootLegController(LeafSystem):
     """Foot targets, stance schedule and the sampled plant state -> motor torque commands.
 
-    Input ports: "foot_targets", "foot_velocities", "foot_accelerations" (8, legs x (x, y)),
-    "stance_weights" (4), "plant_state" (nx). Output port: "torque_command" (8) N*m in actuation
-    order. Every period_s the controller samples its inputs and computes a command that it
-    releases delay_periods ticks later (0: at once), held in between.
+    Input ports: "foot_references" (GaitSource), "plant_state" (nx). Output port:
+    "torque_command" (8) N*m in actuation order. Every period_s the controller samples its
+    inputs and computes a command that it releases delay_periods ticks later (0: at once), held
+    in between.
 
     - Swing (weight 1 - w per leg): joint PD to the closed-form IK of the target (knees out) with
       the full model's inverse dynamics (M q'' + c + G of the links, reflected rotor inertia) of
@@ -162,37 +170,33 @@ class FootLegController(LeafSystem):
             catch_gain=float(catch_gain), catch_rate_s=float(catch_rate_s),
             catch_limit_m=params.gait.b_m, touchdown=bool(touchdown_detection))
         n = layout.q_index.size
-        for name in ("foot_targets", "foot_velocities", "foot_accelerations"):
-            self.DeclareVectorInputPort(name, n)
-        self.DeclareVectorInputPort("stance_weights", n // 2)
-        self.DeclareVectorInputPort("plant_state", layout.nx)
+        self._references = self.DeclareVectorInputPort("foot_references", 7 * n // 2)
+        self._state = self.DeclareVectorInputPort("plant_state", layout.nx)
         # the released command (the output) and the delay_periods commands after it, oldest first
         self._released = self.DeclareDiscreteState(n)
         self._queue = self.DeclareDiscreteState(delay_periods * n)
+        self._delayed = delay_periods > 0
         self.DeclarePeriodicDiscreteUpdateEvent(period_s, 0.0, self._update)
         self.DeclareStateOutputPort("torque_command", self._released)
 
-    def command(self, targets, velocities, accelerations, weights, state) -> np.ndarray:
-        """Torque command (8) in actuation order from foot targets, velocities, accelerations
-        (legs, 2), stance weights (legs,) and the plant state vector (nx,) (leg_control.leg_command).
-        Raises UnreachableError naming the target or pose where the legs cannot close."""
-        args = (np.ascontiguousarray(a, dtype=float).reshape(-1, 2)
-                for a in (targets, velocities, accelerations))
-        out, goal = leg_command(self.constants, *args,
-                                np.ascontiguousarray(weights, dtype=float),
-                                np.ascontiguousarray(state, dtype=float))
+    def command(self, references, state) -> np.ndarray:
+        """Torque command (8) in actuation order from the foot references (GaitSource) and the
+        plant state vector (nx,) (leg_control.leg_command). Raises UnreachableError naming the
+        target or pose where the legs cannot close."""
+        out, goal = leg_command(self.constants, *split_references(references),
+                                np.asarray(state, dtype=float))
         if not np.all(np.isfinite(out)):      # name the reason, if it is a reach
             inverse(self._params.leg, goal)
             forward(self._params.leg, state[self._layout.q_index])
         return out
 
     def _update(self, context, discrete_state):
-        inputs = [self.get_input_port(i).Eval(context) for i in range(5)]
-        new = self.command(*inputs)
-        queue = np.concatenate([context.get_discrete_state(self._queue).get_value(), new])
-        n = self._layout.q_index.size
-        discrete_state.set_value(self._released, queue[:n])
-        discrete_state.set_value(self._queue, queue[n:])
+        new = self.command(self._references.Eval(context), self._state.Eval(context))
+        if self._delayed:
+            queue = np.concatenate([context.get_discrete_state(self._queue).get_value(), new])
+            new = queue[:new.size]
+            discrete_state.set_value(self._queue, queue[new.size:])
+        discrete_state.set_value(self._released, new)
 
 
 @dataclass(frozen=True)
@@ -213,28 +217,43 @@ FRICTION_SMOOTHING_RAD_S = 0.05   # Coulomb friction reaches tanh(1) of its valu
 
 
 @jit
-def motor_arrays(peak, no_load, coulomb, viscous, smoothing, command, speed):
-    """(delivered, friction, clipped_peak, clipped_line) for commands and joint speeds (n,):
-    motoring (torque and speed of the same sign) is limited by the torque-speed line
+def motor_at(peak, no_load, coulomb, viscous, smoothing, command, speed):
+    """(delivered, friction, clipped_peak, clipped_line) for one command N*m at joint speed
+    rad/s: motoring (torque and speed of the same sign) is limited by the torque-speed line
     (torque_speed_line), braking by the peak torque; friction tau_c tanh(w / w_s) + b w."""
     line = torque_speed_line(peak, no_load, speed)
-    upper = np.where(speed > 0, line, peak)
-    lower = np.where(speed < 0, -line, -peak)
-    delivered = np.minimum(np.maximum(command, lower), upper)
+    upper = line if speed > 0 else peak
+    lower = -line if speed < 0 else -peak
+    delivered = min(max(command, lower), upper)
     clipped = delivered != command
-    clipped_peak = clipped & (np.abs(command) > peak) & (np.abs(delivered) >= peak)
+    clipped_peak = clipped and abs(command) > peak and abs(delivered) >= peak
     friction = coulomb * np.tanh(speed / smoothing) + viscous * speed
-    return delivered, friction, clipped_peak, clipped & ~clipped_peak
+    return delivered, friction, clipped_peak, clipped and not clipped_peak
+
+
+@jit
+def motor_arrays(peak, no_load, coulomb, viscous, smoothing, command, speed):
+    """motor_at for commands and joint speeds (n,): four arrays (n,), the flags boolean."""
+    n = command.shape[0]
+    delivered, friction = np.empty(n), np.empty(n)
+    clipped_peak, clipped_line = np.empty(n, dtype=np.bool_), np.empty(n, dtype=np.bool_)
+    for i in range(n):
+        delivered[i], friction[i], clipped_peak[i], clipped_line[i] = motor_at(
+            peak, no_load, coulomb, viscous, smoothing, command[i], speed[i])
+    return delivered, friction, clipped_peak, clipped_line
 
 
 @jit
 def motor_outputs(peak, no_load, coulomb, viscous, smoothing, command, state, v_index):
     """(joint torque, delivered, clipped_peak, clipped_line) (n each, flags 0.0 / 1.0) for
-    commands (n) and the joint speeds state[v_index] (motor_arrays)."""
-    delivered, friction, clipped_peak, clipped_line = motor_arrays(
-        peak, no_load, coulomb, viscous, smoothing, command, state[v_index])
-    return (delivered - friction, delivered, clipped_peak.astype(np.float64),
-            clipped_line.astype(np.float64))
+    commands (n) and the joint speeds state[v_index] (motor_at)."""
+    out = np.empty((4, command.shape[0]))
+    for i in range(command.shape[0]):
+        delivered, friction, clipped_peak, clipped_line = motor_at(
+            peak, no_load, coulomb, viscous, smoothing, command[i], state[v_index[i]])
+        out[0, i], out[1, i] = delivered - friction, delivered
+        out[2, i], out[3, i] = 1.0 if clipped_peak else 0.0, 1.0 if clipped_line else 0.0
+    return out
 
 
 def motor_torque(motor: Motor, command, speed,
@@ -252,17 +271,15 @@ def motor_torque(motor: Motor, command, speed,
                        clipped_peak=peak.reshape(shape), clipped_line=line.reshape(shape))
 
 
-MOTOR_OUTPUTS = ("applied_torque", "motor_torque", "clipped_peak", "clipped_line")
-
-
 class MotorModel(LeafSystem):
     """Commanded torque and joint speed -> torque at the joints (see motor_torque).
 
     Input ports: "torque_command" (n) N*m, "plant_state" (nx). Output ports: "applied_torque"
-    (n) N*m at the joints (delivered - friction), "motor_torque" (n) N*m delivered by the motor,
-    "clipped_peak" and "clipped_line" (n) 1.0 where the command was clipped. Sampled every
-    period_s (zero-order hold). The rotor's reflected inertia N^2 J_rotor is in the plant
-    (<drake:rotor_inertia>, <drake:gear_ratio>), not here."""
+    (n) N*m at the joints (delivered - friction); "motor_record" (3 n): the torque delivered by
+    the motor (N*m), then 1.0 where the command was clipped by the peak torque, then 1.0 where
+    it was clipped by the torque-speed line. Sampled every period_s (zero-order hold). The
+    rotor's reflected inertia N^2 J_rotor is in the plant (<drake:rotor_inertia>,
+    <drake:gear_ratio>), not here."""
 
     def __init__(self, motor: Motor, v_index_in_state, nx: int, period_s: float):
         super().__init__()
@@ -272,13 +289,14 @@ class MotorModel(LeafSystem):
         n = len(self._v)
         self._command = self.DeclareVectorInputPort("torque_command", n)
         self._state = self.DeclareVectorInputPort("plant_state", nx)
-        self._groups = [self.DeclareDiscreteState(n) for _ in MOTOR_OUTPUTS]
+        self._applied = self.DeclareDiscreteState(n)
+        self._record = self.DeclareDiscreteState(3 * n)
         self.DeclarePeriodicDiscreteUpdateEvent(period_s, 0.0, self._update)
-        for name, group in zip(MOTOR_OUTPUTS, self._groups):
-            self.DeclareStateOutputPort(name, group)
+        self.DeclareStateOutputPort("applied_torque", self._applied)
+        self.DeclareStateOutputPort("motor_record", self._record)
 
     def _update(self, context, discrete_state):
-        values = motor_outputs(*self._motor, self._command.Eval(context),
-                               self._state.Eval(context), self._v)
-        for group, value in zip(self._groups, values):
-            discrete_state.set_value(group, value)
+        out = motor_outputs(*self._motor, self._command.Eval(context), self._state.Eval(context),
+                            self._v)
+        discrete_state.set_value(self._applied, out[0])
+        discrete_state.set_value(self._record, out[1:].ravel())

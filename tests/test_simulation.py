@@ -199,11 +199,9 @@ def test_controller_acts_on_the_state_sampled_at_its_tick(delay):
     simulator.AdvanceTo(tick + dt)                              # the tick's update happened
     state_next = setup.plant.GetPositionsAndVelocities(plant_context).copy()
     assert not np.allclose(state_k, state_next)
-    g = gait.targets(tick)
-    args = [g[k].reshape(-1, 2) for k in ("foot_targets", "foot_velocities",
-                                         "foot_accelerations")] + [g["stance_weights"]]
-    expect = controller.command(*args, state_k)
-    later = controller.command(*args, state_next)
+    references = gait.references(tick)
+    expect = controller.command(references, state_k)
+    later = controller.command(references, state_next)
     held = controller.GetMyContextFromRoot(context).get_discrete_state()   # released, queue
     newest = np.concatenate([held.get_vector(0).value(), held.get_vector(1).value()])[-8:]
     assert np.allclose(newest, expect, rtol=1e-9, atol=1e-9)
