@@ -185,11 +185,14 @@ def ground_forces(k, targets, velocities, accelerations, weights, fx, fy, state,
 
 
 @jit
-def leg_command(k, targets, velocities, accelerations, weights, state):
-    """Torque command (8) in actuation order and the swing IK targets (legs, 2) in m, from foot
-    targets, velocities, accelerations (legs, 2), stance weights (legs,) and the plant state
-    (nx,). NaN where a target is out of reach or the legs cannot close."""
-    n = weights.shape[0]
+def leg_command(k, references, state):
+    """(torque command (8) in actuation order, swing IK targets (legs, 2) in m, whether the
+    command is finite) from the foot references (systems.foot_references: targets, velocities,
+    accelerations (legs, 2) each, stance weights (legs,)) and the plant state (nx,). NaN where
+    a target is out of reach or the legs cannot close."""
+    n = references.shape[0] // 7
+    targets, velocities = references[:2 * n].reshape(n, 2), references[2 * n:4 * n].reshape(n, 2)
+    accelerations, weights = references[4 * n:6 * n].reshape(n, 2), references[6 * n:]
     r_wb = body_rotation(state[k.body_q:k.body_q + 4])
     goal = targets + catch_offset(k, state, r_wb)
     swing, stance, jf_now = np.empty((n, 2)), np.empty((n, 2)), np.empty((n, 2, 2))
@@ -233,4 +236,4 @@ def leg_command(k, targets, velocities, accelerations, weights, state):
         for j in range(2):
             push = jf_now[i, 0, j] * forces[i, 0] + jf_now[i, 1, j] * forces[i, 1]
             out[k.actuators[i, j]] = w * (stance[i, j] - push) + (1.0 - w) * swing[i, j]
-    return out, goal
+    return out, goal, np.all(np.isfinite(out))

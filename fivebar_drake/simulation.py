@@ -29,7 +29,8 @@ from .scenario import Scenario
 from .sdf_model import body_height, hip_positions
 from .rotation import tilt_deg
 from .leg_control import ControlGains
-from .systems import FootLegController, GaitSource, MotorModel, RobotLayout, derive_gains
+from .systems import (FootLegController, GaitSource, MotorModel, RobotLayout, clip_flags,
+                      derive_gains)
 
 IMPLICIT_TIME_STEP_S = 1e-3   # plant step of the closures SAP treats implicitly
 FALL_TILT_DEG = 45.0   # a body tilted further has fallen: the run stops
@@ -52,6 +53,8 @@ class Setup:
     layout: RobotLayout
     gains: ControlGains
     recorder: VectorLogSink
+    motor_log: VectorLogSink
+    motor_samples_per_row: int
     controller: FootLegController
     actuation_log: VectorLogSink | None = None
 
@@ -151,16 +154,23 @@ def build_diagram(scenario: Scenario, params: Params, log_actuation: bool = Fals
     speed_index[layout.actuators.ravel()] = layout.v_index.ravel() + layout.nq
     motor = builder.AddNamedSystem("motor_model", MotorModel(
         params.motor, speed_index, layout.nx, scenario.motor_period_s))
-    # every plant step counted in C++: the integrals of what acts on each step
+    # every plant step counted in C++: the integral of the contact forces; one row per log
+    # interval (the plant state and that integral at its end); the motor's held values once
+    # per motor sample (they are constant in between)
     n_act, nv = plant.num_actuators(), plant.num_velocities()
-    mux = builder.AddNamedSystem("measured", Multiplexer([nv, n_act, 3 * n_act]))
-    integrator = builder.AddNamedSystem("step_integrals", DiscreteTimeIntegrator(
-        nv + 4 * n_act, time_step))
-    # one row per log interval, kept in C++: the plant state and the integrals at its end
-    rows = builder.AddNamedSystem("rows", Multiplexer([layout.nx, nv + 4 * n_act]))
-    recorder = builder.AddNamedSystem("recorder", VectorLogSink(
-        layout.nx + nv + 4 * n_act,
-        time_step * max(1, round(scenario.log_period_s / time_step))))
+    integrator = builder.AddNamedSystem("contact_integral", DiscreteTimeIntegrator(nv, time_step))
+    rows = builder.AddNamedSystem("rows", Multiplexer([layout.nx, nv]))
+    log_period = time_step * max(1, round(scenario.log_period_s / time_step))
+    per_row = round(log_period / scenario.motor_period_s)
+    if per_row < 1 or not math.isclose(per_row * scenario.motor_period_s, log_period,
+                                       rel_tol=1e-9):
+        raise ValueError(
+            f"scenario.log_period_s = {scenario.log_period_s!r} (the recorder logs every "
+            f"{log_period:.6g} s with the plant step {time_step:.6g} s) is not a whole number "
+            f"of motor periods (scenario.motor_period_s = {scenario.motor_period_s!r})")
+    recorder = builder.AddNamedSystem("recorder", VectorLogSink(layout.nx + nv, log_period))
+    motor_log = builder.AddNamedSystem("motor_log", VectorLogSink(3 * n_act,
+                                                                  scenario.motor_period_s))
 
     state = plant.get_state_output_port(instance)
     builder.Connect(gait.GetOutputPort("foot_references"), controller.GetInputPort("foot_references"))
@@ -169,10 +179,8 @@ def build_diagram(scenario: Scenario, params: Params, log_actuation: bool = Fals
     builder.Connect(state, motor.GetInputPort("plant_state"))
     builder.Connect(motor.GetOutputPort("applied_torque"), plant.get_actuation_input_port())
     builder.Connect(plant.get_generalized_contact_forces_output_port(instance),
-                    mux.get_input_port(0))
-    builder.Connect(controller.GetOutputPort("torque_command"), mux.get_input_port(1))
-    builder.Connect(motor.GetOutputPort("motor_record"), mux.get_input_port(2))
-    builder.Connect(mux.get_output_port(), integrator.get_input_port())
+                    integrator.get_input_port())
+    builder.Connect(motor.GetOutputPort("motor_record"), motor_log.get_input_port())
     builder.Connect(state, rows.get_input_port(0))
     builder.Connect(integrator.get_output_port(), rows.get_input_port(1))
     builder.Connect(rows.get_output_port(), recorder.get_input_port())
@@ -182,7 +190,8 @@ def build_diagram(scenario: Scenario, params: Params, log_actuation: bool = Fals
         builder.Connect(motor.GetOutputPort("applied_torque"), actuation_log.get_input_port())
     setup = Setup(plant=plant, instance=instance, legs=legs, indices=indices,
                   time_step_s=time_step, bushing=bushing, m_eff_kg=m_eff, loop_force_N=force,
-                  layout=layout, gains=gains, recorder=recorder, controller=controller,
+                  layout=layout, gains=gains, recorder=recorder, motor_log=motor_log,
+                  motor_samples_per_row=per_row, controller=controller,
                   actuation_log=actuation_log)
     return builder.Build(), setup
 
@@ -209,31 +218,38 @@ def interval_table(setup: Setup, params: Params, context) -> dict:
     """The recorder's rows as one row per log interval (arrays, SI): t (s, the interval's end),
     state (nx) at t, gap (legs) m at t, and the interval means of the joint speeds of the
     actuators (rad/s, from the positions: the discrete plant moves them with each step's end
-    speed), the generalized contact forces (nv; J^T F of every contact), the command and motor
-    torque (n, N*m) and the clip flags (n, fraction of the steps). context: the simulated
+    speed), the generalized contact forces (nv; J^T F of every contact, every plant step), the
+    command, the motor's delivered torque and the torque applied to the joints (n, N*m) and the
+    clip flags (n, fraction of the motor samples; systems.clip_flags). context: the simulated
     Diagram's root context."""
     log = setup.recorder.FindLog(context)
-    lay, nv = setup.layout, setup.plant.num_velocities()
+    lay = setup.layout
     times, data = log.sample_times(), log.data().T
     states, integrals = data[:, :lay.nx], data[:, lay.nx:]
     dt = np.diff(times)[:, None]
-    means = np.diff(integrals, axis=0) / dt
     q_act = np.zeros((len(times), lay.q_index.size))
     q_act[:, lay.actuators.ravel()] = states[:, lay.q_index.ravel()]
     tree_q = np.array([setup.indices[leg].q for leg in setup.legs])
-    n = lay.q_index.size
-    parts = np.split(means, [nv, nv + n, nv + 2 * n, nv + 3 * n], axis=1)
+    # the motor's samples in each interval: those from its start up to before its end
+    motor = setup.motor_log.FindLog(context)
+    rows = len(times) - 1
+    per_row = setup.motor_samples_per_row
+    samples = motor.data().T[:rows * per_row].reshape(rows, per_row, 3, -1)
+    command, delivered, applied = (samples[:, :, i] for i in range(3))
+    at_peak, at_line = clip_flags(params.motor, command, delivered)
     return {"t": times[1:], "state": states[1:],
             "gap": loop_gaps(params, states[1:, tree_q]).reshape(len(dt), -1),
             "speed": np.diff(q_act, axis=0) / dt,
-            **dict(zip(("contact_generalized", "command", "motor_torque", "clipped_peak",
-                        "clipped_line"), parts))}
+            "contact_generalized": np.diff(integrals, axis=0) / dt,
+            "command": command.mean(1), "motor_torque": delivered.mean(1),
+            "applied": applied.mean(1), "clipped_peak": at_peak.mean(1),
+            "clipped_line": at_line.mean(1)}
 
 
 @dataclass
 class SimResult:
     """What the recorder measured (interval_table: t, state, gap, speed, contact_generalized,
-    command, motor_torque, clipped_peak, clipped_line), wall time (s), the error text if the run
+    command, motor_torque, applied, clipped_peak, clipped_line), wall time (s), the error text if the run
     stopped early, and with log_actuation the times (steps,) s and joint torques (steps, n) N*m
     the plant received at every step."""
 

@@ -34,7 +34,6 @@ from .scenario import Scenario
 from .sdf_model import plane_rotation
 from .simulation import Setup, SimResult
 from .rotation import body_rotation, tilt_deg
-from .systems import motor_torque
 
 MOTORS = ("A", "B")
 MIN_CYCLES = 3            # fewer whole cycles than this give no verdict
@@ -119,14 +118,14 @@ def signals(result: SimResult, setup: Setup, params: Params, scenario: Scenario)
     trot_static = static_torques(params, dataclasses.replace(full, foot_load_N=loads), pose, lj)
     links = torques(params, dataclasses.replace(full, foot_load_N=0.0), pose, qd, qdd, lj).total
     rotor = params.motor.reflected_inertia_kg_m2 * qdd
-    friction = motor_torque(params.motor, np.zeros_like(qd), qd).friction
     return Signals(
         t=t, body_p=st[:, lay.body_q + 4:lay.body_q + 7], body_quat=quat,
         body_v=st[:, lay.nq + lay.body_v + 3:lay.nq + lay.body_v + 6], tilt_deg=tilt_deg(quat),
         q=q, qd=qd, command=per_leg(table["command"]), applied=per_leg(table["motor_torque"]),
         static_seed=static_torques(params, seed_model(params), pose, lj),
         static_trot=trot_static, static_contact=static_contact, links=links, rotor=rotor,
-        friction=friction, clipped_peak=per_leg(table["clipped_peak"]),
+        friction=per_leg(table["motor_torque"] - table["applied"]),
+        clipped_peak=per_leg(table["clipped_peak"]),
         clipped_line=per_leg(table["clipped_line"]), foot_force_plane=force,
         foot_force_world=force_world, gap=table["gap"],
         stance=stance, swing_fraction=swing_fraction,

@@ -1,4 +1,4 @@
-"""The Diagram's blocks: gait source, leg controller, motor model, interval recorder.
+"""The Diagram's blocks: gait source, leg controller, motor model.
 
 Legs are ordered FL, FR, RL, RR; per leg the motors A, B and foot coordinates (x, y) in the leg
 plane (m). Torque vectors (8) are in the plant's actuation order (LegIndices.actuators).
@@ -9,7 +9,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from pydrake.systems.framework import LeafSystem
+from pydrake.systems.framework import Diagram, DiagramBuilder, LeafSystem
+from pydrake.systems.primitives import (AffineSystem, Demultiplexer, Gain, MatrixGain, Multiplexer,
+                                        Saturation, ZeroOrderHold)
 
 from .compiled import jit
 from .dynamics import physical_izz
@@ -17,7 +19,7 @@ from .footpath import path_constants, path_point, phase_of, stance_start, stance
 from .jacobians import com_fractions
 from .kinematics import forward, inverse
 from .leg_control import ControlGains, LawConstants, leg_command
-from .params import LINK_NAMES, Gait, Motor, Params, torque_speed_line
+from .params import LINK_NAMES, Gait, Motor, Params
 from .sdf_model import body_height, plane_rotation
 
 
@@ -48,21 +50,13 @@ def foot_references(path, stance_start_u, transfer_s, home, phases, start_s, ram
     return out
 
 
-def split_references(references) -> tuple:
-    """(targets, velocities, accelerations) (legs, 2) and stance weights (legs,): views of a
-    foot_references vector."""
-    n = len(references) // 7
-    refs = np.asarray(references, dtype=float)
-    return (refs[:2 * n].reshape(n, 2), refs[2 * n:4 * n].reshape(n, 2),
-            refs[4 * n:6 * n].reshape(n, 2), refs[6 * n:])
-
 
 class GaitSource(LeafSystem):
     """Time (s) -> foot targets of all legs in their leg planes and the stance schedule,
     sampled every period_s (the controller's period).
 
     Output port "foot_references" (7 legs / 2): foot targets (legs x (x, y), m), velocities
-    (m/s), accelerations (m/s^2), then the stance weights (legs, in [0, 1]) (split_references).
+    (m/s), accelerations (m/s^2), then the stance weights (legs, in [0, 1]).
     The foot path (footpath.path_point) with gait time tau = t - start_s, each leg at its phase
     (rad), about the home point (x_c, y_home) scaled by s ramping 0 -> 1 over ramp_s; the
     stance weights blend from all-stance to the schedule with the same s. While standing
@@ -183,9 +177,9 @@ class FootLegController(LeafSystem):
         """Torque command (8) in actuation order from the foot references (GaitSource) and the
         plant state vector (nx,) (leg_control.leg_command). Raises UnreachableError naming the
         target or pose where the legs cannot close."""
-        out, goal = leg_command(self.constants, *split_references(references),
-                                np.asarray(state, dtype=float))
-        if not np.all(np.isfinite(out)):      # name the reason, if it is a reach
+        out, goal, finite = leg_command(self.constants, np.asarray(references, dtype=float),
+                                        np.asarray(state, dtype=float))
+        if not finite:                        # name the reason, if it is a reach
             inverse(self._params.leg, goal)
             forward(self._params.leg, state[self._layout.q_index])
         return out
@@ -199,104 +193,87 @@ class FootLegController(LeafSystem):
         discrete_state.set_value(self._released, new)
 
 
-@dataclass(frozen=True)
-class MotorOutput:
-    """Motor model result (each like the command): delivered torque at the gearbox output
-    (N*m, the command after saturation), friction (N*m, opposing the motion), the torque the
-    joint receives (delivered - friction), and whether the command was clipped by the peak
-    torque or by the torque-speed line."""
-
-    delivered: np.ndarray
-    friction: np.ndarray
-    joint: np.ndarray
-    clipped_peak: np.ndarray
-    clipped_line: np.ndarray
+FRICTION_SMOOTHING_RAD_S = 0.05   # Coulomb friction reaches its full value at this joint speed
+PEAK_TOLERANCE = 1e-12            # relative: a delivered torque this close to the peak is at it
 
 
-FRICTION_SMOOTHING_RAD_S = 0.05   # Coulomb friction reaches tanh(1) of its value at this speed
+class MotorModel(Diagram):
+    """Commanded torque and joint speed -> torque at the joints, built from Drake's C++
+    primitives (no Python at run time). Values at the gearbox output, SI.
 
-
-@jit
-def motor_at(peak, no_load, coulomb, viscous, smoothing, command, speed):
-    """(delivered, friction, clipped_peak, clipped_line) for one command N*m at joint speed
-    rad/s: motoring (torque and speed of the same sign) is limited by the torque-speed line
-    (torque_speed_line), braking by the peak torque; friction tau_c tanh(w / w_s) + b w."""
-    line = torque_speed_line(peak, no_load, speed)
-    upper = line if speed > 0 else peak
-    lower = -line if speed < 0 else -peak
-    delivered = min(max(command, lower), upper)
-    clipped = delivered != command
-    clipped_peak = clipped and abs(command) > peak and abs(delivered) >= peak
-    friction = coulomb * np.tanh(speed / smoothing) + viscous * speed
-    return delivered, friction, clipped_peak, clipped and not clipped_peak
-
-
-@jit
-def motor_arrays(peak, no_load, coulomb, viscous, smoothing, command, speed):
-    """motor_at for commands and joint speeds (n,): four arrays (n,), the flags boolean."""
-    n = command.shape[0]
-    delivered, friction = np.empty(n), np.empty(n)
-    clipped_peak, clipped_line = np.empty(n, dtype=np.bool_), np.empty(n, dtype=np.bool_)
-    for i in range(n):
-        delivered[i], friction[i], clipped_peak[i], clipped_line[i] = motor_at(
-            peak, no_load, coulomb, viscous, smoothing, command[i], speed[i])
-    return delivered, friction, clipped_peak, clipped_line
-
-
-@jit
-def motor_outputs(peak, no_load, coulomb, viscous, smoothing, command, state, v_index):
-    """(joint torque, delivered, clipped_peak, clipped_line) (n each, flags 0.0 / 1.0) for
-    commands (n) and the joint speeds state[v_index] (motor_at)."""
-    out = np.empty((4, command.shape[0]))
-    for i in range(command.shape[0]):
-        delivered, friction, clipped_peak, clipped_line = motor_at(
-            peak, no_load, coulomb, viscous, smoothing, command[i], state[v_index[i]])
-        out[0, i], out[1, i] = delivered - friction, delivered
-        out[2, i], out[3, i] = 1.0 if clipped_peak else 0.0, 1.0 if clipped_line else 0.0
-    return out
-
-
-def motor_torque(motor: Motor, command, speed,
-                 smoothing_rad_s: float = FRICTION_SMOOTHING_RAD_S) -> MotorOutput:
-    """Motor at joint speeds (rad/s) given commands (N*m), arrays of one shape (motor_arrays)."""
-    command, speed = np.broadcast_arrays(np.asarray(command, dtype=float),
-                                         np.asarray(speed, dtype=float))
-    delivered, friction, peak, line = motor_arrays(
-        motor.peak_torque_Nm, motor.no_load_speed_rad_s, motor.coulomb_friction_Nm,
-        motor.viscous_friction_Nm_s, smoothing_rad_s, np.ascontiguousarray(command).ravel(),
-        np.ascontiguousarray(speed).ravel())
-    shape = command.shape
-    return MotorOutput(delivered=delivered.reshape(shape), friction=friction.reshape(shape),
-                       joint=(delivered - friction).reshape(shape),
-                       clipped_peak=peak.reshape(shape), clipped_line=line.reshape(shape))
-
-
-class MotorModel(LeafSystem):
-    """Commanded torque and joint speed -> torque at the joints (see motor_torque).
-
-    Input ports: "torque_command" (n) N*m, "plant_state" (nx). Output ports: "applied_torque"
-    (n) N*m at the joints (delivered - friction); "motor_record" (3 n): the torque delivered by
-    the motor (N*m), then 1.0 where the command was clipped by the peak torque, then 1.0 where
-    it was clipped by the torque-speed line. Sampled every period_s (zero-order hold). The
-    rotor's reflected inertia N^2 J_rotor is in the plant (<drake:rotor_inertia>,
-    <drake:gear_ratio>), not here."""
+    Input ports: "torque_command" (n) N*m, "plant_state" (nx). Both are sampled every period_s
+    (zero-order hold), and the law acts on the held values:
+    - the delivered torque is the command clamped to [lower, upper]: motoring (torque and speed
+      of the same sign) is limited by the torque-speed line, braking by the peak torque,
+      upper = clamp(peak (1 - w / w_0), 0, peak), lower = clamp(-peak (1 + w / w_0), -peak, 0)
+      (the line of Motor.torque_limit), as c - max(c - upper, 0) + max(lower - c, 0);
+    - friction tau_c clamp(w / w_s, -1, 1) + b w (Coulomb, regularised over |w| < w_s =
+      FRICTION_SMOOTHING_RAD_S, and viscous) opposes the motion.
+    Output ports: "applied_torque" (n) N*m at the joints (delivered - friction); "motor_record"
+    (3 n): the held command, the delivered torque and the applied torque (N*m), constant between
+    samples (clip_flags classifies the clipping). The rotor's reflected inertia N^2 J_rotor is
+    in the plant (<drake:rotor_inertia>, <drake:gear_ratio>), not here."""
 
     def __init__(self, motor: Motor, v_index_in_state, nx: int, period_s: float):
         super().__init__()
-        self._motor = (motor.peak_torque_Nm, motor.no_load_speed_rad_s, motor.coulomb_friction_Nm,
-                       motor.viscous_friction_Nm_s, FRICTION_SMOOTHING_RAD_S)
-        self._v = np.asarray(v_index_in_state)   # state index of each actuator's joint speed
-        n = len(self._v)
-        self._command = self.DeclareVectorInputPort("torque_command", n)
-        self._state = self.DeclareVectorInputPort("plant_state", nx)
-        self._applied = self.DeclareDiscreteState(n)
-        self._record = self.DeclareDiscreteState(3 * n)
-        self.DeclarePeriodicDiscreteUpdateEvent(period_s, 0.0, self._update)
-        self.DeclareStateOutputPort("applied_torque", self._applied)
-        self.DeclareStateOutputPort("motor_record", self._record)
+        v_index = np.asarray(v_index_in_state)   # state index of each actuator's joint speed
+        n, peak, slope = len(v_index), motor.peak_torque_Nm, (motor.peak_torque_Nm
+                                                              / motor.no_load_speed_rad_s)
+        eye, zero = np.eye(n), np.zeros((n, n))
+        b = DiagramBuilder()
+        command = b.AddNamedSystem("hold_command", ZeroOrderHold(period_s, n))
+        state = b.AddNamedSystem("hold_state", ZeroOrderHold(period_s, nx))
+        select = np.zeros((n, nx))
+        select[np.arange(n), v_index] = 1.0
+        speed = b.AddNamedSystem("speed", MatrixGain(select))
+        line = b.AddNamedSystem("line", AffineSystem(
+            np.zeros((0, 0)), np.zeros((0, n)), np.zeros(0), np.zeros((2 * n, 0)),
+            np.vstack([-slope * eye, -slope * eye]), np.r_[np.full(n, peak), np.full(n, -peak)]))
+        limits = b.AddNamedSystem("limits", Saturation(np.r_[np.zeros(n), np.full(n, -peak)],
+                                                       np.r_[np.full(n, peak), np.zeros(n)]))
+        beyond = b.AddNamedSystem("beyond", Multiplexer([n, 2 * n]))        # c, upper, lower
+        excess = b.AddNamedSystem("excess", MatrixGain(np.block([[eye, -eye, zero],
+                                                                 [-eye, zero, eye]])))
+        positive = b.AddNamedSystem("positive", Saturation(np.zeros(2 * n),
+                                                           np.full(2 * n, np.inf)))
+        slip = b.AddNamedSystem("slip", Gain(1.0 / FRICTION_SMOOTHING_RAD_S, n))
+        unit = b.AddNamedSystem("unit", Saturation(-np.ones(n), np.ones(n)))
+        terms = b.AddNamedSystem("terms", Multiplexer([n, 2 * n, n, n]))  # c, excess, unit, w
+        delivered = np.hstack([eye, -eye, eye, zero, zero])
+        friction = np.hstack([zero, zero, zero, motor.coulomb_friction_Nm * eye,
+                              motor.viscous_friction_Nm_s * eye])
+        law = b.AddNamedSystem("law", MatrixGain(np.vstack([delivered, delivered - friction])))
+        split = b.AddNamedSystem("split", Demultiplexer([n, n]))
+        record = b.AddNamedSystem("record", Multiplexer([n, 2 * n]))
+        b.ExportInput(command.get_input_port(), "torque_command")
+        b.ExportInput(state.get_input_port(), "plant_state")
+        b.Connect(state.get_output_port(), speed.get_input_port())
+        b.Connect(speed.get_output_port(), line.get_input_port())
+        b.Connect(line.get_output_port(), limits.get_input_port())
+        b.Connect(command.get_output_port(), beyond.get_input_port(0))
+        b.Connect(limits.get_output_port(), beyond.get_input_port(1))
+        b.Connect(beyond.get_output_port(), excess.get_input_port())
+        b.Connect(excess.get_output_port(), positive.get_input_port())
+        b.Connect(speed.get_output_port(), slip.get_input_port())
+        b.Connect(slip.get_output_port(), unit.get_input_port())
+        for i, source in enumerate((command, positive, unit, speed)):
+            b.Connect(source.get_output_port(), terms.get_input_port(i))
+        b.Connect(terms.get_output_port(), law.get_input_port())
+        b.Connect(law.get_output_port(), split.get_input_port())
+        b.Connect(command.get_output_port(), record.get_input_port(0))
+        b.Connect(law.get_output_port(), record.get_input_port(1))
+        b.ExportOutput(split.get_output_port(1), "applied_torque")
+        b.ExportOutput(record.get_output_port(), "motor_record")
+        b.BuildInto(self)
 
-    def _update(self, context, discrete_state):
-        out = motor_outputs(*self._motor, self._command.Eval(context), self._state.Eval(context),
-                            self._v)
-        discrete_state.set_value(self._applied, out[0])
-        discrete_state.set_value(self._record, out[1:].ravel())
+
+def clip_flags(motor: Motor, command, delivered) -> tuple[np.ndarray, np.ndarray]:
+    """Where the motor clipped the command (arrays of one shape, N*m): (by the peak torque,
+    by the torque-speed line), boolean. The peak binds where the command exceeds it and the
+    delivered torque sits at it; otherwise a clipped command met the line."""
+    command, delivered = np.asarray(command, dtype=float), np.asarray(delivered, dtype=float)
+    clipped = delivered != command
+    peak = motor.peak_torque_Nm
+    at_peak = clipped & (np.abs(command) > peak) & (np.abs(delivered)
+                                                    >= peak * (1.0 - PEAK_TOLERANCE))
+    return at_peak, clipped & ~at_peak
