@@ -77,12 +77,11 @@ def _simulate(args, signals) -> int:
     from .recording import RECORDING_FILE, write_recording
     from .scenario import load_run
     from .sim_plots import SIM_PLOT_FILES, write_sim_plots
-    from .simulation import check_run, simulate
+    from .simulation import simulate
     from .summary import SUMMARY_FILES, signals as run_signals, summarize, write_summary
 
     scenario, params = load_run(args.scenario, duration_s=args.duration, closure=args.closure,
                                 gait=args.gait, params_file=args.config)
-    check_run(scenario, params)
     out = prepare_output_dir(args.out, "--out", SIM_PLOT_FILES + (RECORDING_FILE,) + SUMMARY_FILES)
     seed = analyze(params).results["results"]["seed"]
     warning = sampling_error(params, "seed_ellipse")["warning"]

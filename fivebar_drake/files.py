@@ -51,7 +51,7 @@ def prepare_output_dir(path, option: str, previous_outputs=()) -> Path:
     except (FileExistsError, NotADirectoryError):
         raise ParameterError("a part of the path is a file, not a folder", source=where) from None
     except OSError as err:
-        raise ParameterError(f"cannot write into this folder: {err.strerror}",
+        raise ParameterError(f"cannot create or write into this folder: {err.strerror}",
                              source=where) from None
     for name in previous_outputs:
         (path / name).unlink(missing_ok=True)

@@ -71,7 +71,9 @@ def check_number(field: str, value, low=-math.inf, high=math.inf, *, low_open=Fa
               and (value < high if high_open else value <= high))
     if not inside:
         kind = "an integer " if integer else "" if math.isfinite(value) else "a finite number "
-        if math.isfinite(low) and math.isfinite(high):
+        if low == high:
+            kind, allowed = "", f"{low:g}"
+        elif math.isfinite(low) and math.isfinite(high):
             allowed = (f"in {'(' if low_open else '['}{low:g}, {high:g}"
                        f"{')' if high_open else ']'}")
         elif math.isfinite(low):
@@ -311,7 +313,7 @@ class Params:
             # A body whose mass lies on the segment [0, L] with COM at c has Izz <= m c (L - c).
             bound = link.mass_kg * link.com_m * (length - link.com_m)
             check_number(f"{field}.izz_kg_m2", link.izz_kg_m2, 0.0, bound,
-                         why=f"cannot be physical beyond m*c*(L-c) = {bound:.3g} kg*m^2")
+                         why="cannot be physical beyond m*c*(L-c), L the link's length, c its COM")
         links_kg = LEGS_BUILT * sum(link.mass_kg for link in self.links.values())
         carried = self.robot.battery_electronics_kg + self.robot.structure_kg
         require(links_kg < carried, "links.*.mass_kg", links_kg,

@@ -110,9 +110,7 @@ class Scenario:
                    f"{self.log_period_s:g} s are kept in memory")
         number("scenario.stand_s", self.stand_s, 0.0)
         number("scenario.ramp_s", self.ramp_s, 0.0)
-        number("scenario.pose_rate_hz", self.pose_rate_hz, 0.0, 1.0 / self.log_period_s,
-               low_open=True, why="poses are taken from the recorded intervals: at most "
-                                  "1 / log_period_s")
+        number("scenario.pose_rate_hz", self.pose_rate_hz, 0.0, low_open=True)
         number("scenario.time_step_s", self.time_step_s, 0.0)
         if self.time_step_s:
             number("scenario.time_step_s", self.time_step_s, MIN_TIME_STEP_S,
@@ -210,6 +208,13 @@ def read_scenario_file(path) -> dict:
     return data
 
 
+def _source(err: ParameterError, path, overrides: dict) -> str:
+    """Where a scenario error comes from: the command line for an overridden field, else the
+    file (or the built-in scenario)."""
+    given = {f"scenario.{k}" for k in overrides}
+    return "command line" if err.field.split("[")[0] in given else str(path or "built-in scenario")
+
+
 def load_scenario(path: "str | Path | None" = None, **overrides) -> Scenario:
     """Scenario from a YAML file (None: defaults) with keyword overrides (from the command
     line; None = not given); validated. A relative params_file in the file is taken relative
@@ -227,16 +232,23 @@ def load_scenario(path: "str | Path | None" = None, **overrides) -> Scenario:
     try:
         scenario.validate()
     except ParameterError as err:
-        given = {f"scenario.{k}" for k in overrides}
-        raise err.located("command line" if err.field.split("[")[0] in given else
-                          path or "built-in scenario") from None
+        raise err.located(_source(err, path, overrides)) from None
     return scenario
 
 
 def load_run(path: "str | Path | None" = None, **overrides) -> tuple[Scenario, Params]:
-    """load_scenario and the scenario's parameters; errors name their file."""
+    """load_scenario, the scenario's parameters, and every check before a run
+    (simulation.check_run); errors name their file or the command line."""
+    from .simulation import check_run       # simulation builds on this module
+
     scenario = load_scenario(path, **overrides)
+    given = {k: v for k, v in overrides.items() if v is not None}
     try:
-        return scenario, scenario.load_params()
+        params = scenario.load_params()
+        check_run(scenario, params)
     except ParameterError as err:
-        raise err.located(path or "command line") from None
+        if path and "params_file" not in given and err.source == scenario.params_file:
+            err = ParameterError(f"{err.message} (the params_file of {path})", err.field,
+                                 err.source)
+        raise err.located(_source(err, path, given)) from None
+    return scenario, params

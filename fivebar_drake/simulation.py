@@ -93,24 +93,27 @@ def check_run(scenario: Scenario, params: Params) -> float:
     """The plant's time step (s) for the scenario, after the checks that need the parameters
     and the step (ParameterError naming the field): the step against the motor model's period,
     the foot contact's time scale and the number of steps; the recorded interval against the
-    step and the gait; the load transfer against the stance."""
+    step and the gait, the pose rate against the interval; the load transfer against the
+    stance."""
     step = closure_parameters(scenario, params)[0]
-    field = "scenario.time_step_s" + ("" if scenario.time_step_s else
-                                      f" (0: derived for closure {scenario.closure})")
+    field = "scenario.time_step_s"
+    derived = "" if scenario.time_step_s else f"; 0 derives {step:g} s for the closure"
     check_number(field, step, high=scenario.motor_period_s,
                  why="the plant steps at least as often as the motor model updates "
-                     "(scenario.motor_period_s), or its torques are skipped")
+                     f"(scenario.motor_period_s), or its torques are skipped{derived}")
     check_number(field, step, high=params.body.foot_relaxation_time_s,
                  why="a touchdown must span more than one plant step: "
-                     "body.foot_relaxation_time_s is the foot contact's time scale")
+                     f"body.foot_relaxation_time_s is the foot contact's time scale{derived}")
     check_number(field, step, low=scenario.duration_s / MAX_PLANT_STEPS,
                  why=f"scenario.duration_s = {scenario.duration_s:g} s may take at most "
-                     f"{MAX_PLANT_STEPS:g} plant steps (about two hours)")
+                     f"{MAX_PLANT_STEPS:g} plant steps (about two hours){derived}")
     period = params.gait.period_s
     check_number("scenario.log_period_s", scenario.log_period_s, step,
                  period / MIN_LOG_INTERVALS_PER_CYCLE,
                  why=f"at least one plant step and at least {MIN_LOG_INTERVALS_PER_CYCLE} "
                      f"intervals per gait cycle of {period:g} s")
+    check_number("scenario.pose_rate_hz", scenario.pose_rate_hz, high=1.0 / scenario.log_period_s,
+                 why="poses are taken from the recorded intervals: at most 1 / log_period_s")
     stance_s = (1.0 - stance_start(params.gait, scenario.gait)) * period
     check_number("scenario.load_transfer_s", scenario.load_transfer_s, high=stance_s / 2,
                  why=f"a foot must take up its load and give it off within its stance of "
