@@ -200,6 +200,26 @@ def parser() -> argparse.ArgumentParser:
     return top
 
 
+def options_markdown() -> str:
+    """The README's table of every subcommand's options, from the parser."""
+    rows = ["| command | option | default | meaning |", "|---|---|---|---|"]
+    sub = next(a for a in parser()._actions if isinstance(a, argparse._SubParsersAction))
+    for name, command in sub.choices.items():
+        for action in command._actions:
+            if isinstance(action, argparse._HelpAction):
+                continue
+            option = ", ".join(action.option_strings) or action.metavar
+            if action.choices:
+                option += " {" + ",".join(action.choices) + "}"
+            elif action.option_strings and action.metavar:
+                option += f" {action.metavar}"
+            default = "" if action.default is None else f"`{action.default}`"
+            text = action.help.replace("(default: %(default)s)", "").replace(
+                "%(default)s", str(action.default)).strip()
+            rows.append(f"| {name} | `{option}` | {default} | {text} |")
+    return "\n".join(rows)
+
+
 def _internal_error(err: BaseException, argv) -> int:
     """Write the traceback to a log file and say where it is."""
     fd, log = tempfile.mkstemp(prefix="fivebar-drake-error-", suffix=".log")

@@ -65,8 +65,10 @@ def _where(at: dict) -> str:
     return f"t = {at['time_s']:.3f} s (sample {at['sample']}), F = ({x:.1f}, {y:.1f}) mm"
 
 
-def markdown(analysis: Analysis, sampled: dict) -> str:
-    """report.md; sampled: config.sampling_error of the analysed path."""
+def markdown(analysis: Analysis, sampled: dict | None = None) -> str:
+    """report.md; sampled: config.sampling_error of the analysed path (computed if None)."""
+    if sampled is None:
+        sampled = sampling_error(analysis.params, analysis.samples.path)
     r = analysis.results["results"]
     p = analysis.params
     g = p.gait
@@ -145,8 +147,7 @@ def write_report(analysis: Analysis, out_dir: Path, sampled: dict | None = None)
     """Write REPORT_FILES into out_dir, each atomically, both composed before either is
     written; sampled: config.sampling_error of the analysed path (computed if None). Returns
     their paths."""
-    if sampled is None:
-        sampled = sampling_error(analysis.params, analysis.samples.path)
+    sampled = sampled or sampling_error(analysis.params, analysis.samples.path)
     data = dict(analysis.results, assumptions=assumptions(analysis), sampling_error=sampled)
     texts = (markdown(analysis, sampled), json.dumps(data, indent=2, allow_nan=False) + "\n")
     out_dir.mkdir(parents=True, exist_ok=True)

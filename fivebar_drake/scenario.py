@@ -156,6 +156,27 @@ class Scenario:
                                  f"{err.message}", err.field) from None
 
 
+UNITS = {"_s": "s", "_m": "m", "_hz": "Hz", "_rad": "rad", "_periods": "controller periods"}
+
+
+def fields_markdown() -> str:
+    """The README's table of the scenario fields: name, type, default, unit, meaning."""
+    kinds = typing.get_type_hints(Scenario)
+    defaults = Scenario()
+    rows = ["| field | type | default | unit | meaning |", "|---|---|---|---|---|"]
+    for f in dataclasses.fields(Scenario):
+        kind = {float: "number", int: "integer", bool: "true/false", str: "text"}.get(
+            kinds[f.name], "list of numbers" if kinds[f.name] == list[float] else "number or null")
+        default = getattr(defaults, f.name)
+        shown = ("null" if default is None else f'"{default}"' if isinstance(default, str) else
+                 str(default).lower() if isinstance(default, bool) else
+                 "[" + ", ".join(f"{v:.4g}" for v in default) + "]"
+                 if isinstance(default, list) else f"{default:g}")
+        unit = next((u for suffix, u in UNITS.items() if f.name.endswith(suffix)), "")
+        rows.append(f"| `{f.name}` | {kind} | {shown} | {unit} | {f.metadata['doc']} |")
+    return "\n".join(rows)
+
+
 def _typed(name: str, kind, value):
     """value checked against a field's type (a number of a float field as a float)."""
     if kind is float:
