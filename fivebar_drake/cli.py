@@ -53,7 +53,7 @@ def _analyze(args, signals) -> int:
     say(f"parameters: {args.config or 'packaged default'}")
     analysis = analyze(params, path=args.gait)
     sampled = sampling_error(params, args.gait)
-    written = write_report(analysis, out, sampled) + write_plots(analysis, out)
+    written = write_plots(analysis, out) + write_report(analysis, out, sampled)  # report.json last
     readings = [(model, motor, m) for model, motors in analysis.results["results"].items()
                 for motor, m in motors.items()]
     say(f"foot path: {args.gait}; every reading, the lowest safety factor first:")

@@ -260,6 +260,16 @@ def test_params_file_is_relative_to_the_scenario(tmp_path, monkeypatch):
     assert params.gait.frequency_hz == 1.0
 
 
+def test_empty_scenario_file_is_the_defaults(tmp_path):
+    (tmp_path / "s.yaml").write_text("# nothing changed\n")
+    assert load_run(tmp_path / "s.yaml")[0] == load_run()[0]
+
+
+def test_version(capsys):
+    assert main(["--version"]) == 0
+    assert re.fullmatch(r"fivebar-drake \d+\.\d+\.\d+ \(drake 1\.51\.1\)\n", capsys.readouterr().out)
+
+
 def test_yaml_numbers_without_a_dot_are_numbers(tmp_path):
     (tmp_path / "s.yaml").write_text("time_step_s: 5e-4\nlog_period_s: 2E-3\n")
     scenario, _ = load_run(tmp_path / "s.yaml")

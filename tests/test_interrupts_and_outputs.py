@@ -32,7 +32,7 @@ def start_simulation(out, seconds):
 
 @pytest.mark.parametrize("signum, code", [(signal.SIGINT, 130), (signal.SIGTERM, 143)])
 def test_signal_stops_simulate_and_keeps_what_it_has(tmp_path, signum, code):
-    out = tmp_path / "run"
+    out = tmp_path / "a run"                            # a space: the printed command quotes it
     out.mkdir()
     for name, text in STALE.items():                     # an earlier run's files
         (out / name).write_text(text)
@@ -66,6 +66,7 @@ def test_signal_stops_simulate_and_keeps_what_it_has(tmp_path, signum, code):
     assert rows == pytest.approx(summary["duration_s"] / summary["log_period_s"], abs=2)
     assert (out / "sim_torques.png").read_bytes()[:4] == b"\x89PNG"
     assert "interrupted" in (out / "summary.md").read_text()
+    assert f"open the recording with: rerun '{out / 'run.rrd'}'" in stdout
 
 
 def test_interrupted_write_leaves_the_old_or_the_new_file(tmp_path):
@@ -131,16 +132,38 @@ def test_a_failure_while_writing_leaves_no_summary(tmp_path, capsys, monkeypatch
     err = capsys.readouterr().err
     assert code == 3 and "Traceback" not in err and "No space left" in err
     assert not (out / "summary.json").exists()
+    remove_logs(err)
 
 
-def test_new_analysis_replaces_the_previous_files(tmp_path, capsys):
+def test_new_analysis_first_removes_the_previous_files(tmp_path, capsys, monkeypatch):
+    """An analysis that fails after its inputs were accepted leaves none of the previous
+    analysis's files (they would pass for its results); other files stay."""
+    from fivebar_drake import plots
+
     (tmp_path / "report.json").write_text('{"stale": true}')
-    (tmp_path / TEMP_PREFIX + "x.png").write_text("half")
+    (tmp_path / "workspace.png").write_text("stale")
+    (tmp_path / (TEMP_PREFIX + "x.png")).write_text("half")
     (tmp_path / "mine.txt").write_text("kept")
-    assert main(["analyze", "--out", str(tmp_path)]) == 0
-    assert "stale" not in json.loads((tmp_path / "report.json").read_text())
+
+    def broken(*args, **kwargs):
+        raise RuntimeError("injected")
+
+    monkeypatch.setattr(plots, "write_plots", broken)
+    assert main(["analyze", "--out", str(tmp_path)]) == 3
+    assert not (tmp_path / "workspace.png").exists() and not (tmp_path / "report.json").exists()
     assert not list(tmp_path.glob(TEMP_PREFIX + "*"))
     assert (tmp_path / "mine.txt").read_text() == "kept"
+    monkeypatch.undo()
+    assert main(["analyze", "--out", str(tmp_path)]) == 0
+    assert "stale" not in json.loads((tmp_path / "report.json").read_text())
+    remove_logs(capsys.readouterr().err)
+
+
+def remove_logs(stderr):
+    """Delete the internal-error logs a test provoked."""
+    for line in stderr.splitlines():
+        if "traceback is in" in line:
+            os.unlink(line.rsplit(" ", 1)[1])
 
 
 def test_piping_into_head_is_quiet(tmp_path):

@@ -1,6 +1,7 @@
 """The quadruped simulation: a credible trot, per-step measurement, whole-cycle statistics,
 control delay, closures, recording, CLI, bad scenarios."""
 
+import dataclasses
 import json
 
 import numpy as np
@@ -152,6 +153,18 @@ def test_measured_ground_forces_carry_the_robot(run):
     k0, k1 = np.flatnonzero(inside)[[0, -1]]
     dp = params.robot.total_mass_kg * (sig.body_v[k1, 2] - sig.body_v[k0 - 1, 2]) / (end - start)
     assert mean_fz == pytest.approx(weight + dp, rel=0.01)
+
+
+def test_summary_text_follows_the_parameters(runs):
+    """summary.md and the answer take their figures from the parameters used, none written in."""
+    from fivebar_drake.summary import answer, markdown
+
+    scenario, params, result, setup, sig, summary = runs["ball"]
+    other = dataclasses.replace(params, robot=dataclasses.replace(params.robot, structure_kg=2.5),
+                                motor=dataclasses.replace(params.motor, peak_torque_Nm=7.0))
+    text = markdown(summary, other).split(summary["answer"])[1] + answer(summary, other)
+    assert f"{other.robot.weight_share_kg:.3f} kg" in text and "7 N·m" in text
+    assert f"{params.robot.weight_share_kg:.3f}" not in text
 
 
 def test_window_is_whole_cycles(run):
