@@ -111,7 +111,8 @@ def _simulate(args, signals) -> int:
         _err(f"warning: the seed's reference figures: {warning}")
     if signals.signum:
         _err(f"{summary['error']}: wrote what was simulated (summary.json: completed false, "
-             "interrupted true)")
+             "interrupted true)" if result.interrupted else
+             f"interrupted by {signals.name} after the run: its files are complete")
         return 128 + signals.signum
     if result.error:
         _err(f"error: the run stopped early: {result.error}")

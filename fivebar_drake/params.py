@@ -67,10 +67,14 @@ def check_number(field: str, value, low=-math.inf, high=math.inf, *, low_open=Fa
     numeric = isinstance(value, int) if integer else isinstance(value, (int, float))
     require(numeric and not isinstance(value, bool), field, value,
             "must be an integer" if integer else "must be a number")
-    inside = (math.isfinite(value) and (value > low if low_open else value >= low)
+    try:
+        finite = math.isfinite(value)
+    except OverflowError:          # an integer beyond any float
+        finite = False
+    inside = (finite and (value > low if low_open else value >= low)
               and (value < high if high_open else value <= high))
     if not inside:
-        kind = "an integer " if integer else "" if math.isfinite(value) else "a finite number "
+        kind = "an integer " if integer else "" if finite else "a finite number "
         if low == high:
             kind, allowed = "", f"{low:g}"
         elif math.isfinite(low) and math.isfinite(high):

@@ -103,8 +103,9 @@ class Scenario:
         require(self.closure in CLOSURES, "scenario.closure", self.closure,
                 f"allowed {list(CLOSURES)}")
         number = check_number
-        number("scenario.duration_s", self.duration_s, 0.0, low_open=True)
-        number("scenario.log_period_s", self.log_period_s, MIN_TIME_STEP_S, self.duration_s)
+        number("scenario.log_period_s", self.log_period_s, MIN_TIME_STEP_S)
+        number("scenario.duration_s", self.duration_s, self.log_period_s,
+               why="at least one recorded interval of scenario.log_period_s")
         number("scenario.duration_s", self.duration_s, high=MAX_LOG_ROWS * self.log_period_s,
                why=f"at most {MAX_LOG_ROWS:g} recorded intervals of scenario.log_period_s = "
                    f"{self.log_period_s:g} s are kept in memory")

@@ -309,7 +309,7 @@ def test_two_runs_have_their_own_recording_ids(tmp_path):
 
 def test_bad_scenario_value_fails_clearly(tmp_path, capsys):
     assert main(["simulate", "--duration", "-1", "--out", str(tmp_path)]) == 2
-    assert "scenario.duration_s = -1.0: must be > 0" in capsys.readouterr().err
+    assert "command line: scenario.duration_s = -1.0: must be >= 0.002" in capsys.readouterr().err
 
 
 @pytest.mark.parametrize("option", ["--closure", "--gait"])
