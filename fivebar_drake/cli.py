@@ -15,7 +15,6 @@ import tempfile
 import time
 import traceback
 from importlib.metadata import version
-from pathlib import Path
 
 from .config import load_params, sampling_error
 from .files import check_output_file, prepare_output_dir, say

@@ -6,7 +6,6 @@ All values are SI (m, kg, s, rad, N, N*m), and every key names its unit.
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from dataclasses import dataclass
 

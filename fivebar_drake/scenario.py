@@ -269,7 +269,8 @@ def load_run(path: "str | Path | None" = None, **overrides) -> tuple[Scenario, P
         params = scenario.load_params()
         check_run(scenario, params)
     except ParameterError as err:
-        if path and "params_file" not in given and err.source == scenario.params_file:
+        if path and scenario.params_file and "params_file" not in given \
+                and err.source == scenario.params_file:
             err = ParameterError(f"{err.message} (the params_file of {path})", err.field,
                                  err.source)
         raise err.located(_source(err, path, given)) from None

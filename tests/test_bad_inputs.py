@@ -227,6 +227,8 @@ def test_bad_input_exits_2_with_a_named_message(case, tmp_path, capsys):
     assert names.format(t=tmp_path) in err, (case, err)
     for part in expected:
         assert part in err, (case, part, err)
+    if not any("params_file" in part for part in expected):
+        assert "params_file of" not in err, err
     assert not (tmp_path / "out" / "summary.json").exists()
     assert not (tmp_path / "out" / "report.json").exists()
     assert not (tmp_path / "out" / "leg.sdf").exists()
