@@ -313,7 +313,6 @@ def simulate(scenario: Scenario, params: Params, progress=True, log_actuation=Fa
     start, error, interrupted = time.perf_counter(), "", ""
     slices = max(1, math.ceil(duration / SLICE_S - 1e-9))
     every = max(1, slices // PROGRESS_LINES)
-    t = 0.0
     try:
         for k in range(1, slices + 1):
             t = min(k * SLICE_S, duration)
@@ -380,7 +379,8 @@ def divergence(message: str, t: float, scenario: Scenario, params: Params, setup
                 f"{clipped:.0%} of the last intervals); likely cause: the gait is too fast for "
                 "the motors: lower gait_frequency_hz or the stride gait_a_m")
     else:
-        what = (f"likely cause: the controller's gains (swing_bandwidth_hz = "
+        what = (f"no loop came apart, the body stayed above the ground and the motors within "
+                f"their limits; likely cause: the controller's gains (swing_bandwidth_hz = "
                 f"{scenario.swing_bandwidth_hz:g}, body_bandwidth_hz = "
                 f"{scenario.body_bandwidth_hz:g}, damping_ratio = {scenario.damping_ratio:g}) "
                 f"at control_period_s = {scenario.control_period_s:g} s: lower the bandwidths")
