@@ -1,158 +1,257 @@
 """Command line of fivebar_drake:
 
-  fivebar-drake analyze  [--gait seed_ellipse|trot] [--config FILE] [--out DIR]
-  fivebar-drake simulate [--gait trot|seed_ellipse] [--scenario FILE] [--duration S]
-                         [--closure bushing|bushing_rpy|ball] [--out DIR]
+  fivebar-drake analyze  [--gait {seed_ellipse,trot}] [--config FILE] [--out DIR]
+  fivebar-drake simulate [--scenario FILE] [--config FILE] [--gait {trot,seed_ellipse}]
+                         [--duration S] [--closure {bushing,bushing_rpy,ball}] [--out DIR]
   fivebar-drake compare  RUN_DIR [RUN_DIR ...] [--out FILE]
-  fivebar-drake models   [--scenario FILE] [--out DIR]"""
+  fivebar-drake models   [--scenario FILE] [--config FILE] [--out DIR]"""
 
 from __future__ import annotations
 
 import argparse
+import shlex
 import sys
+import tempfile
 import time
-from pathlib import Path
+import traceback
+from importlib.metadata import version
 
-from .kinematics import UnreachableError
+from .config import load_params, sampling_error
+from .files import check_output_file, prepare_output_dir, say
 from .footpath import PATHS
-from .config import load_params
+from .interrupts import Interrupted, Signals
 from .params import ParameterError
 from .plant_model import CLOSURES
+from .scenario import Scenario
+
+EXIT_CODES = """exit codes:
+  0    done
+  1    the run failed (stopped early, diverged) or has no verdict (too few gait cycles)
+  2    bad input: a parameter or scenario file, a command-line value, an output path
+  3    internal error (a bug): the message names a log file with the traceback
+  130  interrupted by SIGINT (Ctrl-C), 143 by SIGTERM; simulate writes what it has first"""
+EXIT_INTERNAL = 3
+DEFAULTS = Scenario()
 
 
-def _analyze(args) -> int:
+def _err(text: str) -> None:
+    say(f"fivebar-drake: {text}", sys.stderr)
+
+
+def _analyze(args, signals) -> int:
     import matplotlib
 
     matplotlib.use("Agg")  # files only, never a window
     from .analysis import analyze
     from .plots import write_plots
-    from .report import write_report
+    from .report import ANALYSIS_FILES, write_report
 
     start = time.perf_counter()
     params = load_params(args.config)
-    print(f"parameters: {args.config or 'packaged default'}")
+    out = prepare_output_dir(args.out, "--out", ANALYSIS_FILES)
+    say(f"parameters: {args.config or 'packaged default'}")
     analysis = analyze(params, path=args.gait)
-    out = Path(args.out)
-    written = write_report(analysis, out) + write_plots(analysis, out)
+    sampled = sampling_error(params, args.gait)
+    written = write_plots(analysis, out) + write_report(analysis, out, sampled)  # report.json last
     readings = [(model, motor, m) for model, motors in analysis.results["results"].items()
                 for motor, m in motors.items()]
-    print(f"foot path: {args.gait}; every reading, the lowest safety factor first:")
+    say(f"foot path: {args.gait}; every reading, the lowest safety factor first:")
     for model, motor, m in sorted(readings, key=lambda r: r[2]["safety_factor"]):
-        print(f"  {model:>9} motor {motor}: peak {m['peak_torque_Nm']:.3f} N m, "
-              f"static {m['static_torque_Nm']:.3f} N m, SF {m['safety_factor']:.2f} "
-              f"({m['verdict'].upper()}), peak speed {m['peak_speed_rad_s']:.2f} rad/s")
-    print(f"wrote {len(written)} files to {out.resolve()} in {time.perf_counter() - start:.1f} s:")
+        say(f"  {model:>9} motor {motor}: peak {m['peak_torque_Nm']:.3f} N m, "
+            f"static {m['static_torque_Nm']:.3f} N m, SF {m['safety_factor']:.2f} "
+            f"({m['verdict'].upper()}), peak speed {m['peak_speed_rad_s']:.2f} rad/s")
+    say(f"wrote {len(written)} files to {out.resolve()} in {time.perf_counter() - start:.1f} s:")
     for path in written:
-        print(f"  {path}")
+        say(f"  {path}")
+    if sampled["warning"]:
+        _err(f"warning: {sampled['warning']}")
     return 0
 
 
-def _simulate(args) -> int:
+def _simulate(args, signals) -> int:
     import matplotlib
 
     matplotlib.use("Agg")
     from .analysis import analyze
-    from .recording import write_recording
-    from .scenario import load_scenario
-    from .sim_plots import write_sim_plots
+    from .recording import RECORDING_FILE, write_recording
+    from .scenario import load_run
+    from .sim_plots import SIM_PLOT_FILES, write_sim_plots
     from .simulation import simulate
-    from .summary import signals, summarize, write_summary
+    from .summary import SUMMARY_FILES, signals as run_signals, summarize, write_summary
 
-    scenario = load_scenario(args.scenario, duration_s=args.duration, closure=args.closure,
-                             gait=args.gait)
-    params = scenario.load_params()
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
-    result, setup = simulate(scenario, params, progress=True)
-    sig = signals(result, setup, params, scenario)
-    summary = summarize(sig, scenario, params, setup, result,
-                        analyze(params).results["results"]["seed"])
-    written = write_summary(summary, params, out)
-    written += write_sim_plots(sig, setup.legs, params, summary, out)
-    written.append(write_recording(out / "run.rrd", sig, setup, params, scenario,
+    scenario, params = load_run(args.scenario, duration_s=args.duration, closure=args.closure,
+                                gait=args.gait, params_file=args.config)
+    out = prepare_output_dir(args.out, "--out", SIM_PLOT_FILES + (RECORDING_FILE,) + SUMMARY_FILES)
+    seed = analyze(params).results["results"]["seed"]
+    warning = sampling_error(params, "seed_ellipse")["warning"]
+    result, setup = simulate(scenario, params, progress=True, stop=lambda: signals.name)
+    sig = run_signals(result, setup, params, scenario)
+    summary = summarize(sig, scenario, params, setup, result, seed)
+    written = write_sim_plots(sig, setup.legs, params, summary, out)
+    written.append(write_recording(out / RECORDING_FILE, sig, setup, params, scenario,
                                    result.table["state"], summary))
-    print(f"{summary['gait']} gait, {summary['closure']} closure: {summary['duration_s']:.2f} s "
-          f"simulated, {summary['real_time_factor']:.2f}x real time, worst loop gap "
-          f"{summary['max_loop_gap_m'] * 1e3:.4f} mm, {summary['cycles_in_window']} whole cycles, "
-          f"walking {summary['mean_forward_speed_m_s']:.3f} m/s (gait "
-          f"{summary['gait_speed_m_s']:.3f} m/s), largest tilt {summary['max_tilt_deg']:.1f} deg")
+    written += write_summary(summary, params, out)        # last: summary.json says it is complete
+    say(f"{summary['gait']} gait, {summary['closure']} closure: {summary['duration_s']:.2f} s "
+        f"simulated, {summary['real_time_factor']:.2f}x real time, worst loop gap "
+        f"{summary['max_loop_gap_m'] * 1e3:.4f} mm, {summary['cycles_in_window']} whole cycles, "
+        f"walking {summary['mean_forward_speed_m_s']:.3f} m/s (gait "
+        f"{summary['gait_speed_m_s']:.3f} m/s), largest tilt {summary['max_tilt_deg']:.1f} deg")
     for leg, motors in summary["legs"].items():
-        print("  " + leg + ": " + ", ".join(
+        say("  " + leg + ": " + ", ".join(
             f"{m} demand p99 {v['demand_p99_Nm']:.2f} N m (RMS {v['rms_torque_Nm']:.2f}, "
             f"SF {v['safety_factor']:.2f} {v['verdict']})" for m, v in motors.items()))
-    print(f"verdict: {summary['verdict'].upper()} (worst motor {summary['worst_motor']})")
-    print(summary["answer"])
-    print(f"wrote {len(written)} files to {out.resolve()}:")
+    say(f"verdict: {summary['verdict'].upper()} (worst motor {summary['worst_motor']})")
+    say(summary["answer"])
+    say(f"wrote {len(written)} files to {out.resolve()}:")
     for path in written:
-        print(f"  {path}")
-    print(f"open the recording with: rerun {out / 'run.rrd'}")
+        say(f"  {path}")
+    say(f"open the recording with: rerun {shlex.quote(str(out / RECORDING_FILE))}")
+    if warning:
+        _err(f"warning: the seed's reference figures: {warning}")
+    if signals.signum:
+        _err(f"{summary['error']}: wrote what was simulated (summary.json: completed false, "
+             "interrupted true)" if result.interrupted else
+             f"interrupted by {signals.name} after the run: its files are complete")
+        return 128 + signals.signum
     if result.error:
-        print(f"fivebar-drake: error: the run stopped early: {result.error}", file=sys.stderr)
+        _err(f"error: the run stopped early: {result.error}")
         return 1
     if summary["verdict"] == "insufficient":
-        print(f"fivebar-drake: error: no verdict: {summary['answer']}", file=sys.stderr)
+        _err(f"error: no verdict: {summary['answer']}")
         return 1
     return 0
 
 
-def _compare(args) -> int:
+def _compare(args, signals) -> int:
     import matplotlib
 
     matplotlib.use("Agg")
     from .comparison import write_comparison
 
-    for path in write_comparison(args.runs, Path(args.out)):
-        print(f"wrote {path}")
+    out = check_output_file(args.out, "--out")
+    for path in write_comparison(args.runs, out):
+        say(f"wrote {path}")
     return 0
 
 
-def _models(args) -> int:
-    from .scenario import load_scenario
-    from .sdf_model import write_models
+def _models(args, signals) -> int:
+    from .scenario import load_run
+    from .sdf_model import MODEL_FILES, write_models
     from .simulation import closure_parameters
 
-    scenario = load_scenario(args.scenario, closure="bushing_rpy")
-    params = scenario.load_params()
+    scenario, params = load_run(args.scenario, closure="bushing_rpy", params_file=args.config)
+    out = prepare_output_dir(args.out, "--out", MODEL_FILES)
     _, bushing, _, _ = closure_parameters(scenario, params)
-    for path in write_models(params, bushing, Path(args.out)):
-        print(f"wrote {path}")
+    for path in write_models(params, bushing, out):
+        say(f"wrote {path}")
     return 0
+
+
+def parser() -> argparse.ArgumentParser:
+    """The command line, every option with its choices and default in --help."""
+    top = argparse.ArgumentParser(prog="fivebar-drake", description=__doc__, epilog=EXIT_CODES,
+                                  formatter_class=argparse.RawDescriptionHelpFormatter)
+    top.add_argument("--version", action="version", version=f"%(prog)s "
+                     f"{version('fivebar_drake')} (drake {version('drake')})")
+    sub = top.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    config = dict(metavar="FILE", help="parameter file (TOML, the layout of "
+                  "fivebar_drake/data/default.toml); default: the packaged parameters")
+
+    def command(name, run, text):
+        p = sub.add_parser(name, help=text, description=text, epilog=EXIT_CODES,
+                           formatter_class=argparse.RawDescriptionHelpFormatter)
+        p.set_defaults(run=run)
+        return p
+
+    p = command("analyze", _analyze, "the seed's torque analysis over one cycle of a foot path")
+    p.add_argument("--gait", choices=PATHS, default="seed_ellipse",
+                   help="foot path to analyse (default: %(default)s, the seed's)")
+    p.add_argument("--config", **config)
+    p.add_argument("--out", default="out/analysis", metavar="DIR",
+                   help="output folder; a previous analysis's files in it are replaced "
+                        "(default: %(default)s)")
+    s = command("simulate", _simulate, "Drake simulation of the trotting quadruped")
+    s.add_argument("--scenario", metavar="FILE",
+                   help="scenario file (YAML, fields of fivebar_drake.scenario.Scenario, see "
+                        "README); default: the built-in scenario")
+    s.add_argument("--config", **{**config, "help": config["help"] + "; overrides the "
+                                  "scenario's params_file"})
+    s.add_argument("--gait", choices=PATHS,
+                   help=f"foot path (overrides the scenario's; default: {DEFAULTS.gait})")
+    s.add_argument("--duration", type=float, metavar="S",
+                   help=f"simulated time in s (overrides the scenario's; default: "
+                        f"{DEFAULTS.duration_s:g})")
+    s.add_argument("--closure", choices=CLOSURES,
+                   help=f"loop closure (overrides the scenario's; default: {DEFAULTS.closure})")
+    s.add_argument("--out", default="out/simulation", metavar="DIR",
+                   help="output folder; a previous run's files in it are removed before the "
+                        "run starts (default: %(default)s)")
+    c = command("compare", _compare, "simulated runs side by side: what the foot path costs")
+    c.add_argument("runs", nargs="+", metavar="RUN_DIR", help="output folders of `simulate` runs")
+    c.add_argument("--out", default="out/gait_comparison.md", metavar="FILE",
+                   help="markdown file; a PNG is written beside it (default: %(default)s)")
+    m = command("models", _models, "write the SDF models generated from the parameters")
+    m.add_argument("--scenario", metavar="FILE", help="scenario file (YAML) for the bushing "
+                   "design (target_loop_gap_m) and its params_file")
+    m.add_argument("--config", **{**config, "help": config["help"] + "; overrides the "
+                                  "scenario's params_file"})
+    m.add_argument("--out", default="sdf", metavar="DIR",
+                   help="output folder (default: %(default)s)")
+    return top
+
+
+def options_markdown() -> str:
+    """The README's table of every subcommand's options, from the parser."""
+    rows = ["| command | option | default | meaning |", "|---|---|---|---|"]
+    sub = next(a for a in parser()._actions if isinstance(a, argparse._SubParsersAction))
+    for name, command in sub.choices.items():
+        for action in command._actions:
+            if isinstance(action, argparse._HelpAction):
+                continue
+            option = ", ".join(action.option_strings) or action.metavar
+            if action.choices:
+                option += " {" + ",".join(action.choices) + "}"
+            elif action.option_strings and action.metavar:
+                option += f" {action.metavar}"
+            default = "" if action.default is None else f"`{action.default}`"
+            text = action.help.replace("(default: %(default)s)", "").replace(
+                "%(default)s", str(action.default)).strip()
+            rows.append(f"| {name} | `{option}` | {default} | {text} |")
+    return "\n".join(rows)
+
+
+def _internal_error(err: BaseException, argv) -> int:
+    """Write the traceback to a log file and say where it is."""
+    fd, log = tempfile.mkstemp(prefix="fivebar-drake-error-", suffix=".log")
+    with open(fd, "w", encoding="utf-8") as f:
+        f.write(f"fivebar-drake {version('fivebar_drake')}, arguments {argv!r}\n")
+        f.write("".join(traceback.format_exception(err)))
+    _err(f"internal error (a bug, not your input): {type(err).__name__}: {err}; the traceback "
+         f"is in {log}")
+    return EXIT_INTERNAL
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(prog="fivebar-drake", description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
-    sub = parser.add_subparsers(dest="command", required=True)
-    p = sub.add_parser("analyze", help="the seed's torque analysis over one cycle of a foot path")
-    p.add_argument("--gait", choices=PATHS, default="seed_ellipse",
-                   help="foot path to analyse (default: %(default)s, the seed's)")
-    p.add_argument("--config", help="parameter file (TOML); default: the packaged parameters")
-    p.add_argument("--out", default="out/analysis", help="output folder (default: %(default)s)")
-    p.set_defaults(run=_analyze)
-    s = sub.add_parser("simulate", help="Drake simulation of the trotting quadruped")
-    s.add_argument("--scenario", help="scenario file (YAML); default: built-in trot scenario")
-    s.add_argument("--duration", type=float, help="simulated time in s (overrides the scenario)")
-    s.add_argument("--gait", choices=PATHS,
-                   help="foot path (overrides the scenario's, default trot)")
-    s.add_argument("--closure", choices=CLOSURES,
-                   help="loop closure (overrides the scenario's, default bushing)")
-    s.add_argument("--out", default="out/simulation", help="output folder (default: %(default)s)")
-    s.set_defaults(run=_simulate)
-    c = sub.add_parser("compare", help="simulated runs side by side: what the foot path costs")
-    c.add_argument("runs", nargs="+", help="output folders of `simulate` runs")
-    c.add_argument("--out", default="out/gait_comparison.md",
-                   help="markdown file; a PNG is written beside it (default: %(default)s)")
-    c.set_defaults(run=_compare)
-    m = sub.add_parser("models", help="write the SDF models generated from the parameters")
-    m.add_argument("--scenario", help="scenario file (YAML) for the bushing design")
-    m.add_argument("--out", default="sdf", help="output folder (default: %(default)s)")
-    m.set_defaults(run=_models)
-    args = parser.parse_args(argv)
+    """Run the command line; returns the exit code (see EXIT_CODES)."""
+    argv = sys.argv[1:] if argv is None else list(argv)
     try:
-        return args.run(args)
-    except (ParameterError, UnreachableError, ValueError) as err:
-        print(f"fivebar-drake: error: {err}", file=sys.stderr)
+        args = parser().parse_args(argv)
+    except SystemExit as exit_:             # --help, --version, or a usage error (code 2)
+        return int(exit_.code or 0)
+    try:
+        with Signals(stop_gently=args.command == "simulate") as signals:
+            return args.run(args, signals)
+    except ParameterError as err:
+        _err(f"error: {err}")
         return 2
+    except Interrupted as err:
+        _err(f"{err}: stopped")
+        return err.exit_code
+    except KeyboardInterrupt:
+        _err("interrupted: stopped")
+        return 130
+    except Exception as err:  # noqa: BLE001  (anything else is a bug: logged, never a traceback)
+        return _internal_error(err, argv)
 
 
 if __name__ == "__main__":

@@ -6,18 +6,48 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-MOTORS = ("A", "B")
+from .files import atomic_path, read_input_text, write_atomic
+from .params import ParameterError, require
+from .summary import MIN_CYCLES, MOTORS
+
+TOP_KEYS = ("gait", "closure", "answer", "verdict", "mean_forward_speed_m_s", "gait_speed_m_s",
+            "max_tilt_deg", "seed_peak_torque_Nm", "motor_peak_torque_Nm", "legs")
+MOTOR_KEYS = ("demand_p99_Nm", "rms_torque_Nm", "static_seed_Nm", "static_trot_Nm")
 
 
 def load_summaries(run_dirs) -> list[dict]:
-    """summary.json of each run folder, in order."""
+    """summary.json of each run folder, in order; ParameterError naming the file if one is
+    missing or is not a summary of `fivebar-drake simulate`."""
     out = []
     for run in run_dirs:
         path = Path(run) / "summary.json"
-        if not path.is_file():
-            raise ValueError(f"{path}: not found (run `fivebar-drake simulate --out {run}` first)")
-        out.append(json.loads(path.read_text()))
+        try:
+            out.append(_summary(path))
+        except ParameterError as err:
+            raise ParameterError(f"{err.message} (a run folder of `fivebar-drake simulate "
+                                 f"--out {run}` holds it)", err.field, str(path)) from None
+    legs = [sorted(s["legs"]) for s in out]
+    require(all(leg == legs[0] for leg in legs), "legs", legs, "the runs must have the same legs")
     return out
+
+
+def _summary(path: Path) -> dict:
+    try:
+        data = json.loads(read_input_text(path, "run summary"))
+    except json.JSONDecodeError as err:
+        raise ParameterError(f"not valid JSON ({err})") from None
+    require(isinstance(data, dict), "summary", type(data).__name__, "must be a JSON object")
+    missing = [key for key in TOP_KEYS if key not in data]
+    require(not missing, "summary", sorted(data)[:5], f"lacks the keys {missing}")
+    require(isinstance(data["legs"], dict), "legs", data["legs"], "must map legs to motors")
+    for leg, motors in data["legs"].items():
+        for motor in MOTORS:
+            for key in MOTOR_KEYS:
+                value = motors.get(motor, {}).get(key, "missing") if isinstance(motors, dict) \
+                    else "missing"
+                require(value is None or isinstance(value, (int, float)),
+                        f"legs.{leg}.{motor}.{key}", value, "must be a number or null")
+    return data
 
 
 def _num(value, fmt=".2f") -> str:
@@ -47,8 +77,9 @@ def markdown(summaries: list[dict]) -> str:
                 cells += [_num(m["demand_p99_Nm"]), _num(m["rms_torque_Nm"]),
                           _num(m["static_seed_Nm"]), _num(m["static_trot_Nm"])]
             lines.append(f"| {leg} | {motor} | " + " | ".join(cells) + " |")
-    lines += ["", "A run with the verdict INSUFFICIENT stopped early or covered fewer than three "
-              "whole cycles: its figures describe what it did before that, not a trot."]
+    lines += ["", f"A run with the verdict INSUFFICIENT stopped early or covered fewer than "
+              f"{MIN_CYCLES} whole cycles: its figures describe what it did before that, not a "
+              "trot."]
     return "\n".join(lines) + "\n"
 
 
@@ -77,14 +108,15 @@ def figure(summaries: list[dict]):
 
 
 def write_comparison(run_dirs, out_md: Path) -> list[Path]:
-    """Write out_md and a PNG beside it comparing the runs in run_dirs."""
+    """Write out_md and a PNG beside it comparing the runs in run_dirs (each atomically)."""
     import matplotlib.pyplot as plt
 
     summaries = load_summaries(run_dirs)
     out_md.parent.mkdir(parents=True, exist_ok=True)
-    out_md.write_text(markdown(summaries))
+    write_atomic(out_md, markdown(summaries))
     png = out_md.with_suffix(".png")
     fig = figure(summaries)
-    fig.savefig(png, dpi=110)
+    with atomic_path(png) as tmp:
+        fig.savefig(tmp, dpi=110)
     plt.close(fig)
     return [out_md, png]

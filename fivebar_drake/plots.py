@@ -8,6 +8,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from .analysis import MOTORS, Analysis
+from .files import atomic_path
 from .singularity import workspace
 
 MODEL_STYLE = {"seed": "--", "full": "-", "full_trot": ":"}
@@ -17,7 +18,8 @@ COMPONENTS = (("inertial", "inertial M q''"), ("coriolis", "Coriolis c(q, q')"),
 
 
 def _save(fig, path: Path) -> Path:
-    fig.savefig(path, dpi=120)
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, dpi=120)
     plt.close(fig)
     return path
 
@@ -117,7 +119,7 @@ def workspace_map(an: Analysis) -> plt.Figure:
 
 
 def write_plots(an: Analysis, out_dir: Path) -> list[Path]:
-    """Write every plot of the analysis into out_dir as PNG; returns the paths."""
+    """Write every plot of the analysis into out_dir as PNG (atomically); returns the paths."""
     out_dir.mkdir(parents=True, exist_ok=True)
     return [_save(figure(an), out_dir / f"{name}.png") for name, figure in FIGURES.items()]
 

@@ -22,11 +22,13 @@ import numpy as np
 import rerun as rr
 import rerun.blueprint as rrb
 
+from .files import atomic_path
 from .params import Params
 from .scenario import Scenario
 from .simulation import Setup
 from .summary import MOTORS, Signals
 
+RECORDING_FILE = "run.rrd"
 TIMELINE = "sim_time"
 FORCE_ARROW_M_PER_N = 0.001    # 1 mm of arrow per newton
 
@@ -81,16 +83,20 @@ def _link_points(setup: Setup, params: Params, state_rows: np.ndarray):
 
 def write_recording(path: Path, sig: Signals, setup: Setup, params: Params,
                     scenario: Scenario, state: np.ndarray, summary: dict) -> Path:
-    """Write the .rrd file; state: the plant state of each log interval (for the 3-D poses)."""
+    """Write the .rrd file atomically (complete with its footer, then renamed into place);
+    state: the plant state of each log interval (for the 3-D poses)."""
     path.parent.mkdir(parents=True, exist_ok=True)
     rec = rr.RecordingStream("fivebar_drake", recording_id=f"fivebar_drake-{scenario.gait}-"
                              f"{scenario.closure}-{uuid.uuid4().hex[:12]}")
     rec.set_log_time_enabled(False)
     rec.set_log_tick_enabled(False)
-    rec.save(str(path), default_blueprint=blueprint(setup.legs))
-    with rec:
-        _log_scene(rec, sig, setup, params, scenario, state)
-        _log_series(rec, sig, setup, params, summary)
+    with atomic_path(path) as tmp:
+        rec.save(str(tmp), default_blueprint=blueprint(setup.legs))
+        with rec:
+            if len(sig.t):
+                _log_scene(rec, sig, setup, params, scenario, state)
+                _log_series(rec, sig, setup, params, summary)
+        rec.disconnect()
     return path
 
 

@@ -7,12 +7,16 @@ import math
 from pathlib import Path
 
 from .analysis import MOTORS, Analysis
+from .config import sampling_error
 from .dynamics import physical_izz
+from .files import write_atomic
 from .footpath import stance_speed
 from .params import LINK_NAMES
 from .plots import FIGURES
 
 SIDE_BY_SIDE = ("seed", "full")
+REPORT_FILES = ("report.md", "report.json")
+ANALYSIS_FILES = REPORT_FILES + tuple(f"{name}.png" for name in FIGURES)   # what analyze writes
 
 
 def assumptions(analysis: Analysis) -> list[str]:
@@ -61,17 +65,25 @@ def _where(at: dict) -> str:
     return f"t = {at['time_s']:.3f} s (sample {at['sample']}), F = ({x:.1f}, {y:.1f}) mm"
 
 
-def markdown(analysis: Analysis) -> str:
+def markdown(analysis: Analysis, sampled: dict | None = None) -> str:
+    """report.md; sampled: config.sampling_error of the analysed path (computed if None)."""
+    if sampled is None:
+        sampled = sampling_error(analysis.params, analysis.samples.path)
     r = analysis.results["results"]
     p = analysis.params
     g = p.gait
     lines = [
         f"# 5-bar leg: dynamic torque analysis over the {path_name(analysis)}",
         "",
-        f"Foot path: {path_text(analysis)}, f = {g.frequency_hz:g} Hz, N = {g.samples} samples. "
-        f"Motor: {p.motor.peak_torque_Nm:g} N m, {p.motor.no_load_speed_rad_s:.2f} rad/s.",
+        f"Foot path: {path_text(analysis)}, f = {g.frequency_hz:g} Hz, N = {g.samples} samples "
+        f"(central differences: peak joint speed within {sampled['speed']:.1%}, peak "
+        f"acceleration within {sampled['acceleration']:.1%} of {sampled['reference_samples']} "
+        f"samples). Motor: {p.motor.peak_torque_Nm:g} N m, {p.motor.no_load_speed_rad_s:.2f} "
+        "rad/s.",
         "",
-        "Models, side by side (SPEC.md section 3):",
+        *([f"**Warning:** {sampled['warning']}.", ""] if sampled["warning"] else []),
+        "Models, side by side (the seed's formulas as written and the physically consistent "
+        "ones):",
         "",
     ]
     lines += [f"- **{name}**: {text}" for name, text in analysis.results["models"].items()]
@@ -131,11 +143,12 @@ def markdown(analysis: Analysis) -> str:
     return "\n".join(lines) + "\n"
 
 
-def write_report(analysis: Analysis, out_dir: Path) -> list[Path]:
-    """Write report.md and report.json into out_dir; returns their paths."""
+def write_report(analysis: Analysis, out_dir: Path, sampled: dict | None = None) -> list[Path]:
+    """Write REPORT_FILES into out_dir, each atomically, both composed before either is
+    written; sampled: config.sampling_error of the analysed path (computed if None). Returns
+    their paths."""
+    sampled = sampled or sampling_error(analysis.params, analysis.samples.path)
+    data = dict(analysis.results, assumptions=assumptions(analysis), sampling_error=sampled)
+    texts = (markdown(analysis, sampled), json.dumps(data, indent=2, allow_nan=False) + "\n")
     out_dir.mkdir(parents=True, exist_ok=True)
-    md, js = out_dir / "report.md", out_dir / "report.json"
-    md.write_text(markdown(analysis))
-    data = dict(analysis.results, assumptions=assumptions(analysis))
-    js.write_text(json.dumps(data, indent=2, allow_nan=False) + "\n")
-    return [md, js]
+    return [write_atomic(out_dir / name, text) for name, text in zip(REPORT_FILES, texts)]

@@ -20,6 +20,7 @@ from xml.dom import minidom
 import numpy as np
 
 from .dynamics import physical_izz
+from .files import write_atomic
 from .params import LINK_NAMES, Params
 
 LEGS = ("FL", "FR", "RL", "RR")
@@ -163,13 +164,11 @@ def plane_rotation() -> np.ndarray:
 def body_mass_properties(params: Params):
     """Mass (kg), COM (3,) in m and inertia (3, 3) about the COM in kg*m^2 of the body: the
     battery and structure as a uniform box, the 8 motors as point masses at their axes. The links
-    are subtracted from the structure so the whole robot weighs robot.total_mass_kg."""
+    are subtracted from the structure so the whole robot weighs robot.total_mass_kg (Params
+    checks that they weigh less)."""
     r, b = params.robot, params.body
     links_kg = len(LEGS) * sum(link.mass_kg for link in params.links.values())
     box_kg = r.battery_electronics_kg + r.structure_kg - links_kg
-    if box_kg <= 0:
-        raise ValueError(f"links ({links_kg:.3f} kg) outweigh battery + structure "
-                         f"({r.battery_electronics_kg + r.structure_kg:.3f} kg)")
     motors = motor_positions(params)
     motor_kg = r.motors_kg / len(motors)
     mass = box_kg + r.motors_kg
@@ -226,11 +225,8 @@ MODEL_FILES = {"leg.sdf": (single_leg_sdf, "bushing_rpy"),
 
 
 def write_models(params: Params, bushing: Bushing, out_dir: Path) -> list[Path]:
-    """Write the MODEL_FILES into out_dir: the fixed-hip leg and the quadruped closed by the
-    explicit bushing, and the quadruped closed by ball constraints."""
+    """Write the MODEL_FILES into out_dir, each atomically: the fixed-hip leg and the quadruped
+    closed by the explicit bushing, and the quadruped closed by ball constraints."""
     out_dir.mkdir(parents=True, exist_ok=True)
-    paths = []
-    for name, (make, closure) in MODEL_FILES.items():
-        paths.append(out_dir / name)
-        paths[-1].write_text(make(params, closure, bushing))
-    return paths
+    return [write_atomic(out_dir / name, make(params, closure, bushing))
+            for name, (make, closure) in MODEL_FILES.items()]

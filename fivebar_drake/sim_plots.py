@@ -7,6 +7,7 @@ from pathlib import Path
 
 import matplotlib.pyplot as plt
 
+from .files import atomic_path
 from .params import Params
 from .summary import MOTORS, Signals
 
@@ -58,12 +59,18 @@ def motion_figure(sig: Signals, legs, gait_speed: float) -> plt.Figure:
     return fig
 
 
+SIM_PLOT_FILES = ("sim_torques.png", "sim_motion.png")
+
+
 def write_sim_plots(sig: Signals, legs, params: Params, summary: dict,
                     out_dir: Path) -> list[Path]:
+    """Write SIM_PLOT_FILES into out_dir (atomically); returns their paths."""
     paths = []
-    for name, fig in (("sim_torques.png", torque_figure(sig, legs, params, summary["window_s"])),
-                      ("sim_motion.png", motion_figure(sig, legs, summary["gait_speed_m_s"]))):
-        fig.savefig(out_dir / name, dpi=110)
+    figures = (torque_figure(sig, legs, params, summary["window_s"]),
+               motion_figure(sig, legs, summary["gait_speed_m_s"]))
+    for name, fig in zip(SIM_PLOT_FILES, figures):
+        with atomic_path(out_dir / name) as tmp:
+            fig.savefig(tmp, dpi=110)
         plt.close(fig)
         paths.append(out_dir / name)
     return paths

@@ -10,6 +10,7 @@ import math
 import sys
 import time
 from dataclasses import dataclass
+from typing import Callable
 
 import numpy as np
 from pydrake.geometry import AddContactMaterial, Box, ProximityProperties
@@ -22,8 +23,10 @@ from pydrake.systems.primitives import DiscreteTimeIntegrator, Multiplexer, Vect
 
 from .bushing import bushing_parameters, loop_load
 from .dynamics import mass_matrix, physical_izz
+from .files import say
+from .footpath import stance_start
 from .kinematics import inverse
-from .params import Params
+from .params import ParameterError, Params, check_number, require
 from .plant_model import add_model, leg_indices, loop_gaps, tree_positions
 from .scenario import Scenario
 from .sdf_model import body_height, hip_positions
@@ -36,6 +39,13 @@ IMPLICIT_TIME_STEP_S = 1e-3   # plant step of the closures SAP treats implicitly
 FALL_TILT_DEG = 45.0   # a body tilted further has fallen: the run stops
 GROUND_SIZE_M = 40.0   # flat ground, top face at z = 0
 GROUND_DEPTH_M = 1.0
+SLICE_S = 0.01         # simulated time between checks for divergence and a stop request
+PROGRESS_LINES = 20    # progress lines over a run
+MAX_PLANT_STEPS = 20_000_000   # duration / time step: at ~0.3 ms of wall time per plant step
+#                                (measured, 2 cores) about two hours
+MIN_LOG_INTERVALS_PER_CYCLE = 100   # the statistics take peaks and percentiles of the recorded
+#                                     interval means: coarser intervals smear a cycle's peaks
+DIVERGED_GAP_M = 1e-3  # a loop open by more than this (1 % of a link) has come apart
 
 
 @dataclass
@@ -72,14 +82,60 @@ def closure_parameters(scenario: Scenario, params: Params):
     if scenario.closure == "bushing":
         return scenario.time_step_s or IMPLICIT_TIME_STEP_S, bushing, m_eff, force
     if scenario.time_step_s > dt:
-        raise ValueError(
+        raise ParameterError(
             f"scenario.time_step_s = {scenario.time_step_s!r}: the explicit bushing (k = "
             f"{bushing.stiffness_N_m:.3g} N/m, m_eff = {m_eff * 1e3:.2f} g) is stable up to "
             f"{dt:.3g} s; use 0 (derived) or a smaller step, a larger target_loop_gap_m, or the "
-            "implicit closure 'bushing'")
+            "implicit closure 'bushing'", "scenario.time_step_s")
     # the largest stable step that divides the log period, so every log interval has whole steps
     derived = scenario.log_period_s / math.ceil(scenario.log_period_s / dt - 1e-9)
     return scenario.time_step_s or derived, bushing, m_eff, force
+
+
+def recorded_periods(scenario: Scenario, time_step: float) -> tuple[float, int]:
+    """(the recorder's period s: whole plant steps of time_step s nearest log_period_s, the
+    number of motor samples in it, rounded)."""
+    log_period = time_step * max(1, round(scenario.log_period_s / time_step))
+    return log_period, round(log_period / scenario.motor_period_s)
+
+
+def check_run(scenario: Scenario, params: Params) -> float:
+    """The plant's time step (s) for the scenario, after the checks that need the parameters
+    and the step (ParameterError naming the field): the step against the motor model's period,
+    the foot contact's time scale and the number of steps; the recorded interval against the
+    step and the gait, the pose rate against the interval; the load transfer against the
+    stance."""
+    step = closure_parameters(scenario, params)[0]
+    field = "scenario.time_step_s"
+    derived = "" if scenario.time_step_s else f"; 0 derives {step:g} s for the closure"
+    check_number(field, step, high=scenario.motor_period_s,
+                 why="the plant steps at least as often as the motor model updates "
+                     f"(scenario.motor_period_s), or its torques are skipped{derived}")
+    check_number(field, step, high=params.body.foot_relaxation_time_s,
+                 why="a touchdown must span more than one plant step: "
+                     f"body.foot_relaxation_time_s is the foot contact's time scale{derived}")
+    check_number(field, step, low=scenario.duration_s / MAX_PLANT_STEPS,
+                 why=f"scenario.duration_s = {scenario.duration_s:g} s may take at most "
+                     f"{MAX_PLANT_STEPS:g} plant steps (about two hours){derived}")
+    period = params.gait.period_s
+    check_number("scenario.log_period_s", scenario.log_period_s, step,
+                 period / MIN_LOG_INTERVALS_PER_CYCLE,
+                 why=f"at least one plant step and at least {MIN_LOG_INTERVALS_PER_CYCLE} "
+                     f"intervals per gait cycle of {period:g} s")
+    check_number("scenario.pose_rate_hz", scenario.pose_rate_hz, high=1.0 / scenario.log_period_s,
+                 why="poses are taken from the recorded intervals: at most 1 / log_period_s")
+    log_period, per_row = recorded_periods(scenario, step)
+    require(per_row >= 1 and math.isclose(per_row * scenario.motor_period_s, log_period,
+                                          rel_tol=1e-9),
+            "scenario.log_period_s", scenario.log_period_s,
+            f"the recorder logs every {log_period:.6g} s (whole plant steps of {step:.6g} s), "
+            f"which must be a whole number of motor periods (scenario.motor_period_s = "
+            f"{scenario.motor_period_s:g} s): the motor's samples are averaged per interval")
+    stance_s = (1.0 - stance_start(params.gait, scenario.gait)) * period
+    check_number("scenario.load_transfer_s", scenario.load_transfer_s, high=stance_s / 2,
+                 why=f"a foot must take up its load and give it off within its stance of "
+                     f"{stance_s:g} s")
+    return step
 
 
 def robot_layout(plant, instance, legs, params: Params) -> RobotLayout:
@@ -160,14 +216,7 @@ def build_diagram(scenario: Scenario, params: Params, log_actuation: bool = Fals
     n_act, nv = plant.num_actuators(), plant.num_velocities()
     integrator = builder.AddNamedSystem("contact_integral", DiscreteTimeIntegrator(nv, time_step))
     rows = builder.AddNamedSystem("rows", Multiplexer([layout.nx, nv]))
-    log_period = time_step * max(1, round(scenario.log_period_s / time_step))
-    per_row = round(log_period / scenario.motor_period_s)
-    if per_row < 1 or not math.isclose(per_row * scenario.motor_period_s, log_period,
-                                       rel_tol=1e-9):
-        raise ValueError(
-            f"scenario.log_period_s = {scenario.log_period_s!r} (the recorder logs every "
-            f"{log_period:.6g} s with the plant step {time_step:.6g} s) is not a whole number "
-            f"of motor periods (scenario.motor_period_s = {scenario.motor_period_s!r})")
+    log_period, per_row = recorded_periods(scenario, time_step)
     recorder = builder.AddNamedSystem("recorder", VectorLogSink(layout.nx + nv, log_period))
     motor_log = builder.AddNamedSystem("motor_log", VectorLogSink(3 * n_act,
                                                                   scenario.motor_period_s))
@@ -249,19 +298,26 @@ def interval_table(setup: Setup, params: Params, context) -> dict:
 @dataclass
 class SimResult:
     """What the recorder measured (interval_table: t, state, gap, speed, contact_generalized,
-    command, motor_torque, applied, clipped_peak, clipped_line), wall time (s), the error text if the run
-    stopped early, and with log_actuation the times (steps,) s and joint torques (steps, n) N*m
-    the plant received at every step."""
+    command, motor_torque, applied, clipped_peak, clipped_line), wall time (s), the error text
+    if the run stopped early, the signal that stopped it ("SIGINT", "SIGTERM"; "" if none), and
+    with log_actuation the times (steps,) s and joint torques (steps, n) N*m the plant received
+    at every step."""
 
     table: dict
     wall_s: float
     error: str = ""
     actuation: tuple | None = None
+    interrupted: str = ""
 
 
-def simulate(scenario: Scenario, params: Params, progress=True, log_actuation=False):
-    """Build and run the scenario; returns (SimResult, Setup). A failure mid-run keeps what was
-    logged up to it (SimResult.error says what happened). log_actuation: see build_diagram."""
+def simulate(scenario: Scenario, params: Params, progress=True, log_actuation=False,
+             stop: Callable[[], str] | None = None):
+    """Check (check_run), build and run the scenario; returns (SimResult, Setup). A failure
+    mid-run keeps what was logged up to it (SimResult.error says what happened, for a divergence
+    with its likely cause). stop: polled every SLICE_S of simulated time; a non-empty answer
+    (the name of a signal) ends the run there (SimResult.interrupted). log_actuation: see
+    build_diagram."""
+    check_run(scenario, params)
     diagram, setup = build_diagram(scenario, params, log_actuation)
     simulator = Simulator(diagram)
     context = simulator.get_mutable_context()
@@ -271,32 +327,82 @@ def simulate(scenario: Scenario, params: Params, progress=True, log_actuation=Fa
     # every discrete update once, outside the timing: loads (or on a first run compiles) the
     # compiled kernels
     diagram.CalcForcedDiscreteVariableUpdate(context, diagram.AllocateDiscreteVariables())
-    say = (lambda text: print(text, file=sys.stderr, flush=True)) if progress else (lambda text: None)
-    say(f"simulating {scenario.duration_s:g} s, closure {scenario.closure}, "
-        f"time step {setup.time_step_s * 1e3:.3f} ms")
-    start, error = time.perf_counter(), ""
-    chunk = max(scenario.duration_s / 20, 0.05)
-    t = 0.0
+    tell = (lambda text: say(text, sys.stderr)) if progress else (lambda text: None)
+    duration = scenario.duration_s
+    tell(f"simulating {duration:g} s, closure {scenario.closure}, "
+         f"time step {setup.time_step_s * 1e3:.3f} ms")
+    start, error, interrupted = time.perf_counter(), "", ""
+    slices = max(1, math.ceil(duration / SLICE_S - 1e-9))
+    every = max(1, slices // PROGRESS_LINES)
     try:
-        while t < scenario.duration_s - 1e-12:
-            t = min(t + chunk, scenario.duration_s)
+        for k in range(1, slices + 1):
+            t = min(k * SLICE_S, duration)
             simulator.AdvanceTo(t)
-            wall = time.perf_counter() - start
-            say(f"  t = {t:6.2f} s / {scenario.duration_s:g} s  ({t / wall:4.2f}x real time)")
             plant_state = setup.plant.GetPositionsAndVelocities(
                 setup.plant.GetMyContextFromRoot(context))
             if not np.all(np.isfinite(plant_state)):
-                raise RuntimeError(f"the plant state is not finite at t = {t:.3f} s (diverged)")
+                raise RuntimeError("the plant state is not finite")
             tilt = tilt_deg(plant_state[setup.layout.body_q:setup.layout.body_q + 4])
             if tilt > FALL_TILT_DEG:
-                raise RuntimeError(f"the robot fell over: tilt {tilt:.0f} deg at t = {t:.2f} s")
-    except (RuntimeError, ValueError) as err:   # divergence, unreachable targets
-        error = str(err)
-        say(f"simulation stopped early: {error}")
+                raise ValueError(f"the robot fell over: tilt {tilt:.0f} deg")
+            interrupted = stop() if stop else ""
+            if interrupted:
+                tell(f"{interrupted} received: stopped at t = {t:.2f} s; writing what was "
+                     "simulated")
+                break
+            if k % every == 0 or k == slices:
+                wall = time.perf_counter() - start
+                tell(f"  t = {t:6.2f} s / {duration:g} s  ({t / wall:4.2f}x real time)")
+    except RuntimeError as err:   # Drake's own errors: a divergence
+        error = divergence(str(err), context.get_time(), scenario, params, setup,
+                           interval_table(setup, params, context))
+    except ValueError as err:     # a fall, an unreachable target
+        error = f"{err} (t = {context.get_time():.3f} s)"
+    if error:
+        tell(f"simulation stopped early: {error}")
     wall = time.perf_counter() - start
     actuation = None
     if setup.actuation_log is not None:
         log = setup.actuation_log.FindLog(context)
         actuation = (log.sample_times(), log.data().T)
     return SimResult(table=interval_table(setup, params, context), wall_s=wall, error=error,
-                     actuation=actuation), setup
+                     actuation=actuation, interrupted=interrupted), setup
+
+
+def divergence(message: str, t: float, scenario: Scenario, params: Params, setup: Setup,
+               table: dict) -> str:
+    """What diverged, when and its likely cause in this tool's terms, from the last recorded
+    intervals before the failure (Drake's message at the end)."""
+    finite = np.all(np.isfinite(table["state"]), axis=1)
+    first_bad = len(finite) if finite.all() else int(np.argmin(finite))
+    recent = {k: v[max(0, first_bad - 10):first_bad] for k, v in table.items()}
+    drake = message.strip().splitlines()[0] if message.strip() else "no message"
+    head = f"the simulation diverged at t = {t:.3f} s"
+    step = f"scenario.time_step_s = {setup.time_step_s:g} s"
+    if not len(recent["t"]):
+        return f"{head} at its start ({drake}); check the time step ({step}) and the gains"
+    gap = recent["gap"].max(axis=0)
+    height = recent["state"][:, setup.layout.body_q + 6]
+    speed = np.abs(recent["speed"]).max()
+    clipped = float(np.mean(recent["clipped_peak"] + recent["clipped_line"]))
+    if gap.max() > DIVERGED_GAP_M:
+        leg = setup.legs[int(np.argmax(gap))]
+        what = (f"the loop of leg {leg} came apart (gap {gap.max() * 1e3:.2f} mm); likely cause: "
+                f"{step} is too coarse for the {scenario.closure} closure's stiffness: use a "
+                "smaller time step, a larger target_loop_gap_m, or the closure 'bushing'")
+    elif height.min() < params.body.height_m / 2:
+        what = (f"the body sank to {height.min() * 1e3:.0f} mm, into the ground; likely cause: "
+                f"{step} is too coarse for the foot contact (body.foot_stiffness_N_m, "
+                "foot_relaxation_time_s): use a smaller time step")
+    elif speed > params.motor.no_load_speed_rad_s or clipped > 0.5:
+        what = (f"the motors could not follow (joint speed {speed:.1f} rad/s against the "
+                f"no-load {params.motor.no_load_speed_rad_s:.1f} rad/s, torque clipped "
+                f"{clipped:.0%} of the last intervals); likely cause: the gait is too fast for "
+                "the motors: lower gait_frequency_hz or the stride gait_a_m")
+    else:
+        what = (f"no loop came apart, the body stayed above the ground and the motors within "
+                f"their limits; likely cause: the controller's gains (swing_bandwidth_hz = "
+                f"{scenario.swing_bandwidth_hz:g}, body_bandwidth_hz = "
+                f"{scenario.body_bandwidth_hz:g}, damping_ratio = {scenario.damping_ratio:g}) "
+                f"at control_period_s = {scenario.control_period_s:g} s: lower the bandwidths")
+    return f"{head}: {what} (Drake: {drake})"

@@ -25,6 +25,7 @@ from pathlib import Path
 import numpy as np
 
 from .analysis import verdict
+from .files import write_atomic
 from .dynamics import full_model, seed_model, static_torques, torques
 from .footpath import cycle_phase, evaluate, stance_loads, stance_speed, stance_start
 from .jacobians import link_jacobians
@@ -36,6 +37,7 @@ from .simulation import Setup, SimResult
 from .rotation import body_rotation, tilt_deg
 
 MOTORS = ("A", "B")
+SUMMARY_FILES = ("summary.md", "summary.json")   # summary.json last: its presence means complete
 MIN_CYCLES = 3            # fewer whole cycles than this give no verdict
 PERCENTILE = 99.0
 SWING_CONTACT_N = 1.0     # a swing foot pressing harder than this (~1.5 % of the weight) drags
@@ -238,7 +240,7 @@ def summarize(sig: Signals, scenario: Scenario, params: Params, setup: Setup,
                     max(cycles - 1, 0)).astype(int)
     legs = {leg: {name: motor_summary(sig, params, win, cycle, cycles, i, j)
                   for j, name in enumerate(MOTORS)} for i, leg in enumerate(setup.legs)}
-    completed = not result.error
+    completed = not result.error and not result.interrupted
     sufficient = completed and cycles >= MIN_CYCLES
     motors = [(leg, name, m) for leg, ms in legs.items() for name, m in ms.items()]
     worst_leg, worst_motor, worst = min(motors, key=lambda x: (
@@ -251,7 +253,9 @@ def summarize(sig: Signals, scenario: Scenario, params: Params, setup: Setup,
     summary = {
         "gait": scenario.gait, "closure": scenario.closure,
         "duration_s": t_end, "requested_duration_s": scenario.duration_s,
-        "completed": completed, "error": result.error,
+        "completed": completed, "interrupted": bool(result.interrupted),
+        "error": result.error or (f"interrupted by {result.interrupted} at t = {t_end:.2f} s"
+                                  if result.interrupted else ""),
         "cycles_in_window": cycles, "window_s": [start, end],
         "verdict": worst["verdict"] if sufficient else "insufficient",
         "worst_motor": f"{worst_leg} {worst_motor}",
@@ -370,8 +374,9 @@ def _finite(value):
 
 
 def write_summary(summary: dict, params: Params, out_dir: Path) -> list[Path]:
+    """Write SUMMARY_FILES into out_dir, each atomically, summary.json last: call it after every
+    other output of the run is written, so a summary.json always describes complete files."""
+    texts = (markdown(summary, params),
+             json.dumps(_finite(summary), indent=2, allow_nan=False) + "\n")
     out_dir.mkdir(parents=True, exist_ok=True)
-    md, js = out_dir / "summary.md", out_dir / "summary.json"
-    md.write_text(markdown(summary, params))
-    js.write_text(json.dumps(_finite(summary), indent=2, allow_nan=False) + "\n")
-    return [md, js]
+    return [write_atomic(out_dir / name, text) for name, text in zip(SUMMARY_FILES, texts)]

@@ -45,6 +45,6 @@ def test_module_entry_point_and_bad_config(tmp_path):
     run = subprocess.run([sys.executable, "-m", "fivebar_drake", "analyze", "--config", str(bad),
                           "--out", str(tmp_path / "o")], capture_output=True, text=True)
     assert run.returncode == 2
-    assert "leg.ce_m = 0.0: must be > 0" in run.stderr
+    assert f"{bad}: leg.ce_m = 0.0: must be in (0, 2]" in run.stderr
     assert "Traceback" not in run.stderr
     assert not (tmp_path / "o").exists()

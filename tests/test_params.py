@@ -21,19 +21,20 @@ def test_default_matches_spec(params):
 
 
 @pytest.mark.parametrize("old, new, message", [
-    (r"^ac_m = 0.105", "ac_m = -0.105", "leg.ac_m = -0.105: must be > 0"),
-    (r"^mass_kg = 0.02056", "mass_kg = 0.0", "links.CE.mass_kg = 0.0: must be > 0"),
+    (r"^ac_m = 0.105", "ac_m = -0.105", "leg.ac_m = -0.105: must be in (0, 2]"),
+    (r"^mass_kg = 0.02056", "mass_kg = 0.0", "links.CE.mass_kg = 0.0: must be in (0, 500]"),
     (r"^com_m = 0.07250", "com_m = 0.2",
-     "links.CE.com_m = 0.2: COM outside its link: allowed 0 .. 0.145 m"),
-    (r"^izz_kg_m2 = 8.0e-5", "izz_kg_m2 = -1e-5", "links.DE.izz_kg_m2 = -1e-05: cannot be physical"),
-    (r"^izz_kg_m2 = 1.0e-5", "izz_kg_m2 = 1.0", "links.BD.izz_kg_m2 = 1.0: cannot be physical: "
-     "allowed 0 .. m*c*(L-c) = 7.03e-05"),
+     "links.CE.com_m = 0.2: must be in [0, 0.145] (the COM lies on its link)"),
+    (r"^izz_kg_m2 = 8.0e-5", "izz_kg_m2 = -1e-5", "links.DE.izz_kg_m2 = -1e-05: must be in [0, "),
+    (r"^izz_kg_m2 = 1.0e-5", "izz_kg_m2 = 1.0", "links.BD.izz_kg_m2 = 1.0: must be in [0, "
+     "7.02895e-05] (cannot be physical beyond m*c*(L-c)"),
     (r"^y_home_m = -0.200", "y_home_m = -0.400",
-     "gait leaves the workspace (seed_ellipse path): foot target [60.0, -400.0] mm is out of "
-     "reach: |BF|"),
+     "the foot path leaves the workspace (seed_ellipse path): foot target [60.0, -400.0] mm is "
+     "out of reach: |BF|"),
     (r"^duty_factor = 0.75", "duty_factor = 1.0", "gait.duty_factor = 1.0: must be in (0, 1)"),
-    (r"^samples = 60", "samples = 2", "gait.samples = 2: must be an integer >= 3"),
-    (r"^frequency_hz = 1.0", "frequency_hz = 0", "gait.frequency_hz = 0.0: must be > 0"),
+    (r"^samples = 60", "samples = 2", "gait.samples = 2: must be an integer in [3, 10000] (central differences need "
+     "neighbours)"),
+    (r"^frequency_hz = 1.0", "frequency_hz = 0", "gait.frequency_hz = 0.0: must be in (0, 10]"),
     (r"^sf_warn = 1.5", "sf_warn = 2.5", "checks.sf_warn = 2.5: must be <= checks.sf_pass = 2.0"),
     (r"^b_m = 0.030", "b_m = 0.030\nc_m = 1", "[gait] has unknown key(s) ['c_m']"),
     (r"^b_m = 0.030.*\n", "", "[gait] is missing key(s) ['b_m']"),
@@ -48,7 +49,7 @@ def test_invalid_parameter_files_are_named(tmp_path, old, new, message):
 
 
 def test_missing_file(tmp_path):
-    with pytest.raises(ParameterError, match="parameter file not found: .*nope.toml"):
+    with pytest.raises(ParameterError, match="nope.toml: parameter file not found"):
         load_params(tmp_path / "nope.toml")
 
 
@@ -58,5 +59,5 @@ def test_user_file_is_used(tmp_path):
 
 
 def test_with_gait_validates(params):
-    with pytest.raises(ParameterError, match="gait leaves the workspace"):
+    with pytest.raises(ParameterError, match="foot path leaves the workspace"):
         with_gait(params, a_m=0.3)
