@@ -13,9 +13,9 @@ import time  # noqa: E402
 
 import numpy as np  # noqa: E402
 
-from fivebar_drake.jacobians import foot_jacobian  # noqa: E402
-from fivebar_drake.kinematics import forward, inverse  # noqa: E402
-from fivebar_drake.config import load_params  # noqa: E402
+from fivebar_drake.mechanisms.fivebar.jacobians import foot_jacobian  # noqa: E402
+from fivebar_drake.mechanisms.fivebar.kinematics import forward, inverse  # noqa: E402
+from fivebar_drake.robots.quadruped.config import load_params  # noqa: E402
 
 
 def targets(params, n, rng):

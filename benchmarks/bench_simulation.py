@@ -27,18 +27,19 @@ from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import TrajectorySource
 from pydrake.trajectories import PiecewisePolynomial
 
-from fivebar_drake import systems
-from fivebar_drake.analysis import analyze
-from fivebar_drake.plant_model import CLOSURES
-from fivebar_drake.recording import write_recording
-from fivebar_drake.scenario import load_scenario
-from fivebar_drake.simulation import add_robot, set_standing_pose, simulate
-from fivebar_drake.summary import signals, summarize
+from fivebar_drake.simulation import systems
+from fivebar_drake.analysis.torques import analyze
+from fivebar_drake.robots.quadruped.plant import CLOSURES
+from fivebar_drake.simulation.recording import write_recording
+from fivebar_drake.simulation.scenario import load_scenario
+from fivebar_drake.robots.quadruped.plant import add_robot, set_standing_pose
+from fivebar_drake.simulation.runner import simulate
+from fivebar_drake.simulation.summary import signals, summarize
 
 MEMORY_RUN = """
 import resource, sys
-from fivebar_drake.scenario import load_scenario
-from fivebar_drake.simulation import simulate
+from fivebar_drake.simulation.scenario import load_scenario
+from fivebar_drake.simulation.runner import simulate
 scenario = load_scenario(duration_s=float(sys.argv[1]))
 simulate(scenario, scenario.load_params(), progress=False)
 print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024)

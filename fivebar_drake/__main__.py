@@ -1,5 +1,9 @@
+
+from __future__ import annotations
+
 import sys
 
-from .cli import main
+from fivebar_drake.cli import main
+
 
 sys.exit(main())

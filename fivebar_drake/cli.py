@@ -16,13 +16,14 @@ import time
 import traceback
 from importlib.metadata import version
 
-from .config import load_params, sampling_error
-from .files import check_output_file, prepare_output_dir, say
-from .footpath import PATHS
-from .interrupts import Interrupted, Signals
-from .params import ParameterError
-from .plant_model import CLOSURES
-from .scenario import Scenario
+from fivebar_drake.core.files import check_output_file, prepare_output_dir, say
+from fivebar_drake.core.footpath import PATHS
+from fivebar_drake.core.interrupts import Interrupted, Signals
+from fivebar_drake.core.validation import ParameterError
+from fivebar_drake.robots.quadruped.config import load_params, sampling_error
+from fivebar_drake.robots.quadruped.plant import CLOSURES
+from fivebar_drake.simulation.scenario import Scenario
+
 
 EXIT_CODES = """exit codes:
   0    done
@@ -30,7 +31,9 @@ EXIT_CODES = """exit codes:
   2    bad input: a parameter or scenario file, a command-line value, an output path
   3    internal error (a bug): the message names a log file with the traceback
   130  interrupted by SIGINT (Ctrl-C), 143 by SIGTERM; simulate writes what it has first"""
+
 EXIT_INTERNAL = 3
+
 DEFAULTS = Scenario()
 
 
@@ -42,9 +45,9 @@ def _analyze(args, signals) -> int:
     import matplotlib
 
     matplotlib.use("Agg")  # files only, never a window
-    from .analysis import analyze
-    from .plots import write_plots
-    from .report import ANALYSIS_FILES, write_report
+    from fivebar_drake.analysis.torques import analyze
+    from fivebar_drake.analysis.plots import write_plots
+    from fivebar_drake.analysis.report import ANALYSIS_FILES, write_report
 
     start = time.perf_counter()
     params = load_params(args.config)
@@ -72,12 +75,13 @@ def _simulate(args, signals) -> int:
     import matplotlib
 
     matplotlib.use("Agg")
-    from .analysis import analyze
-    from .recording import RECORDING_FILE, write_recording
-    from .scenario import load_run
-    from .sim_plots import SIM_PLOT_FILES, write_sim_plots
-    from .simulation import simulate
-    from .summary import SUMMARY_FILES, signals as run_signals, summarize, write_summary
+    from fivebar_drake.analysis.torques import analyze
+    from fivebar_drake.simulation.recording import RECORDING_FILE, write_recording
+    from fivebar_drake.simulation.runner import load_run
+    from fivebar_drake.simulation.plots import SIM_PLOT_FILES, write_sim_plots
+    from fivebar_drake.simulation.runner import simulate
+    from fivebar_drake.simulation.summary import (SUMMARY_FILES, signals as run_signals, summarize,
+                                                  write_summary)
 
     scenario, params = load_run(args.scenario, duration_s=args.duration, closure=args.closure,
                                 gait=args.gait, params_file=args.config)
@@ -126,7 +130,7 @@ def _compare(args, signals) -> int:
     import matplotlib
 
     matplotlib.use("Agg")
-    from .comparison import write_comparison
+    from fivebar_drake.simulation.comparison import write_comparison
 
     out = check_output_file(args.out, "--out")
     for path in write_comparison(args.runs, out):
@@ -135,9 +139,9 @@ def _compare(args, signals) -> int:
 
 
 def _models(args, signals) -> int:
-    from .scenario import load_run
-    from .sdf_model import MODEL_FILES, write_models
-    from .simulation import closure_parameters
+    from fivebar_drake.simulation.runner import load_run
+    from fivebar_drake.robots.quadruped.sdf import MODEL_FILES, write_models
+    from fivebar_drake.simulation.builder import closure_parameters
 
     scenario, params = load_run(args.scenario, closure="bushing_rpy", params_file=args.config)
     out = prepare_output_dir(args.out, "--out", MODEL_FILES)
@@ -172,7 +176,7 @@ def parser() -> argparse.ArgumentParser:
                         "(default: %(default)s)")
     s = command("simulate", _simulate, "Drake simulation of the trotting quadruped")
     s.add_argument("--scenario", metavar="FILE",
-                   help="scenario file (YAML, fields of fivebar_drake.scenario.Scenario, see "
+                   help="scenario file (YAML, fields of fivebar_drake.simulation.scenario.Scenario, see "
                         "README); default: the built-in scenario")
     s.add_argument("--config", **{**config, "help": config["help"] + "; overrides the "
                                   "scenario's params_file"})
@@ -252,7 +256,6 @@ def main(argv=None) -> int:
         return 130
     except Exception as err:  # noqa: BLE001  (anything else is a bug: logged, never a traceback)
         return _internal_error(err, argv)
-
 
 if __name__ == "__main__":
     sys.exit(main())

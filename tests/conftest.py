@@ -1,7 +1,7 @@
 import numpy as np
 import pytest
 
-from fivebar_drake.config import load_params
+from fivebar_drake.robots.quadruped.config import load_params
 
 
 @pytest.fixture(scope="session")

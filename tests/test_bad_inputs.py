@@ -17,9 +17,9 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from fivebar_drake.cli import main
-from fivebar_drake.config import DEFAULT_PATH
-from fivebar_drake.params import ParameterError
-from fivebar_drake.scenario import load_run
+from fivebar_drake.robots.quadruped.config import DEFAULT_PATH
+from fivebar_drake.core.validation import ParameterError
+from fivebar_drake.simulation.runner import load_run
 
 DEFAULT = DEFAULT_PATH.read_text()
 
@@ -287,7 +287,7 @@ def test_yaml_numbers_without_a_dot_are_numbers(tmp_path):
 
 def test_internal_error_points_to_a_log(tmp_path, capsys, monkeypatch):
     """An unexpected error is a short message and a log file with the traceback (exit 3)."""
-    from fivebar_drake import analysis
+    from fivebar_drake.analysis import torques as analysis
 
     def broken(*args, **kwargs):
         raise ZeroDivisionError("injected")

@@ -4,7 +4,7 @@ import subprocess
 import sys
 
 from fivebar_drake.cli import main
-from fivebar_drake.config import DEFAULT_PATH
+from fivebar_drake.robots.quadruped.config import DEFAULT_PATH
 
 KEYS = ("peak_torque_Nm", "static_torque_Nm", "dynamic_to_static_ratio", "safety_factor",
         "verdict", "peak_speed_rad_s", "peak_time_s")

@@ -9,10 +9,11 @@ from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder
 from pydrake.common.value import AbstractValue
 
-from fivebar_drake.bushing import bushing_parameters
-from fivebar_drake.kinematics import inverse
-from fivebar_drake.plant_model import add_model, leg_indices, tree_positions
-from fivebar_drake.sdf_model import Bushing
+from fivebar_drake.robots.quadruped.closure import bushing_parameters
+from fivebar_drake.mechanisms.fivebar.kinematics import inverse
+from fivebar_drake.mechanisms.fivebar.loop import tree_positions
+from fivebar_drake.robots.quadruped.plant import add_model, leg_indices
+from fivebar_drake.robots.quadruped.sdf import Bushing
 
 DT = 1e-3
 
@@ -64,7 +65,7 @@ def loop_force(plant, context, instance, idx, params, foot_force):
     """The force (leg plane, N) the closure must carry in static equilibrium with the motors
     locked: passive joints C and D carry no torque, so J_phi^T lambda = tau_tree[phi] with
     tau_tree the generalized force of the foot load (virtual work, by finite differences)."""
-    from fivebar_drake.inverse_dynamics import loop_jacobian, plane_point_jacobian
+    from fivebar_drake.robots.quadruped.inverse_dynamics import loop_jacobian, plane_point_jacobian
     jc, _ = loop_jacobian(plant, context, instance, params, "leg")
     j_foot, _ = plane_point_jacobian(plant, context, instance, "leg", "DE",
                                      params.leg.de_m + params.leg.ef_m)

@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 
 from fivebar_drake.cli import EXIT_CODES, options_markdown
-from fivebar_drake.scenario import Scenario, fields_markdown
+from fivebar_drake.simulation.scenario import Scenario, fields_markdown
 
 README = (Path(__file__).parent.parent / "README.md").read_text()
 

@@ -3,12 +3,13 @@ import dataclasses
 import numpy as np
 import pytest
 
-from fivebar_drake.analysis import analyze
-from fivebar_drake.config import with_gait
-from fivebar_drake.dynamics import (coriolis, full_model, mass_matrix, physical_izz, seed_model,
-                                    torques)
-from fivebar_drake.kinematics import forward
-from fivebar_drake.params import LINK_NAMES
+from fivebar_drake.analysis.torques import analyze
+from fivebar_drake.robots.quadruped.config import with_gait
+from fivebar_drake.mechanisms.fivebar.dynamics import coriolis, mass_matrix, torques
+from fivebar_drake.mechanisms.fivebar.geometry import physical_izz
+from fivebar_drake.robots.quadruped.leg_loads import full_model, seed_model
+from fivebar_drake.mechanisms.fivebar.kinematics import forward
+from fivebar_drake.mechanisms.fivebar.geometry import LINK_NAMES
 
 from helpers import central_difference, link_geometry, random_poses
 
@@ -24,10 +25,11 @@ def test_virtual_work_foot_load(params, rng):
     qd = rng.uniform(-5, 5, q.shape)
     pose = forward(params.leg, q)
     model = full_model(params)
-    tb = torques(params, model, pose, qd, np.zeros_like(qd))
+    tb = torques(params.leg, params.links, model, pose, qd, np.zeros_like(qd))
     h = 1e-6
     branch = pose.e_branch
-    v_foot = (forward(params.leg, q + h * qd, branch).f - forward(params.leg, q - h * qd, branch).f) / (2 * h)
+    v_foot = (forward(params.leg, q + h * qd, branch).f
+              - forward(params.leg, q - h * qd, branch).f) / (2 * h)
     force_on_ground = np.array([0.0, -model.foot_load_N])
     power_motors = np.sum(tb.foot_load * qd, -1)
     power_foot = v_foot @ force_on_ground
@@ -36,8 +38,8 @@ def test_virtual_work_foot_load(params, rng):
 
 def test_mass_matrix_symmetric_positive_definite(params, rng):
     pose = forward(params.leg, random_poses(params, rng))
-    for izz in (physical_izz(params), seed_model(params).izz):
-        m = mass_matrix(params, izz, pose)
+    for izz in (physical_izz(params.leg, params.links), seed_model(params).izz):
+        m = mass_matrix(params.leg, params.links, izz, pose)
         assert np.allclose(m, np.swapaxes(m, -1, -2), atol=1e-16)
         assert np.all(np.linalg.eigvalsh(m) > 0)
 
@@ -47,14 +49,15 @@ def test_coriolis_matches_christoffel_symbols_and_skew_symmetry(params, rng):
     the code's c(q, qd), and M_dot - 2C must be skew-symmetric."""
     q = random_poses(params, rng, 60)
     qd = rng.uniform(-6, 6, q.shape)
-    izz = physical_izz(params)
+    izz = physical_izz(params.leg, params.links)
     branch = forward(params.leg, q).e_branch
-    dm = central_difference(lambda x: mass_matrix(params, izz, forward(params.leg, x, branch)), q,
-                            h=1e-5)                                       # (n, k, j, i) = dM_kj/dq_i
+    dm = central_difference(
+        lambda x: mass_matrix(params.leg, params.links, izz, forward(params.leg, x, branch)), q,
+        h=1e-5)                                                   # (n, k, j, i) = dM_kj/dq_i
     gamma = 0.5 * (dm + np.swapaxes(dm, -1, -2) - np.moveaxis(dm, -1, -3))  # Gamma_kji
     c_mat = np.einsum("nkji,ni->nkj", gamma, qd)
     m_dot = np.einsum("nkji,ni->nkj", dm, qd)
-    c_code = coriolis(params, izz, forward(params.leg, q), qd)
+    c_code = coriolis(params.leg, params.links, izz, forward(params.leg, q), qd)
     assert np.max(np.abs(np.einsum("nkj,nj->nk", c_mat, qd) - c_code)) < 1e-6 * np.max(np.abs(c_code))
     n = m_dot - 2 * c_mat
     assert np.max(np.abs(n + np.swapaxes(n, -1, -2))) < 1e-8
@@ -72,10 +75,10 @@ def test_power_balance(params, model_fn, balances):
     qdd = np.gradient(qd, dt, axis=0)
     model = no_foot_load(model_fn(params))
     pose = forward(params.leg, q)
-    tau = torques(params, model, pose, qd, qdd).total
+    tau = torques(params.leg, params.links, model, pose, qd, qdd).total
     com, ang = link_geometry(params, q, pose.e_branch)
     m = np.array([params.links[n].mass_kg for n in LINK_NAMES])
-    izz = np.asarray(physical_izz(params))
+    izz = np.asarray(physical_izz(params.leg, params.links))
     v = np.gradient(com, dt, axis=0)
     w = np.gradient(ang, dt, axis=0)
     g = params.robot.gravity_m_s2
@@ -107,8 +110,8 @@ def test_dynamic_torque_tends_to_static_as_frequency_goes_to_zero(params):
 def test_seed_and_full_gravity_differ_only_in_link_weight_sign(params, rng):
     pose = forward(params.leg, random_poses(params, rng, 20))
     zero = np.zeros_like(pose.q)
-    seed = torques(params, seed_model(params), pose, zero, zero)
-    full = torques(params, full_model(params), pose, zero, zero)
+    seed = torques(params.leg, params.links, seed_model(params), pose, zero, zero)
+    full = torques(params.leg, params.links, full_model(params), pose, zero, zero)
     assert np.allclose(seed.link_weight, -full.link_weight)
     assert np.allclose(seed.foot_load, full.foot_load)
 

@@ -8,11 +8,11 @@ import re
 import numpy as np
 import pytest
 
-from fivebar_drake.analysis import analyze
+from fivebar_drake.analysis.torques import analyze
 from fivebar_drake.cli import main
-from fivebar_drake.footpath import TROT_PHASES_RAD, evaluate, stance_loads
-from fivebar_drake.plots import FIGURES
-from fivebar_drake.report import markdown
+from fivebar_drake.core.footpath import TROT_PHASES_RAD, evaluate, stance_loads
+from fivebar_drake.analysis.plots import FIGURES
+from fivebar_drake.analysis.report import markdown
 
 DT = 1e-5
 

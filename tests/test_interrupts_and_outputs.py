@@ -15,9 +15,9 @@ import pytest
 from rerun.chunk import RrdReader
 
 from fivebar_drake.cli import main
-from fivebar_drake.config import DEFAULT_PATH, load_params, with_gait
-from fivebar_drake.files import TEMP_PREFIX, write_atomic
-from fivebar_drake.gait import sample_gait
+from fivebar_drake.robots.quadruped.config import DEFAULT_PATH, load_params, with_gait
+from fivebar_drake.core.files import TEMP_PREFIX, write_atomic
+from fivebar_drake.mechanisms.fivebar.gait import sample_gait
 
 STALE = {"summary.json": '{"completed": true, "verdict": "pass", "stale": true}\n',
          "summary.md": "stale\n", "run.rrd": "not a recording", "sim_torques.png": "stale",
@@ -74,7 +74,7 @@ def test_interrupted_write_leaves_the_old_or_the_new_file(tmp_path):
     target whole: its old text or the complete new one, never a truncated file."""
     target = tmp_path / "big.txt"
     old, size = "old\n" * 1000, 100_000_000                 # 100 MB: takes a while to write
-    script = ("import sys; from fivebar_drake.files import write_atomic; "
+    script = ("import sys; from fivebar_drake.core.files import write_atomic; "
               f"write_atomic(sys.argv[1], 'n' * {size})")
     mid_write = 0
     for delay in (0.0, 0.002, 0.01, 0.03, 0.1):
@@ -106,7 +106,7 @@ def test_failed_write_in_process_keeps_the_old_file(tmp_path):
     class Boom(Exception):
         pass
 
-    from fivebar_drake import files
+    from fivebar_drake.core import files
 
     with pytest.raises(Boom):
         with files.atomic_path(target) as tmp:
@@ -123,7 +123,7 @@ def test_a_failure_while_writing_leaves_no_summary(tmp_path, capsys, monkeypatch
     """summary.json is written last: if writing the recording fails, there is none (the
     previous run's was removed before the run), so no stale or premature summary says
     completed."""
-    from fivebar_drake import recording
+    from fivebar_drake.simulation import recording
 
     out = tmp_path / "run"
     out.mkdir()
@@ -143,7 +143,7 @@ def test_a_failure_while_writing_leaves_no_summary(tmp_path, capsys, monkeypatch
 def test_new_analysis_first_removes_the_previous_files(tmp_path, capsys, monkeypatch):
     """An analysis that fails after its inputs were accepted leaves none of the previous
     analysis's files (they would pass for its results); other files stay."""
-    from fivebar_drake import plots
+    from fivebar_drake.analysis import plots
 
     (tmp_path / "report.json").write_text('{"stale": true}')
     (tmp_path / "workspace.png").write_text("stale")
@@ -190,7 +190,7 @@ def test_divergence_says_what_when_and_why(tmp_path, capsys, monkeypatch):
     """The controller's command turns NaN at t = 0.3 s: the run stops, exit 1, the message says
     the simulation diverged, when, and a likely cause in the scenario's terms; the files are
     written with completed false."""
-    from fivebar_drake import systems
+    from fivebar_drake.simulation import systems
 
     original = systems.FootLegController.command
     calls = []

@@ -7,12 +7,14 @@ import pytest
 from pydrake.multibody.plant import MultibodyPlant
 from pydrake.multibody.tree import MultibodyForces
 
-from fivebar_drake.config import with_gait
-from fivebar_drake.dynamics import full_model, torques
-from fivebar_drake.gait import sample_gait
-from fivebar_drake.kinematics import LegPose
-from fivebar_drake.inverse_dynamics import projected_inverse_dynamics
-from fivebar_drake.plant_model import add_model, leg_indices, tree_positions
+from fivebar_drake.robots.quadruped.config import with_gait
+from fivebar_drake.mechanisms.fivebar.dynamics import torques
+from fivebar_drake.robots.quadruped.leg_loads import full_model
+from fivebar_drake.mechanisms.fivebar.gait import sample_gait
+from fivebar_drake.mechanisms.fivebar.kinematics import LegPose
+from fivebar_drake.robots.quadruped.inverse_dynamics import projected_inverse_dynamics
+from fivebar_drake.mechanisms.fivebar.loop import tree_positions
+from fivebar_drake.robots.quadruped.plant import add_model, leg_indices
 
 
 def fixed_leg(params):
@@ -36,12 +38,12 @@ def test_drake_inverse_dynamics_matches_full_model(no_rotor, frequency):
     model = full_model(p)
     tau_drake = projected_inverse_dynamics(plant, context, instance, p, "leg", idx, s.pose, s.qd,
                                            s.qdd, model.foot_load_N)
-    tau_model = torques(p, model, s.pose, s.qd, s.qdd).total
+    tau_model = torques(p.leg, p.links, model, s.pose, s.qd, s.qdd).total
     assert np.max(np.abs(tau_drake - tau_model)) < 0.01 * np.max(np.abs(tau_model))
     # without the foot load the dynamics alone (links, Coriolis) must agree as well
     free = projected_inverse_dynamics(plant, context, instance, p, "leg", idx, s.pose, s.qd,
                                       s.qdd, 0.0)
-    free_model = torques(p, dataclasses.replace(model, foot_load_N=0.0), s.pose, s.qd, s.qdd).total
+    free_model = torques(p.leg, p.links, dataclasses.replace(model, foot_load_N=0.0), s.pose, s.qd, s.qdd).total
     assert np.max(np.abs(free - free_model)) < 0.01 * np.max(np.abs(free_model))
 
 
@@ -70,5 +72,5 @@ def test_tree_inverse_dynamics_alone_is_wrong(no_rotor):
     naive = plant.CalcInverseDynamics(context, np.zeros(plant.num_velocities()), forces)[idx.v[:2]]
     zero = np.zeros(2)
     first = LegPose(*(a[0] for a in (s.pose.q, s.pose.c, s.pose.d, s.pose.e, s.pose.f)))
-    right = torques(p, dataclasses.replace(model, foot_load_N=0.0), first, zero, zero).total
+    right = torques(p.leg, p.links, dataclasses.replace(model, foot_load_N=0.0), first, zero, zero).total
     assert np.max(np.abs(naive - right)) > 0.2 * np.max(np.abs(right))

@@ -7,10 +7,10 @@ import pytest
 from pydrake.multibody.plant import DiscreteContactApproximation, MultibodyPlant
 from pydrake.visualization import ModelVisualizer
 
-from fivebar_drake.plant_model import add_model
-from fivebar_drake.scenario import load_scenario
-from fivebar_drake.sdf_model import MODEL_FILES, body_mass_properties
-from fivebar_drake.simulation import closure_parameters
+from fivebar_drake.robots.quadruped.plant import add_model
+from fivebar_drake.simulation.scenario import load_scenario
+from fivebar_drake.robots.quadruped.sdf import MODEL_FILES, body_mass_properties
+from fivebar_drake.simulation.builder import closure_parameters
 
 SDF = Path(__file__).parent.parent / "sdf"
 

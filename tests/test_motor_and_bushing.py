@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 from pydrake.systems.analysis import Simulator
 
-from fivebar_drake.bushing import bushing_parameters
-from fivebar_drake.footpath import stance_weight
-from fivebar_drake.systems import MotorModel, clip_flags
+from fivebar_drake.robots.quadruped.closure import bushing_parameters
+from fivebar_drake.core.footpath import stance_weight
+from fivebar_drake.core.motor import MotorModel, clip_flags
 
 
 @pytest.fixture()

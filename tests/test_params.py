@@ -2,8 +2,8 @@ import re
 
 import pytest
 
-from fivebar_drake.config import DEFAULT_PATH, load_params, with_gait
-from fivebar_drake.params import ParameterError
+from fivebar_drake.robots.quadruped.config import DEFAULT_PATH, load_params, with_gait
+from fivebar_drake.core.validation import ParameterError
 
 
 def edited(tmp_path, old, new):

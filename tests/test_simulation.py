@@ -9,15 +9,17 @@ import pytest
 from pydrake.systems.analysis import Simulator
 from rerun.chunk import RrdReader
 
-from fivebar_drake.analysis import analyze
+from fivebar_drake.analysis.torques import analyze
 from fivebar_drake.cli import main
-from fivebar_drake.footpath import stance_speed
-from fivebar_drake.jacobians import foot_jacobian
-from fivebar_drake.kinematics import UnreachableError, forward
-from fivebar_drake.recording import read_series
-from fivebar_drake.scenario import load_scenario
-from fivebar_drake.simulation import build_diagram, set_standing_pose, simulate
-from fivebar_drake.summary import signals, summarize
+from fivebar_drake.core.footpath import stance_speed
+from fivebar_drake.mechanisms.fivebar.jacobians import foot_jacobian
+from fivebar_drake.mechanisms.fivebar.kinematics import UnreachableError, forward
+from fivebar_drake.simulation.recording import read_series
+from fivebar_drake.simulation.scenario import load_scenario
+from fivebar_drake.robots.quadruped.plant import set_standing_pose
+from fivebar_drake.simulation.builder import build_diagram
+from fivebar_drake.simulation.runner import simulate
+from fivebar_drake.simulation.summary import signals, summarize
 
 TEST_DURATION_S = 4.5   # 0.5 s standing, 1 s ramp, 3 whole trot cycles
 
@@ -157,7 +159,7 @@ def test_measured_ground_forces_carry_the_robot(run):
 
 def test_summary_text_follows_the_parameters(runs):
     """summary.md and the answer take their figures from the parameters used, none written in."""
-    from fivebar_drake.summary import answer, markdown
+    from fivebar_drake.simulation.summary import answer, markdown
 
     scenario, params, result, setup, sig, summary = runs["ball"]
     other = dataclasses.replace(params, robot=dataclasses.replace(params.robot, structure_kg=2.5),
@@ -340,7 +342,7 @@ def test_bushing_time_step_beyond_stability_is_refused(tmp_path, capsys):
 
 def test_failed_run_keeps_what_was_simulated(tmp_path, capsys, monkeypatch):
     """A run that fails midway still writes its summary, plots and recording, and exits 1."""
-    from fivebar_drake import systems
+    from fivebar_drake.simulation import systems
 
     original = systems.FootLegController.command
     calls = []

@@ -1,0 +1,156 @@
+"""report.md and report.json of the torque analysis: the seed's Tables 3-5 filled for each model."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+from fivebar_drake.analysis.plots import FIGURES
+from fivebar_drake.analysis.torques import Analysis
+from fivebar_drake.core.files import write_atomic
+from fivebar_drake.core.footpath import stance_speed
+from fivebar_drake.mechanisms.fivebar.geometry import LINK_NAMES, MOTORS, physical_izz
+from fivebar_drake.robots.quadruped.config import sampling_error
+
+
+SIDE_BY_SIDE = ("seed", "full")
+
+REPORT_FILES = ("report.md", "report.json")
+
+ANALYSIS_FILES = REPORT_FILES + tuple(f"{name}.png" for name in FIGURES)   # what analyze writes
+
+
+def assumptions(analysis: Analysis) -> list[str]:
+    p = analysis.params
+    izz = dict(zip(LINK_NAMES, physical_izz(p.leg, p.links)))
+    return [
+        f"Weight share m_leg = {p.robot.total_mass_kg:.2f} kg / {p.robot.legs} legs = "
+        f"{p.robot.weight_share_kg:.4f} kg acts at the foot for the whole cycle, swing included "
+        "(seed 000 eq. 8), in the `seed` and `full` models; `full_trot` is the trot reading.",
+        "Static torque of a pose: the torque that holds it with q' = q'' = 0 under the same "
+        "loads (link weights + foot load); its peak over the cycle is reported.",
+        f"Izz values are about each link's COM, axis along the hinges. The seed's '~0' for AC is "
+        f"0 in the `seed` model and the thin-rod estimate m L^2/12 = {izz['AC']:.3g} kg m^2 in "
+        "the `full` models.",
+        f"The {p.motor.peak_torque_Nm:g} N m motor torque is taken at the gearbox output "
+        f"(gear {p.motor.gear_ratio:g}:1); {p.motor.no_load_speed_rad_s:.2f} rad/s "
+        f"({p.motor.no_load_speed_rad_s * 60 / (2 * math.pi):.0f} RPM) is taken as the no-load "
+        "output speed of a linear torque-speed line.",
+        "Joint rates and accelerations are periodic central differences over the N samples "
+        "(seed 000 section 5); the IK mode follows seed 000 appendix B from the knees-out mode.",
+        "Safety factor = motor torque / peak dynamic torque; verdict: SF >= "
+        f"{p.checks.sf_pass:g} pass, {p.checks.sf_warn:g} <= SF < {p.checks.sf_pass:g} warn, "
+        "else fail.",
+    ]
+
+
+def path_name(analysis: Analysis) -> str:
+    return {"seed_ellipse": "seed's elliptical gait", "trot": "trot foot path"}[
+        analysis.samples.path]
+
+
+def path_text(analysis: Analysis) -> str:
+    """The analysed foot path in words, with its numbers (mm, s)."""
+    g = analysis.params.gait
+    if analysis.samples.path == "seed_ellipse":
+        return (f"the seed's ellipse x = {g.x_center_m * 1e3:g} + {g.a_m * 1e3:g} cos(wt) mm, "
+                f"y = {g.y_home_m * 1e3:g} + {g.b_m * 1e3:g} sin(wt) mm")
+    return (f"the trot path (footpath.py): stance flat at y = {g.y_home_m * 1e3:g} mm over the "
+            f"stride 2a = {2 * g.a_m * 1e3:g} mm at {stance_speed(g, 'trot'):.3f} m/s, duty "
+            f"factor {g.duty_factor:g} (stance fraction of the cycle), swing lifting the foot by "
+            f"b = {g.b_m * 1e3:g} mm with matched touchdown speed")
+
+
+def _where(at: dict) -> str:
+    x, y = (v * 1e3 for v in at["foot_m"])
+    return f"t = {at['time_s']:.3f} s (sample {at['sample']}), F = ({x:.1f}, {y:.1f}) mm"
+
+
+def markdown(analysis: Analysis, sampled: dict | None = None) -> str:
+    """report.md; sampled: config.sampling_error of the analysed path (computed if None)."""
+    if sampled is None:
+        sampled = sampling_error(analysis.params, analysis.samples.path)
+    r = analysis.results["results"]
+    p = analysis.params
+    g = p.gait
+    lines = [
+        f"# 5-bar leg: dynamic torque analysis over the {path_name(analysis)}",
+        "",
+        f"Foot path: {path_text(analysis)}, f = {g.frequency_hz:g} Hz, N = {g.samples} samples "
+        f"(central differences: peak joint speed within {sampled['speed']:.1%}, peak "
+        f"acceleration within {sampled['acceleration']:.1%} of {sampled['reference_samples']} "
+        f"samples). Motor: {p.motor.peak_torque_Nm:g} N m, {p.motor.no_load_speed_rad_s:.2f} "
+        "rad/s.",
+        "",
+        *([f"**Warning:** {sampled['warning']}.", ""] if sampled["warning"] else []),
+        "Models, side by side (the seed's formulas as written and the physically consistent "
+        "ones):",
+        "",
+    ]
+    lines += [f"- **{name}**: {text}" for name, text in analysis.results["models"].items()]
+    lines += ["", "## Table 3: peak dynamic torque", "",
+              "| motor | model | peak torque (N m) | where in the cycle |", "|---|---|---|---|"]
+    for motor in MOTORS:
+        for model in SIDE_BY_SIDE:
+            m = r[model][motor]
+            lines.append(f"| {motor} | {model} | {m['peak_torque_Nm']:.3f} | "
+                         f"{_where(m['peak_at'])} |")
+    lines += ["", "## Table 4: static vs dynamic torque", "",
+              "| motor | model | static torque (N m) | peak dynamic torque (N m) | dynamic/static "
+              "| static peak at |", "|---|---|---|---|---|---|"]
+    for motor in MOTORS:
+        for model in SIDE_BY_SIDE:
+            m = r[model][motor]
+            lines.append(f"| {motor} | {model} | {m['static_torque_Nm']:.3f} | "
+                         f"{m['peak_torque_Nm']:.3f} | {m['dynamic_to_static_ratio']:.4f}x | "
+                         f"{_where(m['static_peak_at'])} |")
+    lines += ["", f"## Table 5: safety factor against {p.motor.peak_torque_Nm:g} N m", "",
+              "| motor | model | peak torque (N m) | safety factor | verdict |",
+              "|---|---|---|---|---|"]
+    for motor in MOTORS:
+        for model in SIDE_BY_SIDE:
+            m = r[model][motor]
+            lines.append(f"| {motor} | {model} | {m['peak_torque_Nm']:.3f} | "
+                         f"{m['safety_factor']:.2f}x | {m['verdict'].upper()} |")
+    lines += ["", f"## Speed check (limit {p.motor.no_load_speed_rad_s:.2f} rad/s)", "",
+              "| motor | peak speed (rad/s) | where | within limit | peak accel (rad/s^2) "
+              "| torque-speed margin (seed / full) |", "|---|---|---|---|---|---|"]
+    for motor in MOTORS:
+        m = r["full"][motor]
+        lines.append(f"| {motor} | {m['peak_speed_rad_s']:.3f} | {_where(m['peak_speed_at'])} | "
+                     f"{'yes' if m['speed_ok'] else 'NO'} | {m['peak_acceleration_rad_s2']:.2f} | "
+                     f"{r['seed'][motor]['torque_speed_margin']:.2f}x / "
+                     f"{m['torque_speed_margin']:.2f}x |")
+    lines += ["", "Torque-speed margin: the least ratio, over the cycle, of the torque the motor "
+              "can give at that sample's speed (linear torque-speed line) to the torque needed.",
+              "", "## Trot loading (the other reading of the weight share)", "",
+              "| motor | peak torque (N m) | static (N m) | safety factor | verdict |",
+              "|---|---|---|---|---|"]
+    for motor in MOTORS:
+        m = r["full_trot"][motor]
+        lines.append(f"| {motor} | {m['peak_torque_Nm']:.3f} | {m['static_torque_Nm']:.3f} | "
+                     f"{m['safety_factor']:.2f}x | {m['verdict'].upper()} |")
+    path = analysis.results["path"]
+    angles = ", ".join(f"{j} {a:.1f} deg" for j, a in path["min_transmission_angle_deg"].items())
+    lines += ["", "## Along the path", "",
+              f"- assembly modes used (index into kinematics.ALL_MODES): "
+              f"{path['assembly_modes_used']}",
+              f"- smallest transmission angle from in-line: {angles}",
+              f"- largest condition number of J_F: {path['max_cond_jf']:.2f}; smallest |det J_F|: "
+              f"{path['min_abs_det_jf_m2']:.3e} m^2", "", "## Assumptions", ""]
+    lines += [f"- {a}" for a in assumptions(analysis)]
+    lines += ["", "## Plots", ""]
+    lines += [f"![{name}]({name}.png)" for name in FIGURES]
+    return "\n".join(lines) + "\n"
+
+
+def write_report(analysis: Analysis, out_dir: Path, sampled: dict | None = None) -> list[Path]:
+    """Write REPORT_FILES into out_dir, each atomically, both composed before either is
+    written; sampled: config.sampling_error of the analysed path (computed if None). Returns
+    their paths."""
+    sampled = sampled or sampling_error(analysis.params, analysis.samples.path)
+    data = dict(analysis.results, assumptions=assumptions(analysis), sampling_error=sampled)
+    texts = (markdown(analysis, sampled), json.dumps(data, indent=2, allow_nan=False) + "\n")
+    out_dir.mkdir(parents=True, exist_ok=True)
+    return [write_atomic(out_dir / name, text) for name, text in zip(REPORT_FILES, texts)]

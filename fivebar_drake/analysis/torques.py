@@ -1,0 +1,94 @@
+"""The seed's torque analysis (seed 000 sections 6-7): torques along one gait cycle for each
+reading of the model, peaks, static vs dynamic, safety factor and the speed check."""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+import numpy as np
+
+from fivebar_drake.core.checks import verdict
+from fivebar_drake.mechanisms.fivebar.dynamics import DynamicsModel, TorqueBreakdown, torques
+from fivebar_drake.mechanisms.fivebar.gait import GaitSamples, sample_gait
+from fivebar_drake.mechanisms.fivebar.geometry import MOTORS
+from fivebar_drake.mechanisms.fivebar.singularity import SingularityMeasures, singularity_measures
+from fivebar_drake.robots.quadruped.leg_loads import full_model, seed_model, trot_model
+from fivebar_drake.robots.quadruped.params import Params
+
+
+@dataclass(frozen=True)
+class Analysis:
+    """Everything the report shows: the sampled gait, the torques of each model (by name) and
+    the JSON-ready results."""
+
+    params: Params
+    samples: GaitSamples
+    models: dict[str, DynamicsModel]
+    torques: dict[str, TorqueBreakdown]
+    measures: SingularityMeasures
+    results: dict
+
+
+def _at(samples: GaitSamples, k: int) -> dict:
+    return {"sample": int(k), "time_s": float(samples.t[k]),
+            "foot_m": [float(v) for v in samples.foot[k]]}
+
+
+def motor_results(params: Params, samples: GaitSamples, tb: TorqueBreakdown, j: int) -> dict:
+    """Peaks of motor j (0 = A, 1 = B) over the sampled cycle; magnitudes are absolute values."""
+    motor = params.motor
+    total, static, speed = np.abs(tb.total[:, j]), np.abs(tb.static[:, j]), np.abs(samples.qd[:, j])
+    k_peak, k_static, k_speed = (int(np.argmax(v)) for v in (total, static, speed))
+    peak = float(total[k_peak])
+    sf = motor.peak_torque_Nm / peak
+    # Torque available on the linear torque-speed line at each sample's speed.
+    available = motor.torque_limit(speed)
+    return {
+        "peak_torque_Nm": peak,
+        "peak_time_s": float(samples.t[k_peak]),
+        "peak_at": _at(samples, k_peak),
+        "static_torque_Nm": float(static[k_static]),
+        "static_peak_at": _at(samples, k_static),
+        "dynamic_to_static_ratio": peak / float(static[k_static]),
+        "rms_torque_Nm": float(np.sqrt(np.mean(tb.total[:, j] ** 2))),
+        "peak_inertial_Nm": float(np.max(np.abs(tb.inertial[:, j] + tb.coriolis[:, j]))),
+        "safety_factor": sf,
+        "verdict": verdict(params.checks, sf),
+        "peak_speed_rad_s": float(speed[k_speed]),
+        "peak_speed_at": _at(samples, k_speed),
+        "speed_limit_rad_s": motor.no_load_speed_rad_s,
+        "speed_ok": bool(speed[k_speed] <= motor.no_load_speed_rad_s),
+        "peak_acceleration_rad_s2": float(np.max(np.abs(samples.qdd[:, j]))),
+        "torque_speed_margin": float(np.min(available / np.maximum(total, 1e-12))),
+    }
+
+
+def analyze(params: Params, path: str = "seed_ellipse") -> Analysis:
+    """Run the seed's analysis over one cycle of the foot path (footpath.PATHS) for the seed
+    model, the full model and the full model under trot loading."""
+    samples = sample_gait(params.leg, params.gait, path)
+    models = {m.name: m for m in (seed_model(params), full_model(params),
+                                  trot_model(params, path, samples.t))}
+    tbs = {name: torques(params.leg, params.links, m, samples.pose, samples.qd, samples.qdd)
+           for name, m in models.items()}
+    measures = singularity_measures(params.leg, samples.pose)
+    results = {
+        "results": {name: {motor: motor_results(params, samples, tb, j)
+                           for j, motor in enumerate(MOTORS)} for name, tb in tbs.items()},
+        "models": {name: m.description for name, m in models.items()},
+        "path": {
+            "gait": path,
+            "samples": params.gait.samples,
+            "dt_s": params.gait.period_s / params.gait.samples,
+            "assembly_modes_used": sorted({int(i) for i in samples.mode_index}),
+            "min_transmission_angle_deg": {
+                j: float(np.degrees(np.min(np.minimum(a, np.pi - a))))
+                for j, a in (("C", measures.angle_c), ("D", measures.angle_d),
+                             ("E", measures.angle_e))},
+            "max_cond_jf": float(np.max(measures.cond_jf)),
+            "min_abs_det_jf_m2": float(np.min(np.abs(measures.det_jf))),
+        },
+        "parameters": dataclasses.asdict(params),
+    }
+    return Analysis(params=params, samples=samples, models=models, torques=tbs,
+                    measures=measures, results=results)

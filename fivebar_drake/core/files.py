@@ -1,0 +1,109 @@
+"""Everything the tool reads and writes, made safe: input files read with their name in every
+error, output folders checked (and cleared of a previous run's files) before any work, files
+written atomically (a temporary file renamed over the target, so a reader sees the old complete
+file or the new complete one, never a truncated one), console lines that survive a closed pipe."""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import sys
+import tempfile
+from pathlib import Path
+
+from fivebar_drake.core.validation import ParameterError
+
+
+TEMP_PREFIX = ".fivebar-tmp-"   # temporary files of an atomic write, named so a later run removes them
+
+_UMASK = os.umask(0)
+
+os.umask(_UMASK)
+
+
+def read_input_text(path, what: str) -> str:
+    """The text of an input file (UTF-8); ParameterError naming the file and what is wrong."""
+    path = Path(path)
+    try:
+        data = path.read_bytes()
+    except FileNotFoundError:
+        raise ParameterError(f"{what} not found", source=str(path)) from None
+    except IsADirectoryError:
+        raise ParameterError(f"is a folder; {what} must be a file", source=str(path)) from None
+    except OSError as err:
+        raise ParameterError(f"cannot read the {what}: {err.strerror}", source=str(path)) from None
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as err:
+        raise ParameterError(f"the {what} is not UTF-8 text (byte 0x{data[err.start]:02x} at "
+                             f"offset {err.start})", source=str(path)) from None
+
+
+def prepare_output_dir(path, option: str, previous_outputs=()) -> Path:
+    """Make sure folder `path` (given with command-line `option`) exists and is writable, and
+    remove the files of a previous run (the names in previous_outputs, and temporary files of an
+    interrupted write), so no stale file can pass for this run's. ParameterError otherwise."""
+    path = Path(path)
+    where = f"{option} {path}"
+    if path.exists() and not path.is_dir():
+        raise ParameterError("is a file; the output must be a folder", source=where)
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+        with tempfile.NamedTemporaryFile(dir=path, prefix=TEMP_PREFIX):
+            pass
+    except (FileExistsError, NotADirectoryError):
+        raise ParameterError("a part of the path is a file, not a folder", source=where) from None
+    except OSError as err:
+        raise ParameterError(f"cannot create or write into this folder: {err.strerror}",
+                             source=where) from None
+    for name in previous_outputs:
+        (path / name).unlink(missing_ok=True)
+    for stale in path.glob(TEMP_PREFIX + "*"):
+        stale.unlink(missing_ok=True)
+    return path
+
+
+def check_output_file(path, option: str) -> Path:
+    """Make sure file `path` (command-line `option`) can be written: its folder exists (made if
+    needed) and is writable, and the path is not a folder. ParameterError otherwise."""
+    path = Path(path)
+    if path.is_dir():
+        raise ParameterError("is a folder; give a file name", source=f"{option} {path}")
+    prepare_output_dir(path.parent, option)
+    return path
+
+
+@contextlib.contextmanager
+def atomic_path(path):
+    """A temporary path beside `path` to write to; renamed over `path` when the block ends
+    without an error, removed otherwise."""
+    path = Path(path)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=TEMP_PREFIX, suffix=path.suffix)
+    os.close(fd)
+    try:
+        yield Path(tmp)
+        os.chmod(tmp, 0o666 & ~_UMASK)        # mkstemp makes it private; a plain file is not
+        os.replace(tmp, path)
+    finally:
+        Path(tmp).unlink(missing_ok=True)
+
+
+def write_atomic(path, text: str) -> Path:
+    """Write text to path atomically (see atomic_path); returns path."""
+    path = Path(path)
+    with atomic_path(path) as tmp:
+        with open(tmp, "w", encoding="utf-8") as f:
+            f.write(text)
+            f.flush()
+            os.fsync(f.fileno())
+    return path
+
+
+def say(text: str, stream=None) -> None:
+    """Print a line to stream (default stdout). If its reader has gone (piped into `head`),
+    the rest of the output goes to /dev/null instead of raising BrokenPipeError."""
+    stream = sys.stdout if stream is None else stream
+    try:
+        print(text, file=stream, flush=True)
+    except BrokenPipeError:
+        os.dup2(os.open(os.devnull, os.O_WRONLY), stream.fileno())

@@ -1,0 +1,53 @@
+"""SIGINT (Ctrl-C) and SIGTERM as requests: a simulation stops stepping and writes what it has;
+everything else stops at once, with exit code 128 + the signal's number."""
+
+from __future__ import annotations
+
+import signal
+
+
+
+SIGNALS = (signal.SIGINT, signal.SIGTERM)
+
+
+class Interrupted(BaseException):
+    """The user asked the process to stop; like KeyboardInterrupt, no `except Exception` stops
+    it. exit_code: 128 + the signal's number (130 SIGINT, 143 SIGTERM)."""
+
+    def __init__(self, signum: int):
+        super().__init__(f"interrupted by {signal.Signals(signum).name}")
+        self.signum = signum
+        self.exit_code = 128 + signum
+
+
+class Signals:
+    """While active (with-block), SIGINT and SIGTERM raise Interrupted; with stop_gently=True the
+    first one only sets .signum (a running simulate() polls it and stops at its next slice) and a
+    second one raises. Outside the main thread, where handlers cannot be set, nothing changes."""
+
+    def __init__(self, stop_gently: bool = False):
+        self.stop_gently = stop_gently
+        self.signum = 0
+        self._previous = {}
+
+    def __enter__(self) -> "Signals":
+        try:
+            self._previous = {s: signal.signal(s, self._handle) for s in SIGNALS}
+        except ValueError:            # not the main thread
+            self._previous = {}
+        return self
+
+    def __exit__(self, *exc) -> None:
+        for s, handler in self._previous.items():
+            signal.signal(s, handler)
+
+    def _handle(self, signum, frame) -> None:
+        if self.stop_gently and not self.signum:
+            self.signum = signum
+            return
+        raise Interrupted(signum)
+
+    @property
+    def name(self) -> str:
+        """The signal received ("SIGINT", "SIGTERM"), "" if none."""
+        return signal.Signals(self.signum).name if self.signum else ""

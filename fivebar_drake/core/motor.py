@@ -1,0 +1,143 @@
+"""The geared motor: its parameters and torque-speed line (Motor), the Drake motor model built from
+C++ primitives (MotorModel) and the classification of clipped commands."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+import numpy as np
+from pydrake.systems.framework import Diagram, DiagramBuilder
+from pydrake.systems.primitives import (AffineSystem, Demultiplexer, Gain, MatrixGain, Multiplexer,
+                                        Saturation, ZeroOrderHold)
+
+from fivebar_drake.core.compiled import jit
+from fivebar_drake.core.validation import (MAX_GEAR_RATIO, MAX_ROTOR_INERTIA_KG_M2,
+                                           MAX_SPEED_RAD_S, MAX_TORQUE_NM, check_number, require)
+
+
+@jit
+def torque_speed_line(peak_Nm, no_load_rad_s, speed_rad_s):
+    """Largest motoring torque (N*m) at a joint speed (rad/s, a number or an array): the linear
+    torque-speed line peak (1 - |w| / w_0), zero beyond the no-load speed w_0."""
+    return peak_Nm * np.minimum(np.maximum(1.0 - np.abs(speed_rad_s) / no_load_rad_s, 0.0), 1.0)
+
+
+@dataclass(frozen=True)
+class Motor:
+    """Geared hip motor, values at the gearbox output: torque N*m, speed rad/s."""
+
+    peak_torque_Nm: float
+    gear_ratio: float
+    no_load_speed_rad_s: float
+    rotor_inertia_kg_m2: float
+    coulomb_friction_Nm: float
+    viscous_friction_Nm_s: float
+
+    def __post_init__(self):
+        for name, high in (("peak_torque_Nm", MAX_TORQUE_NM), ("gear_ratio", MAX_GEAR_RATIO),
+                           ("no_load_speed_rad_s", MAX_SPEED_RAD_S)):
+            check_number(f"motor.{name}", getattr(self, name), 0.0, high, low_open=True)
+        check_number("motor.rotor_inertia_kg_m2", self.rotor_inertia_kg_m2, 0.0,
+                     MAX_ROTOR_INERTIA_KG_M2)
+        check_number("motor.coulomb_friction_Nm", self.coulomb_friction_Nm, 0.0, MAX_TORQUE_NM)
+        check_number("motor.viscous_friction_Nm_s", self.viscous_friction_Nm_s, 0.0, MAX_TORQUE_NM)
+        at_speed = self.coulomb_friction_Nm + self.viscous_friction_Nm_s * self.no_load_speed_rad_s
+        require(at_speed < self.peak_torque_Nm, "motor.coulomb_friction_Nm",
+                self.coulomb_friction_Nm, f"with viscous_friction_Nm_s the friction at the no-load "
+                f"speed is {at_speed:g} N m, not below peak_torque_Nm = {self.peak_torque_Nm:g}: "
+                "the motor could not turn")
+
+    def torque_limit(self, speed_rad_s):
+        """Largest motoring torque (N*m) at joint speeds (rad/s, array): torque_speed_line."""
+        return torque_speed_line(self.peak_torque_Nm, self.no_load_speed_rad_s,
+                                 np.asarray(speed_rad_s, dtype=float))
+
+    @property
+    def reflected_inertia_kg_m2(self) -> float:
+        """Rotor inertia seen at the output, N^2 J_rotor."""
+        return self.gear_ratio**2 * self.rotor_inertia_kg_m2
+
+FRICTION_SMOOTHING_RAD_S = 0.05   # Coulomb friction reaches its full value at this joint speed
+
+PEAK_TOLERANCE = 1e-12            # relative: a delivered torque this close to the peak is at it
+
+
+class MotorModel(Diagram):
+    """Commanded torque and joint speed -> torque at the joints, built from Drake's C++
+    primitives (no Python at run time). Values at the gearbox output, SI.
+
+    Input ports: "torque_command" (n) N*m, "plant_state" (nx). Both are sampled every period_s
+    (zero-order hold), and the law acts on the held values:
+    - the delivered torque is the command clamped to [lower, upper]: motoring (torque and speed
+      of the same sign) is limited by the torque-speed line, braking by the peak torque,
+      upper = clamp(peak (1 - w / w_0), 0, peak), lower = clamp(-peak (1 + w / w_0), -peak, 0)
+      (the line of Motor.torque_limit), as c - max(c - upper, 0) + max(lower - c, 0);
+    - friction tau_c clamp(w / w_s, -1, 1) + b w (Coulomb, regularised over |w| < w_s =
+      FRICTION_SMOOTHING_RAD_S, and viscous) opposes the motion.
+    Output ports: "applied_torque" (n) N*m at the joints (delivered - friction); "motor_record"
+    (3 n): the held command, the delivered torque and the applied torque (N*m), constant between
+    samples (clip_flags classifies the clipping). The rotor's reflected inertia N^2 J_rotor is
+    in the plant (<drake:rotor_inertia>, <drake:gear_ratio>), not here."""
+
+    def __init__(self, motor: Motor, v_index_in_state, nx: int, period_s: float):
+        super().__init__()
+        v_index = np.asarray(v_index_in_state)   # state index of each actuator's joint speed
+        n, peak, slope = len(v_index), motor.peak_torque_Nm, (motor.peak_torque_Nm
+                                                              / motor.no_load_speed_rad_s)
+        eye, zero = np.eye(n), np.zeros((n, n))
+        b = DiagramBuilder()
+        command = b.AddNamedSystem("hold_command", ZeroOrderHold(period_s, n))
+        state = b.AddNamedSystem("hold_state", ZeroOrderHold(period_s, nx))
+        select = np.zeros((n, nx))
+        select[np.arange(n), v_index] = 1.0
+        speed = b.AddNamedSystem("speed", MatrixGain(select))
+        line = b.AddNamedSystem("line", AffineSystem(
+            np.zeros((0, 0)), np.zeros((0, n)), np.zeros(0), np.zeros((2 * n, 0)),
+            np.vstack([-slope * eye, -slope * eye]), np.r_[np.full(n, peak), np.full(n, -peak)]))
+        limits = b.AddNamedSystem("limits", Saturation(np.r_[np.zeros(n), np.full(n, -peak)],
+                                                       np.r_[np.full(n, peak), np.zeros(n)]))
+        beyond = b.AddNamedSystem("beyond", Multiplexer([n, 2 * n]))        # c, upper, lower
+        excess = b.AddNamedSystem("excess", MatrixGain(np.block([[eye, -eye, zero],
+                                                                 [-eye, zero, eye]])))
+        positive = b.AddNamedSystem("positive", Saturation(np.zeros(2 * n),
+                                                           np.full(2 * n, np.inf)))
+        slip = b.AddNamedSystem("slip", Gain(1.0 / FRICTION_SMOOTHING_RAD_S, n))
+        unit = b.AddNamedSystem("unit", Saturation(-np.ones(n), np.ones(n)))
+        terms = b.AddNamedSystem("terms", Multiplexer([n, 2 * n, n, n]))  # c, excess, unit, w
+        delivered = np.hstack([eye, -eye, eye, zero, zero])
+        friction = np.hstack([zero, zero, zero, motor.coulomb_friction_Nm * eye,
+                              motor.viscous_friction_Nm_s * eye])
+        law = b.AddNamedSystem("law", MatrixGain(np.vstack([delivered, delivered - friction])))
+        split = b.AddNamedSystem("split", Demultiplexer([n, n]))
+        record = b.AddNamedSystem("record", Multiplexer([n, 2 * n]))
+        b.ExportInput(command.get_input_port(), "torque_command")
+        b.ExportInput(state.get_input_port(), "plant_state")
+        b.Connect(state.get_output_port(), speed.get_input_port())
+        b.Connect(speed.get_output_port(), line.get_input_port())
+        b.Connect(line.get_output_port(), limits.get_input_port())
+        b.Connect(command.get_output_port(), beyond.get_input_port(0))
+        b.Connect(limits.get_output_port(), beyond.get_input_port(1))
+        b.Connect(beyond.get_output_port(), excess.get_input_port())
+        b.Connect(excess.get_output_port(), positive.get_input_port())
+        b.Connect(speed.get_output_port(), slip.get_input_port())
+        b.Connect(slip.get_output_port(), unit.get_input_port())
+        for i, source in enumerate((command, positive, unit, speed)):
+            b.Connect(source.get_output_port(), terms.get_input_port(i))
+        b.Connect(terms.get_output_port(), law.get_input_port())
+        b.Connect(law.get_output_port(), split.get_input_port())
+        b.Connect(command.get_output_port(), record.get_input_port(0))
+        b.Connect(law.get_output_port(), record.get_input_port(1))
+        b.ExportOutput(split.get_output_port(1), "applied_torque")
+        b.ExportOutput(record.get_output_port(), "motor_record")
+        b.BuildInto(self)
+
+
+def clip_flags(motor: Motor, command, delivered) -> tuple[np.ndarray, np.ndarray]:
+    """Where the motor clipped the command (arrays of one shape, N*m): (by the peak torque,
+    by the torque-speed line), boolean. The peak binds where the command exceeds it and the
+    delivered torque sits at it; otherwise a clipped command met the line."""
+    command, delivered = np.asarray(command, dtype=float), np.asarray(delivered, dtype=float)
+    clipped = delivered != command
+    peak = motor.peak_torque_Nm
+    at_peak = clipped & (np.abs(command) > peak) & (np.abs(delivered)
+                                                    >= peak * (1.0 - PEAK_TOLERANCE))
+    return at_peak, clipped & ~at_peak

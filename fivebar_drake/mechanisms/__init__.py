@@ -1,0 +1,2 @@
+"""Mechanisms, one folder each: parameters, kinematics, Jacobians, dynamics, singularities and loop
+facts."""

@@ -1,0 +1,1 @@
+"""The 8-DOF quadruped with 5-bar legs."""

@@ -1,0 +1,77 @@
+"""Bushing parameters for the loop closure at E, derived from the leg's effective mass at the
+knee, the force the loop carries and the loop gap one accepts.
+
+A discrete plant applies the bushing force explicitly: a spring k and damper d on the effective
+mass m_eff = 1 / lambda_max(J_c M^-1 J_c^T) felt at the cut (J_c: Jacobian of the gap), stepped
+with dt by symplectic Euler. With a = k dt^2 / m_eff and b = d dt / m_eff = 2 zeta sqrt(a)
+(zeta = damping ratio), the step is stable iff a + 2 b < 4 (Jury criterion on the 2x2 step
+matrix, trace 2 - a - b, determinant 1 - b). The gap under the loop force F is F / k. So:
+k = F / gap, then the largest dt with a + 4 zeta sqrt(a) = 4 margin, and d = 2 zeta sqrt(k m_eff).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from pydrake.multibody.plant import MultibodyPlant
+
+from fivebar_drake.mechanisms.fivebar.gait import sample_gait
+from fivebar_drake.mechanisms.fivebar.loop import tree_positions
+from fivebar_drake.robots.quadruped.inverse_dynamics import loop_jacobian, plane_point_jacobian
+from fivebar_drake.robots.quadruped.leg_loads import trot_model
+from fivebar_drake.robots.quadruped.params import Params
+from fivebar_drake.robots.quadruped.plant import add_model, leg_indices
+from fivebar_drake.robots.quadruped.sdf import Bushing
+
+
+STABILITY_MARGIN = 0.8   # fraction of the explicit stability bound a + 2 b < 4
+
+DAMPING_RATIO = 0.3
+
+
+def _fixed_leg(params: Params):
+    plant = MultibodyPlant(0.0)
+    instance, _ = add_model(plant, params, "leg", None)
+    plant.Finalize()
+    context = plant.CreateDefaultContext()
+    return plant, context, instance, leg_indices(plant, instance, "leg")
+
+
+def loop_load(params: Params):
+    """Effective mass at the knee (kg, least over the gait) and the largest loop force (N) over
+    the gait under trot loading (half the robot's weight on a stance foot), both from the Drake
+    model of one fixed-hip leg: lambda = J_phi^-T tau_tree[phi]."""
+    plant, context, instance, idx = _fixed_leg(params)
+    samples = sample_gait(params.leg, params.gait)
+    load = trot_model(params, samples.path, samples.t).foot_load_N
+    x = tree_positions(samples.pose)
+    m_eff, force = np.inf, 0.0
+    q = plant.GetPositions(context)
+    for k in range(len(x)):
+        q[idx.q] = x[k]
+        plant.SetPositions(context, q)
+        jc, _ = loop_jacobian(plant, context, instance, params, "leg")
+        m_inv = np.linalg.inv(plant.CalcMassMatrix(context))
+        m_eff = min(m_eff, 1.0 / np.max(np.linalg.eigvalsh(jc @ m_inv @ jc.T)))
+        # static loop force: passive joints carry no torque, the foot load goes through E
+        j_foot, _ = plane_point_jacobian(plant, context, instance, "leg", "DE",
+                                         params.leg.de_m + params.leg.ef_m)
+        tau_tree = -j_foot.T @ np.array([0.0, load[k]])
+        lam = np.linalg.solve(jc[:, idx.v[2:]].T, tau_tree[idx.v[2:]])
+        force = max(force, float(np.linalg.norm(lam)))
+    return m_eff, force
+
+
+def bushing_parameters(m_eff_kg: float, loop_force_N: float, target_gap_m: float,
+                       damping_ratio: float = DAMPING_RATIO,
+                       margin: float = STABILITY_MARGIN) -> tuple[Bushing, float]:
+    """Bushing stiffness/damping and the largest stable time step (s) for a loop gap of
+    target_gap_m (m) under loop_force_N (N) with effective mass m_eff_kg (kg)."""
+    for name, value in (("m_eff_kg", m_eff_kg), ("loop_force_N", loop_force_N),
+                        ("target_gap_m", target_gap_m)):
+        if not value > 0:
+            raise ValueError(f"{name} = {value!r}: must be > 0")
+    k = loop_force_N / target_gap_m
+    root_a = -2.0 * damping_ratio + np.sqrt(4.0 * damping_ratio**2 + 4.0 * margin)
+    dt = float(root_a * np.sqrt(m_eff_kg / k))
+    d = 2.0 * damping_ratio * np.sqrt(k * m_eff_kg)
+    return Bushing(stiffness_N_m=float(k), damping_N_s_m=float(d)), dt

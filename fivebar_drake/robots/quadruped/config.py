@@ -1,0 +1,133 @@
+"""Parameter files: the packaged ``data/default.toml`` is the one source of truth, a user may
+pass their own with the same layout. Loading builds the typed sections of params.py and checks
+what needs the kinematics: every foot path must stay in the workspace."""
+
+from __future__ import annotations
+
+import dataclasses
+import tomllib
+from importlib import resources
+from pathlib import Path
+import numpy as np
+
+from fivebar_drake.core.checks import Checks
+from fivebar_drake.core.files import read_input_text
+from fivebar_drake.core.footpath import Gait, PATHS, evaluate
+from fivebar_drake.core.motor import Motor
+from fivebar_drake.core.validation import MAX_SAMPLES, ParameterError, require
+from fivebar_drake.mechanisms.fivebar.gait import sample_gait
+from fivebar_drake.mechanisms.fivebar.geometry import LegGeometry, LinkInertia
+from fivebar_drake.mechanisms.fivebar.kinematics import KNEES_OUT, UnreachableError, inverse
+from fivebar_drake.robots.quadruped.params import Body, Params, Robot
+
+
+# Central differences over N samples per cycle: the peak joint speed and acceleration are
+# compared with those over REFERENCE_REFINEMENT * N samples (an O(h^2) error shrinks 64 times;
+# at most params.MAX_SAMPLES); a difference above SAMPLING_ERROR_WARN of the peak is reported
+# with the analysis.
+REFERENCE_REFINEMENT = 8
+
+SAMPLING_ERROR_WARN = 0.05   # the speed check and safety factors move visibly beyond this
+
+
+def _build(cls, table, section: str):
+    require(isinstance(table, dict), f"[{section}]", table, "must be a table of keys")
+    names = {f.name: f for f in dataclasses.fields(cls)}
+    unknown = sorted(set(table) - set(names))
+    missing = sorted(set(names) - set(table))
+    if unknown:
+        raise ParameterError(f"[{section}] has unknown key(s) {unknown}; allowed: {sorted(names)}",
+                             f"{section}.{unknown[0]}")
+    if missing:
+        raise ParameterError(f"[{section}] is missing key(s) {missing}", f"{section}.{missing[0]}")
+    values = {}
+    for key, value in table.items():
+        if names[key].type == "float" and isinstance(value, int) and not isinstance(value, bool):
+            value = float(value)       # TOML's 1 for 1.0; every other type is checked by cls
+        elif isinstance(value, list):
+            value = tuple(value)       # a point [x, y]
+        values[key] = value
+    return cls(**values)
+
+
+def params_from_dict(data: dict) -> Params:
+    """Build and validate Params from the nested dict of a parameter file."""
+    sections = {"leg", "links", "robot", "gait", "motor", "checks", "body"}
+    unknown, missing = sorted(set(data) - sections), sorted(sections - set(data))
+    if unknown or missing:
+        raise ParameterError(f"parameter file sections: unknown {unknown}, missing {missing}; "
+                             f"expected {sorted(sections)}")
+    require(isinstance(data["links"], dict), "[links]", data["links"], "must hold [links.AC] ...")
+    params = Params(
+        leg=_build(LegGeometry, data["leg"], "leg"),
+        links={name: _build(LinkInertia, table, f"links.{name}")
+               for name, table in data["links"].items()},
+        robot=_build(Robot, data["robot"], "robot"),
+        gait=_build(Gait, data["gait"], "gait"),
+        motor=_build(Motor, data["motor"], "motor"),
+        checks=_build(Checks, data["checks"], "checks"),
+        body=_build(Body, data["body"], "body"),
+    )
+    check_gait_reachable(params)
+    return params
+
+
+def check_gait_reachable(params: Params) -> None:
+    """Raise ParameterError if a sample of either foot path lies outside the knees-out
+    workspace, naming the fields that place the path."""
+    g = params.gait
+    for path in PATHS:
+        foot = evaluate(g, path, np.linspace(0.0, g.period_s, 241)).pos
+        try:
+            inverse(params.leg, foot, KNEES_OUT)
+        except UnreachableError as err:
+            raise ParameterError(
+                f"the foot path leaves the workspace ({path} path): {err}; the path spans "
+                f"x = gait.x_center_m +- gait.a_m = {g.x_center_m:g} +- {g.a_m:g} m and "
+                f"y = gait.y_home_m .. + gait.b_m = {g.y_home_m:g} .. {g.y_home_m + g.b_m:g} m: "
+                "move or shrink it, or change the link lengths leg.*", "gait.y_home_m") from None
+
+
+def with_gait(params: Params, **changes) -> Params:
+    """A copy with some gait fields changed (validated like a loaded file)."""
+    gait = dataclasses.replace(params.gait, **changes)
+    params = dataclasses.replace(params, gait=gait)
+    check_gait_reachable(params)
+    return params
+
+
+def sampling_error(params: Params, path: str) -> dict:
+    """How far the central differences over gait.samples samples per cycle are from converged:
+    the relative shortfall of the peak joint speed and acceleration (worst motor) against
+    REFERENCE_REFINEMENT times as many samples (at most MAX_SAMPLES), that reference count, and
+    a warning if either is above SAMPLING_ERROR_WARN ("" otherwise)."""
+    fine = dataclasses.replace(params.gait, samples=min(params.gait.samples * REFERENCE_REFINEMENT,
+                                                        MAX_SAMPLES))
+    coarse, ref = sample_gait(params.leg, params.gait, path), sample_gait(params.leg, fine, path)
+    err = {"reference_samples": fine.samples}
+    for key, name in (("speed", "qd"), ("acceleration", "qdd")):
+        peak, ref_peak = (np.max(np.abs(getattr(s, name)), axis=0) for s in (coarse, ref))
+        err[key] = float(np.max(np.abs(peak - ref_peak) / np.maximum(ref_peak, 1e-12)))
+    err["warning"] = "" if max(err["speed"], err["acceleration"]) <= SAMPLING_ERROR_WARN else (
+        f"gait.samples = {params.gait.samples}: the central differences over so few samples per "
+        f"cycle are off by {err['speed']:.0%} in the peak joint speed and "
+        f"{err['acceleration']:.0%} in the peak joint acceleration (against {fine.samples} "
+        f"samples); raise gait.samples for figures within {SAMPLING_ERROR_WARN:.0%}")
+    return err
+
+DEFAULT_PATH = resources.files("fivebar_drake") / "data" / "default.toml"
+
+
+def load_params(path: str | Path | None = None) -> Params:
+    """Load and validate a parameter file (TOML); None loads the packaged default. Errors name
+    the file (ParameterError.source)."""
+    source = DEFAULT_PATH if path is None else Path(path)
+    text = read_input_text(source, "parameter file")
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as err:
+        raise ParameterError(f"not valid TOML: {err}", source=str(source)) from None
+    try:
+        return params_from_dict(data)
+    except ParameterError as err:
+        raise err.located(source) from None

@@ -1,0 +1,51 @@
+"""The seed's torque model readings for one leg of this robot: as written, physically consistent,
+and under trot loading."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from fivebar_drake.core.footpath import TROT_PHASES_RAD, stance_loads
+from fivebar_drake.mechanisms.fivebar.dynamics import DynamicsModel
+from fivebar_drake.mechanisms.fivebar.geometry import LINK_NAMES, physical_izz
+from fivebar_drake.robots.quadruped.params import Params
+
+
+def seed_model(params: Params) -> DynamicsModel:
+    """Seed 000 eqs. 6-8 as written: no Coriolis, [0, -1] for link weights, Izz_AC = 0."""
+    return DynamicsModel(
+        name="seed",
+        description="seed 000 as written: tau = M q'' + G, G with [0, -1] for the link weights "
+                    "and the foot load, Coriolis dropped, Izz of AC = 0",
+        izz=tuple(params.links[n].izz_kg_m2 for n in LINK_NAMES),
+        link_weight_sign=-1.0, coriolis=False,
+        foot_load_N=params.robot.weight_share_kg * params.robot.gravity_m_s2,
+        gravity_m_s2=params.robot.gravity_m_s2)
+
+
+def full_model(params: Params) -> DynamicsModel:
+    """Physically consistent: link weights held up (+[0, 1]), Coriolis kept, Izz_AC thin rod."""
+    return DynamicsModel(
+        name="full",
+        description="physically consistent: tau = M q'' + c(q, q') + G, link weights held up "
+                    "(+[0, 1]), foot load m_leg g J_F^T [0, -1], Izz of AC = thin rod m L^2/12",
+        izz=physical_izz(params.leg, params.links),
+        link_weight_sign=1.0, coriolis=True,
+        foot_load_N=params.robot.weight_share_kg * params.robot.gravity_m_s2,
+        gravity_m_s2=params.robot.gravity_m_s2)
+
+
+def trot_model(params: Params, path: str, t, phases_rad=TROT_PHASES_RAD,
+               leg: int = 0) -> DynamicsModel:
+    """The full model under trot loading at times t (s) of the foot path: the robot's weight
+    shared by the feet the schedule (legs' gait phases phases_rad) has in stance, none in swing
+    (footpath.stance_loads), on leg number `leg`."""
+    weight = params.robot.total_mass_kg * params.robot.gravity_m_s2
+    foot_load_N = stance_loads(params.gait, path, t, phases_rad, weight)[leg]
+    return DynamicsModel(
+        name="full_trot",
+        description="full model, trot loading: the robot's weight shared by the feet the trot "
+                    "schedule has in stance (half on each foot of a diagonal pair alone, a quarter "
+                    "while all four are down), none in swing",
+        izz=physical_izz(params.leg, params.links), link_weight_sign=1.0, coriolis=True,
+        foot_load_N=np.asarray(foot_load_N, dtype=float), gravity_m_s2=params.robot.gravity_m_s2)

@@ -1,0 +1,165 @@
+"""The quadruped in a Drake MultibodyPlant: model loading with the loop closures, joint indices, the
+plain-data layout the controller needs, ground and standing pose."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+import numpy as np
+from pydrake.multibody.parsing import Parser
+from pydrake.multibody.plant import MultibodyPlant
+from pydrake.geometry import AddContactMaterial, Box, ProximityProperties
+from pydrake.math import RigidTransform
+from pydrake.multibody.plant import (AddMultibodyPlantSceneGraph, CoulombFriction,
+                                     MultibodyPlantConfig, ApplyMultibodyPlantConfig)
+from pydrake.systems.framework import DiagramBuilder
+
+from fivebar_drake.mechanisms.fivebar.kinematics import inverse
+from fivebar_drake.mechanisms.fivebar.loop import JOINTS, tree_positions
+from fivebar_drake.robots.quadruped.params import Params
+from fivebar_drake.robots.quadruped.sdf import (Bushing, LEGS, body_height, hip_positions,
+                                                quadruped_sdf, single_leg_sdf)
+
+
+# Loop closures at E: "bushing", the bushing's force law (a translational spring-damper at E, free
+# about the hinge) as two compliant SAP distance constraints, treated implicitly; "bushing_rpy",
+# Drake's explicit LinearBushingRollPitchYaw; "ball", a rigid SAP ball constraint.
+CLOSURES = ("bushing", "bushing_rpy", "ball")
+
+OFFSET_M = 0.02   # the second distance constraint's point on DE: this far off the link at E
+
+
+def check_closure(closure: str) -> None:
+    if closure not in CLOSURES:
+        raise ValueError(f"closure = {closure!r}: allowed {list(CLOSURES)}")
+
+
+def add_model(plant: MultibodyPlant, params: Params, model: str, closure: str | None,
+              bushing: Bushing | None = None):
+    """Parse the generated SDF ("leg": one fixed-hip leg named "leg"; "quadruped": body + legs
+    FL, FR, RL, RR) into plant and close each loop (closure None: the open tree, for kinematics
+    and mass properties). Returns (model instance, leg names).
+
+    The "bushing" closure joins E on CE to D on DE at the length DE and to the point Q 20 mm off
+    DE at E (perpendicular, in the leg plane) at 20 mm: both springs have the bushing's stiffness
+    and damping, their directions at E are orthogonal, so E feels an isotropic in-plane spring,
+    and both lines of action pass through E: no torque about the hinge."""
+    if closure is not None:
+        check_closure(closure)
+    if closure in ("bushing", "bushing_rpy") and bushing is None:
+        raise ValueError(f"closure {closure!r} needs bushing parameters")
+    text = (single_leg_sdf if model == "leg" else quadruped_sdf)(params, closure, bushing)
+    parser = Parser(plant)
+    parser.SetStrictParsing()
+    (instance,) = parser.AddModelsFromString(text, "sdf")
+    legs = ("leg",) if model == "leg" else LEGS
+    if closure == "bushing":
+        g, k, d = params.leg, bushing.stiffness_N_m, bushing.damping_N_s_m
+        for leg in legs:
+            ce = plant.GetBodyByName(f"{leg}_CE", instance)
+            de = plant.GetBodyByName(f"{leg}_DE", instance)
+            plant.AddDistanceConstraint(ce, [g.ce_m, 0.0, 0.0], de, [0.0, 0.0, 0.0], g.de_m, k, d)
+            plant.AddDistanceConstraint(ce, [g.ce_m, 0.0, 0.0], de, [g.de_m, OFFSET_M, 0.0],
+                                        OFFSET_M, k, d)
+    return instance, legs
+
+
+@dataclass(frozen=True)
+class LegIndices:
+    """Where one leg's joints A, B, C, D sit in the plant's q and v, and its motors' actuator
+    indices in the actuation vector (A, B)."""
+
+    q: np.ndarray
+    v: np.ndarray
+    actuators: np.ndarray
+
+
+def leg_indices(plant: MultibodyPlant, instance, leg: str) -> LegIndices:
+    joints = [plant.GetJointByName(f"{leg}_{j}", instance) for j in JOINTS]
+    actuators = [plant.GetJointActuatorByName(f"{leg}_{j}", instance).input_start()
+                 for j in ("A", "B")]
+    return LegIndices(q=np.array([j.position_start() for j in joints]),
+                      v=np.array([j.velocity_start() for j in joints]),
+                      actuators=np.array(actuators))
+
+GROUND_SIZE_M = 40.0   # flat ground, top face at z = 0
+
+GROUND_DEPTH_M = 1.0
+
+
+def robot_layout(plant, instance, legs, params: Params) -> RobotLayout:
+    """The controller's view of the finalized plant (see systems.RobotLayout): indices, hips,
+    and the whole robot's mass, COM and inertia in the standing pose."""
+    indices = {leg: leg_indices(plant, instance, leg) for leg in legs}
+    context = plant.CreateDefaultContext()
+    set_standing_pose(plant, context, instance, legs, params)
+    body = plant.GetBodyByName("body", instance)
+    spatial = plant.CalcSpatialInertia(context, body.body_frame(),
+                                       plant.GetBodyIndices(instance))
+    com = spatial.get_com()
+    inertia = spatial.Shift(com).CalcRotationalInertia().CopyToFullMatrix3()
+    return RobotLayout(
+        q_index=np.array([indices[leg].q[:2] for leg in legs]),
+        v_index=np.array([indices[leg].v[:2] for leg in legs]),
+        actuators=np.array([indices[leg].actuators for leg in legs]),
+        body_q=body.floating_positions_start(), body_v=body.floating_velocities_start_in_v(),
+        nq=plant.num_positions(), nx=plant.num_multibody_states(),
+        hips_m=np.array([hip_positions(params)[leg] for leg in legs]), com_m=np.asarray(com),
+        mass_kg=spatial.get_mass(), inertia_kg_m2=inertia)
+
+
+def add_robot(builder: DiagramBuilder, params: Params, closure: str, bushing, time_step: float):
+    """Add the finalized quadruped plant (SAP, closed loops) and flat ground to builder;
+    returns (plant, model instance, leg names)."""
+    plant, _ = AddMultibodyPlantSceneGraph(builder, time_step)
+    # unsampled output ports: a block updating at tick t reads the state at t, as a driver would
+    ApplyMultibodyPlantConfig(MultibodyPlantConfig(
+        time_step=time_step, discrete_contact_approximation="sap",
+        use_sampled_output_ports=False), plant)
+    instance, legs = add_model(plant, params, "quadruped", closure, bushing)
+    ground = ProximityProperties()
+    mu = params.body.foot_friction
+    AddContactMaterial(friction=CoulombFriction(mu, mu), properties=ground)
+    plant.RegisterCollisionGeometry(plant.world_body(), RigidTransform([0, 0, -GROUND_DEPTH_M / 2]),
+                                    Box(GROUND_SIZE_M, GROUND_SIZE_M, GROUND_DEPTH_M), "ground",
+                                    ground)
+    plant.Finalize()
+    return plant, instance, legs
+
+
+def standing_height(params: Params) -> float:
+    """Body height (m) at which the feet, at (x_center, y_home), touch flat ground."""
+    return float(body_height(params, params.gait.y_home_m))
+
+
+def set_standing_pose(plant, context, instance, legs, params: Params) -> None:
+    """Standing pose in a plant context: every loop closed exactly (closed-form IK), at rest,
+    feet at (x_center, y_home) on the ground."""
+    foot = np.array([params.gait.x_center_m, params.gait.y_home_m])
+    x = tree_positions(inverse(params.leg, foot))
+    q = plant.GetPositions(context)
+    for leg in legs:
+        q[leg_indices(plant, instance, leg).q] = x
+    plant.SetPositions(context, q)
+    plant.SetFreeBodyPose(context, plant.GetBodyByName("body", instance),
+                          RigidTransform([0.0, 0.0, standing_height(params)]))
+
+
+@dataclass(frozen=True)
+class RobotLayout:
+    """What the controller needs to know about the plant: per leg (legs, 2) the plant q and v
+    indices of motors A and B and their actuation indices; the body's first position index
+    (quaternion w, x, y, z, then position) and velocity index (angular then linear, world
+    frame); nq, nx; hip positions (legs, 3) m and the robot's COM (3,) m in the body frame;
+    robot mass (kg) and inertia about the COM (3, 3) kg*m^2."""
+
+    q_index: np.ndarray
+    v_index: np.ndarray
+    actuators: np.ndarray
+    body_q: int
+    body_v: int
+    nq: int
+    nx: int
+    hips_m: np.ndarray
+    com_m: np.ndarray
+    mass_kg: float
+    inertia_kg_m2: np.ndarray

@@ -1,0 +1,189 @@
+"""Assemble the quadruped Diagram from a scenario: closure parameters and run checks, controller
+gains, gait source -> leg controller -> motor model -> plant, and the recorders."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+import numpy as np
+from pydrake.systems.framework import DiagramBuilder
+from pydrake.systems.primitives import DiscreteTimeIntegrator, Multiplexer, VectorLogSink
+
+from fivebar_drake.core.footpath import stance_start
+from fivebar_drake.core.motor import MotorModel
+from fivebar_drake.core.validation import ParameterError, check_number, require
+from fivebar_drake.mechanisms.fivebar.dynamics import mass_matrix
+from fivebar_drake.mechanisms.fivebar.geometry import physical_izz
+from fivebar_drake.mechanisms.fivebar.kinematics import inverse
+from fivebar_drake.robots.quadruped.closure import bushing_parameters, loop_load
+from fivebar_drake.robots.quadruped.control_law import ControlGains
+from fivebar_drake.robots.quadruped.params import Params
+from fivebar_drake.robots.quadruped.plant import RobotLayout, add_robot, leg_indices, robot_layout
+from fivebar_drake.simulation.scenario import Scenario
+from fivebar_drake.simulation.systems import FootLegController, GaitSource, derive_gains
+
+
+IMPLICIT_TIME_STEP_S = 1e-3   # plant step of the closures SAP treats implicitly
+
+MAX_PLANT_STEPS = 20_000_000   # duration / time step: at ~0.3 ms of wall time per plant step
+
+#                                (measured, 2 cores) about two hours
+MIN_LOG_INTERVALS_PER_CYCLE = 100   # the statistics take peaks and percentiles of the recorded
+
+
+@dataclass
+class Setup:
+    """What the builder made: plant handles, indices and the derived closure parameters."""
+
+    plant: object
+    instance: object
+    legs: tuple
+    indices: dict
+    time_step_s: float
+    bushing: object
+    m_eff_kg: float
+    loop_force_N: float
+    layout: RobotLayout
+    gains: ControlGains
+    recorder: VectorLogSink
+    motor_log: VectorLogSink
+    motor_samples_per_row: int
+    controller: FootLegController
+    actuation_log: VectorLogSink | None = None
+
+
+def closure_parameters(scenario: Scenario, params: Params):
+    """(time step s, Bushing or None, m_eff kg, loop force N) for the scenario's closure. The
+    bushing's stiffness and damping come from the knee's effective mass, the loop force and the
+    accepted gap (bushing.bushing_parameters); SAP treats the compliant "bushing" implicitly, so
+    it runs at IMPLICIT_TIME_STEP_S, while the explicit "bushing_rpy" needs the step its
+    stability bound allows."""
+    m_eff, force = loop_load(params)
+    if scenario.closure == "ball":
+        return scenario.time_step_s or IMPLICIT_TIME_STEP_S, None, m_eff, force
+    bushing, dt = bushing_parameters(m_eff, force, scenario.target_loop_gap_m)
+    if scenario.closure == "bushing":
+        return scenario.time_step_s or IMPLICIT_TIME_STEP_S, bushing, m_eff, force
+    if scenario.time_step_s > dt:
+        raise ParameterError(
+            f"scenario.time_step_s = {scenario.time_step_s!r}: the explicit bushing (k = "
+            f"{bushing.stiffness_N_m:.3g} N/m, m_eff = {m_eff * 1e3:.2f} g) is stable up to "
+            f"{dt:.3g} s; use 0 (derived) or a smaller step, a larger target_loop_gap_m, or the "
+            "implicit closure 'bushing'", "scenario.time_step_s")
+    # the largest stable step that divides the log period, so every log interval has whole steps
+    derived = scenario.log_period_s / math.ceil(scenario.log_period_s / dt - 1e-9)
+    return scenario.time_step_s or derived, bushing, m_eff, force
+
+
+def recorded_periods(scenario: Scenario, time_step: float) -> tuple[float, int]:
+    """(the recorder's period s: whole plant steps of time_step s nearest log_period_s, the
+    number of motor samples in it, rounded)."""
+    log_period = time_step * max(1, round(scenario.log_period_s / time_step))
+    return log_period, round(log_period / scenario.motor_period_s)
+
+
+def check_run(scenario: Scenario, params: Params) -> float:
+    """The plant's time step (s) for the scenario, after the checks that need the parameters
+    and the step (ParameterError naming the field): the step against the motor model's period,
+    the foot contact's time scale and the number of steps; the recorded interval against the
+    step and the gait, the pose rate against the interval; the load transfer against the
+    stance."""
+    step = closure_parameters(scenario, params)[0]
+    field = "scenario.time_step_s"
+    derived = "" if scenario.time_step_s else f"; 0 derives {step:g} s for the closure"
+    check_number(field, step, high=scenario.motor_period_s,
+                 why="the plant steps at least as often as the motor model updates "
+                     f"(scenario.motor_period_s), or its torques are skipped{derived}")
+    check_number(field, step, high=params.body.foot_relaxation_time_s,
+                 why="a touchdown must span more than one plant step: "
+                     f"body.foot_relaxation_time_s is the foot contact's time scale{derived}")
+    check_number(field, step, low=scenario.duration_s / MAX_PLANT_STEPS,
+                 why=f"scenario.duration_s = {scenario.duration_s:g} s may take at most "
+                     f"{MAX_PLANT_STEPS:g} plant steps (about two hours){derived}")
+    period = params.gait.period_s
+    check_number("scenario.log_period_s", scenario.log_period_s, step,
+                 period / MIN_LOG_INTERVALS_PER_CYCLE,
+                 why=f"at least one plant step and at least {MIN_LOG_INTERVALS_PER_CYCLE} "
+                     f"intervals per gait cycle of {period:g} s")
+    check_number("scenario.pose_rate_hz", scenario.pose_rate_hz, high=1.0 / scenario.log_period_s,
+                 why="poses are taken from the recorded intervals: at most 1 / log_period_s")
+    log_period, per_row = recorded_periods(scenario, step)
+    require(per_row >= 1 and math.isclose(per_row * scenario.motor_period_s, log_period,
+                                          rel_tol=1e-9),
+            "scenario.log_period_s", scenario.log_period_s,
+            f"the recorder logs every {log_period:.6g} s (whole plant steps of {step:.6g} s), "
+            f"which must be a whole number of motor periods (scenario.motor_period_s = "
+            f"{scenario.motor_period_s:g} s): the motor's samples are averaged per interval")
+    stance_s = (1.0 - stance_start(params.gait, scenario.gait)) * period
+    check_number("scenario.load_transfer_s", scenario.load_transfer_s, high=stance_s / 2,
+                 why=f"a foot must take up its load and give it off within its stance of "
+                     f"{stance_s:g} s")
+    return step
+
+
+def controller_gains(scenario: Scenario, params: Params, layout: RobotLayout) -> ControlGains:
+    """Gains from the robot's numbers: the swing joint's inertia is the largest diagonal entry
+    of the leg's mass matrix at home plus the reflected rotor inertia (systems.derive_gains)."""
+    home = inverse(params.leg, np.array([params.gait.x_center_m, params.gait.y_home_m]))
+    izz = physical_izz(params.leg, params.links)
+    leg_inertia = (np.max(np.diag(mass_matrix(params.leg, params.links, izz, home)))
+                   + params.motor.reflected_inertia_kg_m2)
+    return derive_gains(layout.mass_kg, layout.inertia_kg_m2, leg_inertia,
+                        scenario.swing_bandwidth_hz, scenario.body_bandwidth_hz,
+                        scenario.damping_ratio)
+
+
+def build_diagram(scenario: Scenario, params: Params, log_actuation: bool = False):
+    """Assemble the Diagram for the scenario; returns (diagram, Setup). log_actuation: also log
+    the joint torques the plant receives at every step (Setup.actuation_log), to replay the run
+    on the plant alone."""
+    time_step, bushing, m_eff, force = closure_parameters(scenario, params)
+    builder = DiagramBuilder()
+    plant, instance, legs = add_robot(builder, params, scenario.closure, bushing, time_step)
+    indices = {leg: leg_indices(plant, instance, leg) for leg in legs}
+    layout = robot_layout(plant, instance, legs, params)
+    gains = controller_gains(scenario, params, layout)
+
+    gait = builder.AddNamedSystem("gait_source", GaitSource(
+        params.gait, scenario.gait, scenario.phases_rad, scenario.stand_s, scenario.ramp_s,
+        scenario.load_transfer_s, scenario.control_period_s))
+    controller = builder.AddNamedSystem("leg_controller", FootLegController(
+        params, layout, gains, scenario.control_period_s, scenario.control_delay_periods,
+        scenario.catch_gain, scenario.catch_rate_s, scenario.touchdown_detection))
+    speed_index = np.zeros(plant.num_actuators(), dtype=int)    # joint speed of each actuator
+    speed_index[layout.actuators.ravel()] = layout.v_index.ravel() + layout.nq
+    motor = builder.AddNamedSystem("motor_model", MotorModel(
+        params.motor, speed_index, layout.nx, scenario.motor_period_s))
+    # every plant step counted in C++: the integral of the contact forces; one row per log
+    # interval (the plant state and that integral at its end); the motor's held values once
+    # per motor sample (they are constant in between)
+    n_act, nv = plant.num_actuators(), plant.num_velocities()
+    integrator = builder.AddNamedSystem("contact_integral", DiscreteTimeIntegrator(nv, time_step))
+    rows = builder.AddNamedSystem("rows", Multiplexer([layout.nx, nv]))
+    log_period, per_row = recorded_periods(scenario, time_step)
+    recorder = builder.AddNamedSystem("recorder", VectorLogSink(layout.nx + nv, log_period))
+    motor_log = builder.AddNamedSystem("motor_log", VectorLogSink(3 * n_act,
+                                                                  scenario.motor_period_s))
+
+    state = plant.get_state_output_port(instance)
+    builder.Connect(gait.GetOutputPort("foot_references"), controller.GetInputPort("foot_references"))
+    builder.Connect(state, controller.GetInputPort("plant_state"))
+    builder.Connect(controller.GetOutputPort("torque_command"), motor.GetInputPort("torque_command"))
+    builder.Connect(state, motor.GetInputPort("plant_state"))
+    builder.Connect(motor.GetOutputPort("applied_torque"), plant.get_actuation_input_port())
+    builder.Connect(plant.get_generalized_contact_forces_output_port(instance),
+                    integrator.get_input_port())
+    builder.Connect(motor.GetOutputPort("motor_record"), motor_log.get_input_port())
+    builder.Connect(state, rows.get_input_port(0))
+    builder.Connect(integrator.get_output_port(), rows.get_input_port(1))
+    builder.Connect(rows.get_output_port(), recorder.get_input_port())
+    actuation_log = None
+    if log_actuation:
+        actuation_log = builder.AddNamedSystem("actuation_log", VectorLogSink(n_act, time_step))
+        builder.Connect(motor.GetOutputPort("applied_torque"), actuation_log.get_input_port())
+    setup = Setup(plant=plant, instance=instance, legs=legs, indices=indices,
+                  time_step_s=time_step, bushing=bushing, m_eff_kg=m_eff, loop_force_N=force,
+                  layout=layout, gains=gains, recorder=recorder, motor_log=motor_log,
+                  motor_samples_per_row=per_row, controller=controller,
+                  actuation_log=actuation_log)
+    return builder.Build(), setup

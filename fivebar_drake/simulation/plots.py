@@ -1,0 +1,74 @@
+"""Plots of a simulated run: motor torques against the static predictions and the motor limit,
+loop gap and body motion (PNG)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+import matplotlib.pyplot as plt
+
+from fivebar_drake.core.files import atomic_path
+from fivebar_drake.robots.quadruped.params import Params
+from fivebar_drake.simulation.summary import MOTORS, Signals
+
+
+def torque_figure(sig: Signals, legs, params: Params, window) -> plt.Figure:
+    limit = params.motor.peak_torque_Nm
+    fig, axes = plt.subplots(len(legs), 2, figsize=(13, 2.6 * len(legs)), sharex=True, sharey=True)
+    for i, leg in enumerate(legs):
+        for j, motor in enumerate(MOTORS):
+            ax = axes[i, j]
+            ax.axvspan(*window, color="0.93", zorder=0,
+                       label="statistics window" if i == j == 0 else None)
+            ax.plot(sig.t, sig.command[:, i, j], color="0.6", lw=0.8, label="demand (command)")
+            ax.plot(sig.t, sig.applied[:, i, j], lw=1.2, label="applied (motor output)")
+            ax.plot(sig.t, sig.static_contact[:, i, j], lw=1.0, label="quasi-static: $-J^T F$")
+            ax.plot(sig.t, sig.static_trot[:, i, j], ":", lw=1.2, label="static: trot load")
+            ax.plot(sig.t, sig.static_seed[:, i, j], "--", lw=1.0, label="static: seed G(q)")
+            for sign in (1, -1):
+                ax.axhline(sign * limit, color="r", lw=1.2,
+                           label=f"limit ±{limit:g} N·m" if sign > 0 else None)
+            ax.set(title=f"{leg} motor {motor}", ylabel="torque (N·m)")
+            ax.grid(alpha=0.3)
+    for ax in axes[-1]:
+        ax.set_xlabel("time (s)")
+    axes[0, 1].legend(fontsize=7, loc="upper right")
+    fig.suptitle("Motor torques in the simulated trot vs static predictions")
+    fig.tight_layout()
+    return fig
+
+
+def motion_figure(sig: Signals, legs, gait_speed: float) -> plt.Figure:
+    fig, (ag, ah, at, av) = plt.subplots(4, 1, figsize=(10, 9), sharex=True)
+    for i, leg in enumerate(legs):
+        ag.plot(sig.t, sig.gap[:, i] * 1e3, lw=0.8, label=leg)
+    ag.axhline(0.1, color="r", ls="--", lw=1, label="0.1 mm")
+    ag.set(ylabel="loop gap (mm)", title="Loop closure gap per leg (worst per interval)")
+    ah.plot(sig.t, sig.body_p[:, 2] * 1e3)
+    ah.set(ylabel="body height (mm)")
+    at.plot(sig.t, sig.tilt_deg)
+    at.set(ylabel="tilt (deg)")
+    av.plot(sig.t, sig.body_v[:, 0], label="body")
+    av.axhline(gait_speed, color="k", ls="--", lw=1, label="gait speed")
+    av.set(ylabel="forward speed (m/s)", xlabel="time (s)")
+    av.legend(fontsize=8)
+    for ax in (ag, ah, at, av):
+        ax.grid(alpha=0.3)
+    ag.legend(fontsize=8, ncol=5)
+    fig.tight_layout()
+    return fig
+
+SIM_PLOT_FILES = ("sim_torques.png", "sim_motion.png")
+
+
+def write_sim_plots(sig: Signals, legs, params: Params, summary: dict,
+                    out_dir: Path) -> list[Path]:
+    """Write SIM_PLOT_FILES into out_dir (atomically); returns their paths."""
+    paths = []
+    figures = (torque_figure(sig, legs, params, summary["window_s"]),
+               motion_figure(sig, legs, summary["gait_speed_m_s"]))
+    for name, fig in zip(SIM_PLOT_FILES, figures):
+        with atomic_path(out_dir / name) as tmp:
+            fig.savefig(tmp, dpi=110)
+        plt.close(fig)
+        paths.append(out_dir / name)
+    return paths

@@ -1,0 +1,180 @@
+"""Rerun recording (.rrd) of a simulated run, logged in columns, with its blueprint inside.
+
+Entities (timeline "sim_time"):
+- world/ground, world/body (box + pose), world/legs/<leg> (link segments), world/feet/<leg>
+  (foot trace), world/forces/<leg> (ground force arrows at the feet, 1 cm per 10 N), at
+  pose_rate_hz;
+- per log interval (means over the plant steps of the interval): joints/<leg>/<A|B>/{angle,
+  speed}, torque/<leg>/<A|B>/{commanded, applied, static_contact, static_trot, static_seed,
+  limit_pos, limit_neg}, loop_gap/<leg> (worst gap of the interval), contact/<leg>/{normal,
+  tangential} (leg plane, N), body/height, body/forward_speed, body/tilt_deg,
+  stats/window (1 inside the statistics window);
+- cycle_peak/<leg>/<A|B>: the peak applied torque of each whole cycle, at the cycle's end.
+Each run gets its own recording id, so two runs open side by side in one viewer.
+"""
+
+from __future__ import annotations
+
+import uuid
+from pathlib import Path
+import numpy as np
+import rerun as rr
+import rerun.blueprint as rrb
+
+from fivebar_drake.core.files import atomic_path
+from fivebar_drake.robots.quadruped.params import Params
+from fivebar_drake.simulation.builder import Setup
+from fivebar_drake.simulation.scenario import Scenario
+from fivebar_drake.simulation.summary import MOTORS, Signals
+
+
+RECORDING_FILE = "run.rrd"
+
+TIMELINE = "sim_time"
+
+FORCE_ARROW_M_PER_N = 0.001    # 1 mm of arrow per newton
+
+
+def blueprint(legs) -> rrb.Blueprint:
+    torque_views = [rrb.TimeSeriesView(origin=f"torque/{leg}", name=f"torque {leg} (N·m)")
+                    for leg in legs]
+    return rrb.Blueprint(
+        rrb.Horizontal(
+            rrb.Vertical(
+                rrb.Spatial3DView(origin="world", name="robot"),
+                rrb.TimeSeriesView(origin="body", name="body height (m), speed (m/s)"),
+                row_shares=[3, 1]),
+            rrb.Vertical(
+                rrb.Tabs(*torque_views, name="motor torques"),
+                rrb.Tabs(rrb.TimeSeriesView(origin="loop_gap", name="loop gap (m)"),
+                         rrb.TimeSeriesView(origin="contact", name="foot forces (N)"),
+                         rrb.TimeSeriesView(origin="joints", name="joints (rad, rad/s)"),
+                         rrb.TimeSeriesView(origin="cycle_peak", name="per-cycle peaks (N·m)"),
+                         rrb.TimeSeriesView(origin="stats", name="statistics window"))),
+            column_shares=[1, 1]),
+        collapse_panels=True)
+
+
+def _scalars(rec, path: str, t, values, name: str | None = None) -> None:
+    rec.send_columns(path, indexes=[rr.TimeColumn(TIMELINE, duration=t)],
+                     columns=rr.Scalars.columns(scalars=np.asarray(values, dtype=float)))
+    if name:
+        rec.log(path, rr.SeriesLines(names=name), static=True)
+
+
+def _link_points(setup: Setup, params: Params, state_rows: np.ndarray):
+    """World positions (frames, legs, 6, 3) of A, C, E, F and B, D per leg, from the plant."""
+    plant = setup.plant
+    context = plant.CreateDefaultContext()
+    nq = plant.num_positions()
+    g = params.leg
+    ends = {"AC": g.ac_m, "BD": g.bd_m, "CE": g.ce_m, "DE": g.de_m + g.ef_m}
+    bodies = [{n: plant.GetBodyByName(f"{leg}_{n}", setup.instance) for n in ends}
+              for leg in setup.legs]
+    out = np.zeros((len(state_rows), len(setup.legs), 6, 3))
+    for f, row in enumerate(state_rows):
+        plant.SetPositions(context, row[:nq])
+        for i in range(len(setup.legs)):
+            pose = {n: plant.EvalBodyPoseInWorld(context, body) for n, body in bodies[i].items()}
+            tip = {n: pose[n].multiply(np.array([ends[n], 0.0, 0.0])) for n in ends}
+            e = pose["DE"].multiply(np.array([g.de_m, 0.0, 0.0]))
+            out[f, i] = [pose["AC"].translation(), tip["AC"], e, tip["DE"],
+                         pose["BD"].translation(), tip["BD"]]
+    return out
+
+
+def write_recording(path: Path, sig: Signals, setup: Setup, params: Params,
+                    scenario: Scenario, state: np.ndarray, summary: dict) -> Path:
+    """Write the .rrd file atomically (complete with its footer, then renamed into place);
+    state: the plant state of each log interval (for the 3-D poses)."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    rec = rr.RecordingStream("fivebar_drake", recording_id=f"fivebar_drake-{scenario.gait}-"
+                             f"{scenario.closure}-{uuid.uuid4().hex[:12]}")
+    rec.set_log_time_enabled(False)
+    rec.set_log_tick_enabled(False)
+    with atomic_path(path) as tmp:
+        rec.save(str(tmp), default_blueprint=blueprint(setup.legs))
+        with rec:
+            if len(sig.t):
+                _log_scene(rec, sig, setup, params, scenario, state)
+                _log_series(rec, sig, setup, params, summary)
+        rec.disconnect()
+    return path
+
+
+def _log_scene(rec, sig, setup, params, scenario, state):
+    state_forces = sig.foot_force_world
+    b = params.body
+    rec.log("world/ground", rr.Boxes3D(centers=[[0.0, 0.0, -0.005]], half_sizes=[[3.0, 3.0, 0.005]],
+                                       colors=[[90, 110, 90]]), static=True)
+    rec.log("world/body", rr.Boxes3D(half_sizes=[[b.length_m / 2, b.width_m / 2, b.height_m / 2]],
+                                     colors=[[150, 150, 165]]), static=True)
+    t = sig.t
+    frames = np.unique(np.searchsorted(t, np.arange(0.0, t[-1] + 1e-9, 1.0 / scenario.pose_rate_hz)))
+    frames = frames[frames < len(t)]
+    tf = t[frames]
+    time = [rr.TimeColumn(TIMELINE, duration=tf)]
+    quat = sig.body_quat[frames]
+    rec.send_columns("world/body", indexes=time, columns=rr.Transform3D.columns(
+        translation=sig.body_p[frames], quaternion=np.column_stack([quat[:, 1:], quat[:, :1]])))
+    points = _link_points(setup, params, state[frames])
+    for i, leg in enumerate(setup.legs):
+        strips = [s for f in range(len(frames)) for s in (points[f, i, :4], points[f, i, 4:])]
+        rec.send_columns(f"world/legs/{leg}", indexes=time, columns=rr.LineStrips3D.columns(
+            strips=strips).partition([2] * len(frames)))
+        rec.log(f"world/legs/{leg}", rr.LineStrips3D.from_fields(radii=0.004), static=True)
+        rec.log(f"world/feet/{leg}", rr.LineStrips3D([points[:, i, 3]], radii=0.0015,
+                                                     colors=[[230, 80, 60]]), static=True)
+        origin = points[:, i, 3] - np.array([0.0, 0.0, b.foot_radius_m])
+        force = state_forces[frames, i] * FORCE_ARROW_M_PER_N
+        rec.send_columns(f"world/forces/{leg}", indexes=time, columns=rr.Arrows3D.columns(
+            origins=origin, vectors=force))
+        rec.log(f"world/forces/{leg}", rr.Arrows3D.from_fields(colors=[[40, 160, 60]],
+                                                               radii=0.002), static=True)
+
+
+def _log_series(rec, sig, setup, params, summary):
+    limit = params.motor.peak_torque_Nm
+    n = len(sig.t)
+    start, end = summary["window_s"]
+    cycle_ends = start + params.gait.period_s * np.arange(1, summary["cycles_in_window"] + 1)
+    for i, leg in enumerate(setup.legs):
+        _scalars(rec, f"loop_gap/{leg}", sig.t, sig.gap[:, i], leg)
+        _scalars(rec, f"contact/{leg}/tangential", sig.t, sig.foot_force_plane[:, i, 0])
+        _scalars(rec, f"contact/{leg}/normal", sig.t, sig.foot_force_plane[:, i, 1])
+        for j, m in enumerate(MOTORS):
+            base = f"torque/{leg}/{m}"
+            _scalars(rec, f"joints/{leg}/{m}/angle", sig.t, sig.q[:, i, j])
+            _scalars(rec, f"joints/{leg}/{m}/speed", sig.t, sig.qd[:, i, j])
+            for name, values in (("commanded", sig.command), ("applied", sig.applied),
+                                 ("static_contact", sig.static_contact),
+                                 ("static_trot", sig.static_trot),
+                                 ("static_seed", sig.static_seed)):
+                _scalars(rec, f"{base}/{name}", sig.t, values[:, i, j], f"{m} {name}")
+            _scalars(rec, f"{base}/limit_pos", sig.t, np.full(n, limit), "+limit")
+            _scalars(rec, f"{base}/limit_neg", sig.t, np.full(n, -limit), "-limit")
+            if len(cycle_ends):
+                _scalars(rec, f"cycle_peak/{leg}/{m}", cycle_ends,
+                         summary["legs"][leg][m]["per_cycle_peak_Nm"], f"{leg} {m}")
+    _scalars(rec, "body/height", sig.t, sig.body_p[:, 2], "height (m)")
+    _scalars(rec, "body/forward_speed", sig.t, sig.body_v[:, 0], "forward speed (m/s)")
+    _scalars(rec, "body/tilt_deg", sig.t, sig.tilt_deg, "tilt (deg)")
+    _scalars(rec, "stats/window", sig.t, ((sig.t > start) & (sig.t <= end)).astype(float),
+             "statistics window")
+
+
+def read_series(path: Path, entity: str) -> tuple[np.ndarray, np.ndarray]:
+    """Time (s) and values of a scalar entity of a recording, read back from the file."""
+    from rerun.chunk import RrdReader
+
+    chunks = RrdReader(str(path)).stream().filter(content=entity, is_static=False).to_chunks()
+    if not chunks:
+        raise ValueError(f"{path} has no entity {entity!r}")
+    t, v = [], []
+    for chunk in chunks:
+        batch = chunk.to_record_batch()
+        t.append(batch.column(TIMELINE).cast("int64").to_numpy() * 1e-9)
+        v.append(np.array([row[0] for row in batch.column("Scalars:scalars").to_pylist()]))
+    t, v = np.concatenate(t), np.concatenate(v)
+    order = np.argsort(t, kind="stable")
+    return t[order], v[order]

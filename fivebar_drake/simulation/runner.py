@@ -1,0 +1,195 @@
+"""Run a scenario: load it with its parameters, simulate with progress, stop requests and divergence
+diagnosis, and turn the recorders into one row per log interval."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+import sys
+import time
+from typing import Callable
+import numpy as np
+from pydrake.systems.analysis import Simulator
+
+from fivebar_drake.core.files import say
+from fivebar_drake.core.motor import clip_flags
+from fivebar_drake.core.rotation import tilt_deg
+from fivebar_drake.core.validation import ParameterError
+from fivebar_drake.mechanisms.fivebar.loop import loop_gaps
+from fivebar_drake.robots.quadruped.params import Params
+from fivebar_drake.robots.quadruped.plant import set_standing_pose
+from fivebar_drake.simulation.builder import Setup, build_diagram, check_run
+from fivebar_drake.simulation.scenario import Scenario, load_scenario, source_of
+
+
+def load_run(path: "str | Path | None" = None, **overrides) -> tuple[Scenario, Params]:
+    """load_scenario, the scenario's parameters, and every check before a run
+    (builder.check_run); errors name their file or the command line."""
+
+    scenario = load_scenario(path, **overrides)
+    given = {k: v for k, v in overrides.items() if v is not None}
+    try:
+        params = scenario.load_params()
+        check_run(scenario, params)
+    except ParameterError as err:
+        if path and scenario.params_file and "params_file" not in given \
+                and err.source == scenario.params_file:
+            err = ParameterError(f"{err.message} (the params_file of {path})", err.field,
+                                 err.source)
+        raise err.located(source_of(err, path, given)) from None
+    return scenario, params
+
+FALL_TILT_DEG = 45.0   # a body tilted further has fallen: the run stops
+
+SLICE_S = 0.01         # simulated time between checks for divergence and a stop request
+
+PROGRESS_LINES = 20    # progress lines over a run
+
+#                                     interval means: coarser intervals smear a cycle's peaks
+DIVERGED_GAP_M = 1e-3  # a loop open by more than this (1 % of a link) has come apart
+
+
+def interval_table(setup: Setup, params: Params, context) -> dict:
+    """The recorder's rows as one row per log interval (arrays, SI): t (s, the interval's end),
+    state (nx) at t, gap (legs) m at t, and the interval means of the joint speeds of the
+    actuators (rad/s, from the positions: the discrete plant moves them with each step's end
+    speed), the generalized contact forces (nv; J^T F of every contact, every plant step), the
+    command, the motor's delivered torque and the torque applied to the joints (n, N*m) and the
+    clip flags (n, fraction of the motor samples; systems.clip_flags). context: the simulated
+    Diagram's root context."""
+    log = setup.recorder.FindLog(context)
+    lay = setup.layout
+    times, data = log.sample_times(), log.data().T
+    states, integrals = data[:, :lay.nx], data[:, lay.nx:]
+    dt = np.diff(times)[:, None]
+    q_act = np.zeros((len(times), lay.q_index.size))
+    q_act[:, lay.actuators.ravel()] = states[:, lay.q_index.ravel()]
+    tree_q = np.array([setup.indices[leg].q for leg in setup.legs])
+    # the motor's samples in each interval: those from its start up to before its end
+    motor = setup.motor_log.FindLog(context)
+    rows = len(times) - 1
+    per_row = setup.motor_samples_per_row
+    samples = motor.data().T[:rows * per_row].reshape(rows, per_row, 3, -1)
+    command, delivered, applied = (samples[:, :, i] for i in range(3))
+    at_peak, at_line = clip_flags(params.motor, command, delivered)
+    return {"t": times[1:], "state": states[1:],
+            "gap": loop_gaps(params.leg, states[1:, tree_q]).reshape(len(dt), -1),
+            "speed": np.diff(q_act, axis=0) / dt,
+            "contact_generalized": np.diff(integrals, axis=0) / dt,
+            "command": command.mean(1), "motor_torque": delivered.mean(1),
+            "applied": applied.mean(1), "clipped_peak": at_peak.mean(1),
+            "clipped_line": at_line.mean(1)}
+
+
+@dataclass
+class SimResult:
+    """What the recorder measured (interval_table: t, state, gap, speed, contact_generalized,
+    command, motor_torque, applied, clipped_peak, clipped_line), wall time (s), the error text
+    if the run stopped early, the signal that stopped it ("SIGINT", "SIGTERM"; "" if none), and
+    with log_actuation the times (steps,) s and joint torques (steps, n) N*m the plant received
+    at every step."""
+
+    table: dict
+    wall_s: float
+    error: str = ""
+    actuation: tuple | None = None
+    interrupted: str = ""
+
+
+def simulate(scenario: Scenario, params: Params, progress=True, log_actuation=False,
+             stop: Callable[[], str] | None = None):
+    """Check (check_run), build and run the scenario; returns (SimResult, Setup). A failure
+    mid-run keeps what was logged up to it (SimResult.error says what happened, for a divergence
+    with its likely cause). stop: polled every SLICE_S of simulated time; a non-empty answer
+    (the name of a signal) ends the run there (SimResult.interrupted). log_actuation: see
+    build_diagram."""
+    check_run(scenario, params)
+    diagram, setup = build_diagram(scenario, params, log_actuation)
+    simulator = Simulator(diagram)
+    context = simulator.get_mutable_context()
+    set_standing_pose(setup.plant, setup.plant.GetMyMutableContextFromRoot(context),
+                      setup.instance, setup.legs, params)
+    simulator.Initialize()
+    # every discrete update once, outside the timing: loads (or on a first run compiles) the
+    # compiled kernels
+    diagram.CalcForcedDiscreteVariableUpdate(context, diagram.AllocateDiscreteVariables())
+    tell = (lambda text: say(text, sys.stderr)) if progress else (lambda text: None)
+    duration = scenario.duration_s
+    tell(f"simulating {duration:g} s, closure {scenario.closure}, "
+         f"time step {setup.time_step_s * 1e3:.3f} ms")
+    start, error, interrupted = time.perf_counter(), "", ""
+    slices = max(1, math.ceil(duration / SLICE_S - 1e-9))
+    every = max(1, slices // PROGRESS_LINES)
+    try:
+        for k in range(1, slices + 1):
+            t = min(k * SLICE_S, duration)
+            simulator.AdvanceTo(t)
+            plant_state = setup.plant.GetPositionsAndVelocities(
+                setup.plant.GetMyContextFromRoot(context))
+            if not np.all(np.isfinite(plant_state)):
+                raise RuntimeError("the plant state is not finite")
+            tilt = tilt_deg(plant_state[setup.layout.body_q:setup.layout.body_q + 4])
+            if tilt > FALL_TILT_DEG:
+                raise ValueError(f"the robot fell over: tilt {tilt:.0f} deg")
+            interrupted = stop() if stop else ""
+            if interrupted:
+                tell(f"{interrupted} received: stopped at t = {t:.2f} s; writing what was "
+                     "simulated")
+                break
+            if k % every == 0 or k == slices:
+                wall = time.perf_counter() - start
+                tell(f"  t = {t:6.2f} s / {duration:g} s  ({t / wall:4.2f}x real time)")
+    except RuntimeError as err:   # Drake's own errors: a divergence
+        error = divergence(str(err), context.get_time(), scenario, params, setup,
+                           interval_table(setup, params, context))
+    except ValueError as err:     # a fall, an unreachable target
+        error = f"{err} (t = {context.get_time():.3f} s)"
+    if error:
+        tell(f"simulation stopped early: {error}")
+    wall = time.perf_counter() - start
+    actuation = None
+    if setup.actuation_log is not None:
+        log = setup.actuation_log.FindLog(context)
+        actuation = (log.sample_times(), log.data().T)
+    return SimResult(table=interval_table(setup, params, context), wall_s=wall, error=error,
+                     actuation=actuation, interrupted=interrupted), setup
+
+
+def divergence(message: str, t: float, scenario: Scenario, params: Params, setup: Setup,
+               table: dict) -> str:
+    """What diverged, when and its likely cause in this tool's terms, from the last recorded
+    intervals before the failure (Drake's message at the end)."""
+    finite = np.all(np.isfinite(table["state"]), axis=1)
+    first_bad = len(finite) if finite.all() else int(np.argmin(finite))
+    recent = {k: v[max(0, first_bad - 10):first_bad] for k, v in table.items()}
+    drake = message.strip().splitlines()[0] if message.strip() else "no message"
+    head = f"the simulation diverged at t = {t:.3f} s"
+    step = f"scenario.time_step_s = {setup.time_step_s:g} s"
+    if not len(recent["t"]):
+        return f"{head} at its start ({drake}); check the time step ({step}) and the gains"
+    gap = recent["gap"].max(axis=0)
+    height = recent["state"][:, setup.layout.body_q + 6]
+    speed = np.abs(recent["speed"]).max()
+    clipped = float(np.mean(recent["clipped_peak"] + recent["clipped_line"]))
+    if gap.max() > DIVERGED_GAP_M:
+        leg = setup.legs[int(np.argmax(gap))]
+        what = (f"the loop of leg {leg} came apart (gap {gap.max() * 1e3:.2f} mm); likely cause: "
+                f"{step} is too coarse for the {scenario.closure} closure's stiffness: use a "
+                "smaller time step, a larger target_loop_gap_m, or the closure 'bushing'")
+    elif height.min() < params.body.height_m / 2:
+        what = (f"the body sank to {height.min() * 1e3:.0f} mm, into the ground; likely cause: "
+                f"{step} is too coarse for the foot contact (body.foot_stiffness_N_m, "
+                "foot_relaxation_time_s): use a smaller time step")
+    elif speed > params.motor.no_load_speed_rad_s or clipped > 0.5:
+        what = (f"the motors could not follow (joint speed {speed:.1f} rad/s against the "
+                f"no-load {params.motor.no_load_speed_rad_s:.1f} rad/s, torque clipped "
+                f"{clipped:.0%} of the last intervals); likely cause: the gait is too fast for "
+                "the motors: lower gait_frequency_hz or the stride gait_a_m")
+    else:
+        what = (f"no loop came apart, the body stayed above the ground and the motors within "
+                f"their limits; likely cause: the controller's gains (swing_bandwidth_hz = "
+                f"{scenario.swing_bandwidth_hz:g}, body_bandwidth_hz = "
+                f"{scenario.body_bandwidth_hz:g}, damping_ratio = {scenario.damping_ratio:g}) "
+                f"at control_period_s = {scenario.control_period_s:g} s: lower the bandwidths")
+    return f"{head}: {what} (Drake: {drake})"

@@ -1,0 +1,269 @@
+"""Simulation scenario: what to simulate and how, as a dataclass loadable from YAML.
+
+Units: s, m, rad, N*m. A YAML file names any subset of the fields, e.g.
+
+    duration_s: 5.0
+    closure: ball
+    gait_frequency_hz: 1.5
+
+Every field is checked on load (type, finite, within its bounds; the file and field named in
+the error); the checks that need the parameters and the plant's time step are in
+simulation.check_run.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import re
+import typing
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Optional
+import yaml
+
+from fivebar_drake.core.files import read_input_text
+from fivebar_drake.core.footpath import PATHS, TROT_PHASES_RAD
+from fivebar_drake.core.validation import ParameterError, check_number, require
+from fivebar_drake.robots.quadruped.config import load_params, with_gait
+from fivebar_drake.robots.quadruped.params import Params
+from fivebar_drake.robots.quadruped.plant import CLOSURES
+
+
+# Bounds of the scenario's values, each with the reason it exists.
+MAX_LOG_ROWS = 500_000            # recorded intervals kept in memory, ~6 kB each (measured) from the
+
+#                                   recorder to the recording: ~3 GB; 1000 s at the default 2 ms
+MIN_TIME_STEP_S = 1e-6            # any step or period: the explicit bushing needs ~34 us; nothing
+
+#                                   in the robot is faster
+MIN_BANDWIDTH_HZ = 0.1            # a loop this slow cannot follow any gait
+
+CONTROL_SAMPLES_PER_BANDWIDTH = 20  # a digital loop samples >= 20x its bandwidth, or its gains
+
+#                                     (derived as if continuous) lose their phase margin
+MAX_DELAY_BANDWIDTH_PHASE = 0.25  # delay * swing bandwidth < 1/4: a quarter period of delay
+
+#                                   costs the swing loop 90 deg of phase, all its margin
+MAX_DAMPING_RATIO = 2.0           # well past critical (1): more only slows the loops
+
+MAX_CATCH_GAIN = 10.0             # the reflex saturates at the step height long before
+
+MAX_CATCH_RATE_S = 1.0            # a velocity lead longer than a gait cycle anticipates nothing
+
+MAX_LOOP_GAP_M = 1e-3             # 1 % of a link: a looser loop is not the 5-bar's kinematics
+
+MIN_LOOP_GAP_M = 1e-7             # the bushing's stiffness is loop force / gap: beyond ~1e8 N/m
+
+#                                   SAP's compliant constraint is no longer compliant
+MAX_PHASE_RAD = 2 * math.pi       # a gait phase is an angle of the cycle: one turn either way
+
+
+def _doc(default, doc: str, factory=None):
+    """A Scenario field with its default (or default factory) and its description (README)."""
+    if factory is not None:
+        return field(default_factory=factory, metadata={"doc": doc})
+    return field(default=default, metadata={"doc": doc})
+
+
+@dataclass
+class Scenario:
+    """What to simulate and how; each field's description is in its metadata["doc"]."""
+
+    duration_s: float = _doc(8.0, "simulated time from t = 0")
+    gait: str = _doc("trot", f"foot path, one of {', '.join(PATHS)} (footpath.py)")
+    closure: str = _doc("bushing", f"loop closure, one of {', '.join(CLOSURES)}")
+    time_step_s: float = _doc(0.0, "plant step; 0 = derived (bushing, ball: 1 ms; bushing_rpy: "
+                                   "its stability bound)")
+    target_loop_gap_m: float = _doc(4e-6, "the bushing's design loop gap under the trot's load")
+    control_period_s: float = _doc(0.002, "update period of the leg controller")
+    motor_period_s: float = _doc(0.001, "update period of the motor model")
+    control_delay_periods: int = _doc(0, "extra controller periods before a command is "
+                                         "released (0: it reaches the motor model's next sample)")
+    swing_bandwidth_hz: float = _doc(15.0, "swing legs' joint PD bandwidth")
+    body_bandwidth_hz: float = _doc(3.0, "stance legs' body (height, speed, attitude) bandwidth")
+    damping_ratio: float = _doc(0.7, "damping ratio of both loops")
+    load_transfer_s: float = _doc(0.04, "time over which a foot takes up or gives off its load "
+                                        "at touchdown and lift-off")
+    catch_gain: float = _doc(1.0, "swing legs' catch reflex, m of reach per m of hip drop "
+                                  "(0 = off)")
+    catch_rate_s: float = _doc(0.1, "catch reflex: lead on the hip's sinking speed")
+    touchdown_detection: bool = _doc(True, "a descending swing foot meeting the ground early "
+                                           "joins the support")
+    stand_s: float = _doc(0.5, "standing time before the gait starts")
+    ramp_s: float = _doc(1.0, "time over which the foot path grows to full size")
+    phases_rad: list[float] = _doc(None, "gait phase of FL, FR, RL, RR (a trot: 0, pi, pi, 0)",
+                                   factory=lambda: list(TROT_PHASES_RAD))
+    log_period_s: float = _doc(0.002, "interval of the recorded means (measured every plant "
+                                      "step)")
+    pose_rate_hz: float = _doc(50.0, "rate of the 3-D poses in the recording")
+    params_file: str = _doc("", "parameter file (TOML), relative to the scenario file's folder; "
+                                "\"\" = the packaged one; --config overrides it")
+    gait_a_m: Optional[float] = _doc(None, "override of the parameter file's gait.a_m")
+    gait_b_m: Optional[float] = _doc(None, "override of gait.b_m")
+    gait_y_home_m: Optional[float] = _doc(None, "override of gait.y_home_m")
+    gait_frequency_hz: Optional[float] = _doc(None, "override of gait.frequency_hz")
+    gait_duty_factor: Optional[float] = _doc(None, "override of gait.duty_factor")
+
+    def validate(self) -> None:
+        """Check every field (type, finite, bounds; ParameterError naming the first bad field,
+        its value and what is allowed) and store numbers as the field's type."""
+        kinds = typing.get_type_hints(Scenario)
+        for f in dataclasses.fields(self):
+            setattr(self, f.name, _typed(f"scenario.{f.name}", kinds[f.name],
+                                         getattr(self, f.name)))
+        require(self.gait in PATHS, "scenario.gait", self.gait, f"allowed {list(PATHS)}")
+        require(self.closure in CLOSURES, "scenario.closure", self.closure,
+                f"allowed {list(CLOSURES)}")
+        number = check_number
+        number("scenario.log_period_s", self.log_period_s, MIN_TIME_STEP_S)
+        number("scenario.duration_s", self.duration_s, self.log_period_s,
+               why="at least one recorded interval of scenario.log_period_s")
+        number("scenario.duration_s", self.duration_s, high=MAX_LOG_ROWS * self.log_period_s,
+               why=f"at most {MAX_LOG_ROWS:g} recorded intervals of scenario.log_period_s = "
+                   f"{self.log_period_s:g} s are kept in memory")
+        number("scenario.stand_s", self.stand_s, 0.0)
+        number("scenario.ramp_s", self.ramp_s, 0.0)
+        number("scenario.pose_rate_hz", self.pose_rate_hz, 0.0, low_open=True)
+        number("scenario.time_step_s", self.time_step_s, 0.0)
+        if self.time_step_s:
+            number("scenario.time_step_s", self.time_step_s, MIN_TIME_STEP_S,
+                   why="0 = derived; nothing in the robot needs a finer step")
+        number("scenario.target_loop_gap_m", self.target_loop_gap_m, MIN_LOOP_GAP_M,
+               MAX_LOOP_GAP_M)
+        for name in ("swing_bandwidth_hz", "body_bandwidth_hz"):
+            number(f"scenario.{name}", getattr(self, name), MIN_BANDWIDTH_HZ)
+        fastest = max(self.swing_bandwidth_hz, self.body_bandwidth_hz)
+        number("scenario.control_period_s", self.control_period_s, MIN_TIME_STEP_S,
+               1.0 / (CONTROL_SAMPLES_PER_BANDWIDTH * fastest),
+               why=f"a digital loop samples at least {CONTROL_SAMPLES_PER_BANDWIDTH}x its "
+                   f"bandwidth, here {fastest:g} Hz")
+        number("scenario.motor_period_s", self.motor_period_s, MIN_TIME_STEP_S,
+               self.control_period_s, why="the motor model samples every command of the controller "
+                                  "(scenario.control_period_s)")
+        number("scenario.control_delay_periods", self.control_delay_periods, 0,
+               math.floor(MAX_DELAY_BANDWIDTH_PHASE
+                          / (self.swing_bandwidth_hz * self.control_period_s) - 1e-9),
+               integer=True, why=f"the delay must stay below {MAX_DELAY_BANDWIDTH_PHASE:g} of "
+                                 "a period of swing_bandwidth_hz, or the swing loop has no "
+                                 "phase margin left")
+        number("scenario.damping_ratio", self.damping_ratio, 0.0, MAX_DAMPING_RATIO,
+               low_open=True)
+        number("scenario.load_transfer_s", self.load_transfer_s, 0.0)
+        number("scenario.catch_gain", self.catch_gain, 0.0, MAX_CATCH_GAIN)
+        number("scenario.catch_rate_s", self.catch_rate_s, 0.0, MAX_CATCH_RATE_S)
+        require(len(self.phases_rad) == 4, "scenario.phases_rad", self.phases_rad,
+                "needs 4 values (FL, FR, RL, RR)")
+        for i, phase in enumerate(self.phases_rad):
+            number(f"scenario.phases_rad[{i}]", phase, -MAX_PHASE_RAD, MAX_PHASE_RAD)
+
+    def load_params(self) -> Params:
+        """The parameter file with this scenario's gait overrides (validated: reachable gait)."""
+        params = load_params(self.params_file or None)
+        overrides = {name[len("gait_"):]: value for name, value in dataclasses.asdict(self).items()
+                     if name.startswith("gait_") and value is not None}
+        try:
+            return with_gait(params, **overrides) if overrides else params
+        except ParameterError as err:
+            given = ", ".join(f"gait_{k} = {v!r}" for k, v in overrides.items())
+            raise ParameterError(f"scenario {given} overriding the parameter file: "
+                                 f"{err.message}", err.field) from None
+
+UNITS = {"_s": "s", "_m": "m", "_hz": "Hz", "_rad": "rad", "_periods": "controller periods"}
+
+
+def fields_markdown() -> str:
+    """The README's table of the scenario fields: name, type, default, unit, meaning."""
+    kinds = typing.get_type_hints(Scenario)
+    defaults = Scenario()
+    rows = ["| field | type | default | unit | meaning |", "|---|---|---|---|---|"]
+    for f in dataclasses.fields(Scenario):
+        kind = {float: "number", int: "integer", bool: "true/false", str: "text"}.get(
+            kinds[f.name], "list of numbers" if kinds[f.name] == list[float] else "number or null")
+        default = getattr(defaults, f.name)
+        shown = ("null" if default is None else f'"{default}"' if isinstance(default, str) else
+                 str(default).lower() if isinstance(default, bool) else
+                 "[" + ", ".join(f"{v:.4g}" for v in default) + "]"
+                 if isinstance(default, list) else f"{default:g}")
+        unit = next((u for suffix, u in UNITS.items() if f.name.endswith(suffix)), "")
+        rows.append(f"| `{f.name}` | {kind} | {shown} | {unit} | {f.metadata['doc']} |")
+    return "\n".join(rows)
+
+
+def _typed(name: str, kind, value):
+    """value checked against a field's type (a number of a float field as a float)."""
+    if kind is float:
+        return check_number(name, value)
+    if kind is int:
+        return check_number(name, value, integer=True)
+    if kind is bool:
+        require(isinstance(value, bool), name, value, "must be true or false")
+        return value
+    if kind is str:
+        require(isinstance(value, str), name, value, "must be text")
+        return value
+    if kind == list[float]:
+        require(isinstance(value, (list, tuple)), name, value, "must be a list of numbers")
+        return [check_number(f"{name}[{i}]", v) for i, v in enumerate(value)]
+    return None if value is None else check_number(name, value)       # Optional[float]
+
+
+class _YamlLoader(yaml.SafeLoader):
+    """YAML 1.2 numbers: 1e-9 is a float (YAML 1.1 reads a number without a dot as text)."""
+
+_YamlLoader.add_implicit_resolver(
+    "tag:yaml.org,2002:float",
+    re.compile(r"^[-+]?(?:[0-9][0-9_]*(?:\.[0-9_]*)?|\.[0-9_]+)[eE][-+]?[0-9]+$"),
+    list("-+0123456789."))
+
+
+def read_scenario_file(path) -> dict:
+    """The fields named in a scenario file (YAML mapping); ParameterError naming the file."""
+    path = Path(path)
+    text = read_input_text(path, "scenario file")
+    hint = " (a parameter file goes to --config)" if path.suffix == ".toml" else ""
+    try:
+        data = yaml.load(text, Loader=_YamlLoader)
+    except yaml.YAMLError as err:
+        where = getattr(err, "problem_mark", None)
+        at = f" at line {where.line + 1}, column {where.column + 1}" if where else ""
+        problem = getattr(err, "problem", None) or str(err)
+        raise ParameterError(f"not valid YAML{at}: {problem}{hint}", source=str(path)) from None
+    if data is None:
+        data = {}                                   # an empty file: every default
+    if not isinstance(data, dict):
+        raise ParameterError(f"must be a mapping of scenario fields (e.g. `duration_s: 5.0`), "
+                             f"not a {type(data).__name__}{hint}", source=str(path))
+    names = [f.name for f in dataclasses.fields(Scenario)]
+    for key in data:
+        require(key in names, f"scenario.{key}", data[key],
+                f"unknown field; the fields are {names}")
+    return data
+
+
+def source_of(err: ParameterError, path, overrides: dict) -> str:
+    """Where a scenario error comes from: the command line for an overridden field, else the
+    file (or the built-in scenario)."""
+    given = {f"scenario.{k}" for k in overrides}
+    return "command line" if err.field.split("[")[0] in given else str(path or "built-in scenario")
+
+
+def load_scenario(path: "str | Path | None" = None, **overrides) -> Scenario:
+    """Scenario from a YAML file (None: defaults) with keyword overrides (from the command
+    line; None = not given); validated. A relative params_file in the file is taken relative
+    to the file's folder. Errors name the file, or the command line for an override."""
+    overrides = {k: v for k, v in overrides.items() if v is not None}
+    data = {}
+    if path is not None:
+        try:
+            data = read_scenario_file(path)
+        except ParameterError as err:
+            raise err.located(path) from None
+        if isinstance(data.get("params_file"), str) and data["params_file"]:
+            data["params_file"] = str(Path(path).parent / data["params_file"])
+    scenario = dataclasses.replace(Scenario(), **{**data, **overrides})
+    try:
+        scenario.validate()
+    except ParameterError as err:
+        raise err.located(source_of(err, path, overrides)) from None
+    return scenario

@@ -1,0 +1,392 @@
+"""What a simulated trot needed, against the static estimates: signals, whole-cycle statistics,
+summary.json and summary.md.
+
+Every series is a mean over one log interval of plant steps (systems.StepRecorder), so a contact
+spike counts for the time it lasts. Per leg and motor, over the poses the robot went through:
+- applied: the torque the motor delivered (the command after saturation); demand: the command;
+- static_seed: the seed's G(q) with m_leg g at the foot; static_trot: the full model's static
+  torque with the scheduled stance load (the weight shared by the feet in stance);
+- static_contact: -J_P(q)^T F, F the measured ground force and J_P the Jacobian of the contact
+  point (the bottom of the foot sphere on flat ground);
+- the applied torque split into contact, links (M q'' + c + G of the links), rotor (N^2 J q'')
+  and friction.
+Statistics cover the whole gait cycles after the ramp; a run with fewer than MIN_CYCLES of them,
+or one that stopped early, gets the verdict "insufficient".
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+from dataclasses import dataclass
+from pathlib import Path
+import numpy as np
+
+from fivebar_drake.core.checks import verdict
+from fivebar_drake.core.files import write_atomic
+from fivebar_drake.core.footpath import (cycle_phase, evaluate, stance_loads, stance_speed,
+                                         stance_start)
+from fivebar_drake.core.rotation import body_rotation, tilt_deg
+from fivebar_drake.mechanisms.fivebar.dynamics import static_torques, torques
+from fivebar_drake.mechanisms.fivebar.jacobians import link_jacobians
+from fivebar_drake.mechanisms.fivebar.kinematics import forward
+from fivebar_drake.robots.quadruped.leg_loads import full_model, seed_model
+from fivebar_drake.robots.quadruped.params import Params
+from fivebar_drake.robots.quadruped.sdf import plane_rotation
+from fivebar_drake.simulation.builder import Setup
+from fivebar_drake.simulation.runner import SimResult
+from fivebar_drake.simulation.scenario import Scenario
+
+
+MOTORS = ("A", "B")
+
+SUMMARY_FILES = ("summary.md", "summary.json")   # summary.json last: its presence means complete
+
+MIN_CYCLES = 3            # fewer whole cycles than this give no verdict
+
+PERCENTILE = 99.0
+
+SWING_CONTACT_N = 1.0     # a swing foot pressing harder than this (~1.5 % of the weight) drags
+
+# Mid-swing, where a foot on the ground drags: after lift-off and before the descent to an early
+# touchdown (the trot path lifts a foot 1.4 mm by 10 % of its swing, 18 mm by 70 %).
+MID_SWING = (0.1, 0.7)
+
+
+@dataclass(frozen=True)
+class Signals:
+    """Per log interval (rows): t (s, interval end); body position (rows, 3) m, quaternion
+    (rows, 4), velocity (rows, 3) m/s (world), tilt (rows,) deg; per leg and motor (rows, legs,
+    2): q (rad), qd (rad/s, interval mean), command, applied, static_seed, static_trot,
+    static_contact, links, rotor, friction (N*m), clipped_peak, clipped_line (fractions);
+    foot_force_plane (rows, legs, 2) N (leg plane), foot_force_world (rows, legs, 3); gap (rows, legs) m (worst per interval);
+    stance (rows, legs) scheduled stance; swing_fraction (rows, legs) how far through its
+    scheduled swing a foot is (0 .. 1; nan in stance); swing_contact (rows, legs) foot pressing
+    the ground with more than SWING_CONTACT_N in scheduled swing."""
+
+    t: np.ndarray
+    body_p: np.ndarray
+    body_quat: np.ndarray
+    body_v: np.ndarray
+    tilt_deg: np.ndarray
+    q: np.ndarray
+    qd: np.ndarray
+    command: np.ndarray
+    applied: np.ndarray
+    static_seed: np.ndarray
+    static_trot: np.ndarray
+    static_contact: np.ndarray
+    links: np.ndarray
+    rotor: np.ndarray
+    friction: np.ndarray
+    clipped_peak: np.ndarray
+    clipped_line: np.ndarray
+    foot_force_plane: np.ndarray
+    foot_force_world: np.ndarray
+    gap: np.ndarray
+    stance: np.ndarray
+    swing_fraction: np.ndarray
+    swing_contact: np.ndarray
+
+
+def signals(result: SimResult, setup: Setup, params: Params, scenario: Scenario) -> Signals:
+    table, lay = result.table, setup.layout
+    st, t = table["state"], table["t"]
+    per_leg = lambda x: x[:, lay.actuators]  # noqa: E731  (rows, 8) -> (rows, legs, 2)
+    qd = per_leg(table["speed"])
+    period = np.median(np.diff(t)) if len(t) > 1 else scenario.log_period_s
+    q = st[:, lay.q_index] - qd * period / 2        # pose at the middle of each interval
+    # the mean acceleration over each interval is exactly its change of speed over its length
+    # (the run starts at rest), consistent with the impulse-averaged contact forces
+    qd_end = st[:, lay.v_index + lay.nq]
+    qdd = np.diff(qd_end, axis=0, prepend=0.0 * qd_end[:1]) / np.diff(t, prepend=0.0)[:, None, None]
+    pose = forward(params.leg, q)
+    lj = link_jacobians(params.leg, params.links, pose)
+    quat = st[:, lay.body_q:lay.body_q + 4]
+    r_world_plane = np.array([body_rotation(v) @ plane_rotation() for v in quat])
+    # contact point: the bottom of the foot sphere, (0, 0, -r) from its centre in the world
+    down = -params.body.foot_radius_m * r_world_plane[:, 2, :2]          # leg plane (x, y)
+    force = foot_forces(table["contact_generalized"], setup, params, pose, down)
+    force_world = np.einsum("sij,slj->sli", r_world_plane[..., :2], force)
+    jw_de = lj.jw[..., 3, :]                                            # (rows, legs, 2)
+    j_contact = lj.jf.copy()
+    j_contact[..., 0, :] -= down[:, None, 1:2] * jw_de
+    j_contact[..., 1, :] += down[:, None, 0:1] * jw_de
+    static_contact = -np.einsum("slji,slj->sli", j_contact, force)
+    tau_gait = t - scenario.stand_s
+    gaiting = tau_gait[:, None] >= 0
+    stance = np.stack([evaluate(params.gait, scenario.gait, tau_gait, ph).stance
+                       for ph in scenario.phases_rad], 1) & gaiting
+    u = np.stack([cycle_phase(params.gait, tau_gait, ph) for ph in scenario.phases_rad], 1)
+    swing_fraction = np.where(gaiting & ~stance, u / stance_start(params.gait, scenario.gait),
+                              np.nan)
+    weight = params.robot.total_mass_kg * params.robot.gravity_m_s2
+    loads = np.where(gaiting, stance_loads(params.gait, scenario.gait, tau_gait,
+                                           scenario.phases_rad, weight).T, weight / len(setup.legs))
+    full = full_model(params)
+    trot_static = static_torques(params.leg, params.links,
+                                 dataclasses.replace(full, foot_load_N=loads), pose, lj)
+    links = torques(params.leg, params.links, dataclasses.replace(full, foot_load_N=0.0), pose, qd,
+                    qdd, lj).total
+    rotor = params.motor.reflected_inertia_kg_m2 * qdd
+    return Signals(
+        t=t, body_p=st[:, lay.body_q + 4:lay.body_q + 7], body_quat=quat,
+        body_v=st[:, lay.nq + lay.body_v + 3:lay.nq + lay.body_v + 6], tilt_deg=tilt_deg(quat),
+        q=q, qd=qd, command=per_leg(table["command"]), applied=per_leg(table["motor_torque"]),
+        static_seed=static_torques(params.leg, params.links, seed_model(params), pose, lj),
+        static_trot=trot_static, static_contact=static_contact, links=links, rotor=rotor,
+        friction=per_leg(table["motor_torque"] - table["applied"]),
+        clipped_peak=per_leg(table["clipped_peak"]),
+        clipped_line=per_leg(table["clipped_line"]), foot_force_plane=force,
+        foot_force_world=force_world, gap=table["gap"],
+        stance=stance, swing_fraction=swing_fraction,
+        swing_contact=(~stance) & gaiting & (force_world[..., 2] > SWING_CONTACT_N))
+
+
+def foot_forces(generalized, setup: Setup, params: Params, pose, down) -> np.ndarray:
+    """Mean ground force on each foot (rows, legs, 2) in N, leg plane, from the interval means
+    of the generalized contact forces (rows, nv): the contact point P (foot centre + down, leg
+    plane) on link DE gives tau[theta_B] = (P - B)_perp . F and tau[phi_D] = (P - D)_perp . F
+    (perp: turned +90 deg about the hinge); the A side of the loop is not touched."""
+    perp = lambda v: np.stack([-v[..., 1], v[..., 0]], -1)  # noqa: E731
+    p = pose.f + down[:, None, :]
+    jac_t = np.stack([perp(p - params.leg.b), perp(p - pose.d)], -2)      # rows of J_P^T
+    tau = np.stack([generalized[:, [setup.indices[leg].v[k] for leg in setup.legs]]
+                    for k in (1, 3)], -1)
+    return np.linalg.solve(jac_t, tau[..., None])[..., 0]
+
+
+def cycle_window(scenario: Scenario, params: Params, t_end: float) -> tuple[float, float, int]:
+    """Start and end (s) of the whole gait cycles after the ramp that fit before t_end, and
+    their number. Cycles start where the gait time t - stand_s is a multiple of the period."""
+    period = params.gait.period_s
+    start = scenario.stand_s + math.ceil(scenario.ramp_s / period - 1e-9) * period
+    cycles = max(0, math.floor((t_end - start) / period + 1e-9))
+    return start, start + cycles * period, cycles
+
+
+def _p(x, q=PERCENTILE) -> float:
+    return float(np.percentile(np.abs(x), q)) if np.size(x) else float("nan")
+
+
+def _peak(x) -> float:
+    return float(np.max(np.abs(x))) if np.size(x) else float("nan")
+
+
+def _rms(x) -> float:
+    return float(np.sqrt(np.mean(np.square(x)))) if np.size(x) else float("nan")
+
+
+def _mean(x) -> float:
+    return float(np.mean(x)) if np.size(x) else float("nan")
+
+
+def _ratio(a: float, b: float) -> float:
+    return a / b if b else float("nan")
+
+
+def _spread(values) -> list[float]:
+    return [float(min(values)), float(max(values))] if len(values) else [math.nan, math.nan]
+
+
+def motor_summary(sig: Signals, params: Params, win, cycle, cycles: int, i: int, j: int) -> dict:
+    """Statistics of motor j of leg i over the window rows `win` (cycle: each row's cycle)."""
+    motor = params.motor
+    applied, demand = sig.applied[win, i, j], sig.command[win, i, j]
+    speed = sig.qd[win, i, j]
+    parts = {"contact": sig.static_contact, "links": sig.links, "rotor": sig.rotor,
+             "friction": sig.friction}
+    k = int(np.argmax(np.abs(applied))) if applied.size else 0
+    residual = applied - sum(v[win, i, j] for v in parts.values())
+    per_cycle = [(applied[cycle == c], demand[cycle == c]) for c in range(cycles)]
+    demand_p99 = _p(demand)
+    static_seed, static_trot = _peak(sig.static_seed[win, i, j]), _peak(sig.static_trot[win, i, j])
+    sf = _ratio(motor.peak_torque_Nm, demand_p99)
+    return {
+        "peak_torque_Nm": _peak(applied), "p99_torque_Nm": _p(applied),
+        "rms_torque_Nm": _rms(applied),
+        "demand_peak_Nm": _peak(demand), "demand_p99_Nm": demand_p99,
+        "static_seed_Nm": static_seed, "static_trot_Nm": static_trot,
+        "static_contact_Nm": _peak(sig.static_contact[win, i, j]),
+        "dynamic_to_seed_static": _ratio(demand_p99, static_seed),
+        "dynamic_to_trot_static": _ratio(demand_p99, static_trot),
+        "safety_factor": sf, "verdict": verdict(params.checks, sf),
+        "saturated_fraction": _mean(sig.clipped_peak[win, i, j] + sig.clipped_line[win, i, j]),
+        "clipped_peak_fraction": _mean(sig.clipped_peak[win, i, j]),
+        "clipped_line_fraction": _mean(sig.clipped_line[win, i, j]),
+        "peak_speed_rad_s": _peak(speed), "p99_speed_rad_s": _p(speed),
+        "no_load_speed_rad_s": motor.no_load_speed_rad_s,
+        "speed_ok": bool(_peak(speed) <= motor.no_load_speed_rad_s),
+        "decomposition_rms_Nm": {**{name: _rms(v[win, i, j]) for name, v in parts.items()},
+                                 "residual": _rms(residual)},
+        "decomposition_at_peak_Nm": {name: float(v[win, i, j][k]) if applied.size else math.nan
+                                     for name, v in parts.items()},
+        "per_cycle_peak_Nm": [_peak(a) for a, _ in per_cycle],
+        "per_cycle": {
+            "peak_torque_Nm": _spread([_peak(a) for a, _ in per_cycle]),
+            "rms_torque_Nm": _spread([_rms(a) for a, _ in per_cycle]),
+            "demand_p99_Nm": _spread([_p(d) for _, d in per_cycle]),
+        },
+    }
+
+
+def _drag(sig: Signals, win, i: int) -> float:
+    """Fraction of the mid-swing samples (MID_SWING) of leg i in which its foot is loaded."""
+    frac = sig.swing_fraction[win, i]
+    mid = (frac >= MID_SWING[0]) & (frac <= MID_SWING[1])
+    return float(np.mean(sig.swing_contact[win, i][mid])) if mid.any() else math.nan
+
+
+def summarize(sig: Signals, scenario: Scenario, params: Params, setup: Setup,
+              result: SimResult, seed_analysis: dict) -> dict:
+    """The summary.json dictionary (SI units). seed_analysis: the analysis results of the seed
+    model on the seed's ellipse (report.json's results.seed)."""
+    t_end = float(sig.t[-1]) if len(sig.t) else 0.0
+    half_row = 0.5 * float(np.median(np.diff(sig.t))) if len(sig.t) > 1 else 0.0
+    start, end, cycles = cycle_window(scenario, params, t_end + half_row)
+    win = (sig.t > start + half_row) & (sig.t <= end + half_row)
+    cycle = np.clip(np.floor((sig.t[win] - start - half_row) / params.gait.period_s), 0,
+                    max(cycles - 1, 0)).astype(int)
+    legs = {leg: {name: motor_summary(sig, params, win, cycle, cycles, i, j)
+                  for j, name in enumerate(MOTORS)} for i, leg in enumerate(setup.legs)}
+    completed = not result.error and not result.interrupted
+    sufficient = completed and cycles >= MIN_CYCLES
+    motors = [(leg, name, m) for leg, ms in legs.items() for name, m in ms.items()]
+    worst_leg, worst_motor, worst = min(motors, key=lambda x: (
+        x[2]["safety_factor"] if np.isfinite(x[2]["safety_factor"]) else math.inf))
+    p = sig.body_p[win]
+    tw = sig.t[win]
+    speed = float((p[-1, 0] - p[0, 0]) / (tw[-1] - tw[0])) if len(tw) > 1 else math.nan
+    scheduled_swing = (~sig.stance[win]).sum(0)
+    seed_peak = max(seed_analysis[m]["peak_torque_Nm"] for m in MOTORS)
+    summary = {
+        "gait": scenario.gait, "closure": scenario.closure,
+        "duration_s": t_end, "requested_duration_s": scenario.duration_s,
+        "completed": completed, "interrupted": bool(result.interrupted),
+        "error": result.error or (f"interrupted by {result.interrupted} at t = {t_end:.2f} s"
+                                  if result.interrupted else ""),
+        "cycles_in_window": cycles, "window_s": [start, end],
+        "verdict": worst["verdict"] if sufficient else "insufficient",
+        "worst_motor": f"{worst_leg} {worst_motor}",
+        "max_tilt_deg": float(np.max(sig.tilt_deg)) if len(sig.t) else math.nan,
+        "mean_forward_speed_m_s": speed,
+        "gait_speed_m_s": stance_speed(params.gait, scenario.gait),
+        "gait_frequency_hz": params.gait.frequency_hz,
+        "swing_clear_fraction": {leg: float(1 - sig.swing_contact[win, i].sum()
+                                            / max(scheduled_swing[i], 1))
+                                 for i, leg in enumerate(setup.legs)},
+        "swing_drag_fraction": {leg: _drag(sig, win, i) for i, leg in enumerate(setup.legs)},
+        "body_height_m": {"min": float(sig.body_p[:, 2].min()), "max": float(sig.body_p[:, 2].max())}
+        if len(sig.t) else None,
+        "max_loop_gap_m": float(np.max(sig.gap)) if len(sig.t) else math.nan,
+        "max_loop_gap_per_leg_m": {leg: float(np.max(sig.gap[:, i])) if len(sig.t) else math.nan
+                                   for i, leg in enumerate(setup.legs)},
+        "time_step_s": setup.time_step_s,
+        "log_period_s": scenario.log_period_s,
+        "real_time_factor": t_end / result.wall_s if result.wall_s > 0 else math.nan,
+        "wall_time_s": result.wall_s,
+        "bushing": None if setup.bushing is None else {
+            "stiffness_N_m": setup.bushing.stiffness_N_m,
+            "damping_N_s_m": setup.bushing.damping_N_s_m},
+        "knee_effective_mass_kg": setup.m_eff_kg, "design_loop_force_N": setup.loop_force_N,
+        "controller_gains": {k: np.asarray(v).tolist() for k, v in
+                             setup.gains._asdict().items()},
+        "seed_peak_torque_Nm": seed_peak,
+        "seed_static_estimate_optimistic": bool(worst["demand_p99_Nm"] > seed_peak),
+        "motor_peak_torque_Nm": params.motor.peak_torque_Nm,
+        "legs": legs,
+    }
+    summary["answer"] = answer(summary, params)
+    return summary
+
+
+def answer(s: dict, params: Params) -> str:
+    """The plain sentence that answers 'how much torque does the trot need?' for this run."""
+    if s["verdict"] == "insufficient":
+        why = (f"the run stopped early ({s['error']})" if not s["completed"] else
+               f"it covered {s['cycles_in_window']} whole gait cycles after the ramp, fewer than "
+               f"{MIN_CYCLES}")
+        return (f"No verdict: {why}; run at least {MIN_CYCLES} whole cycles after the "
+                f"{s['window_s'][0]:g} s of standing and ramp.")
+    leg, name = s["worst_motor"].split()
+    m = s["legs"][leg][name]
+    ratio = m["demand_p99_Nm"] / s["seed_peak_torque_Nm"]
+    judged = (f"optimistic by {ratio:.1f}x" if ratio > 1 else
+              f"conservative ({ratio:.2f}x of it was needed)")
+    return (f"At {s['gait_frequency_hz']:g} Hz with the {s['gait']} gait the motors need "
+            f"{m['demand_p99_Nm']:.2f} N·m ({PERCENTILE:g}th percentile of the demand over "
+            f"{s['cycles_in_window']} cycles, worst motor {leg} {name}; safety factor "
+            f"{m['safety_factor']:.2f}, {m['verdict'].upper()} against "
+            f"{params.checks.sf_pass:g}). The seed's static {s['seed_peak_torque_Nm']:.2f} N·m "
+            f"was {judged}; the static torque with the trot's stance load on the same poses is "
+            f"{m['static_trot_Nm']:.2f} N·m (the robot's weight shared by the feet in stance, "
+            f"not {params.robot.weight_share_kg:.3f} kg per foot).")
+
+
+def markdown(s: dict, params: Params) -> str:
+    lines = [
+        f"# Simulated {s['gait']} gait: dynamic vs static motor torque", "", s["answer"], "",
+        f"Simulated {s['duration_s']:.2f} s (requested {s['requested_duration_s']:g} s), "
+        f"{s['closure']} closure, time step {s['time_step_s'] * 1e3:.3f} ms, "
+        f"{s['real_time_factor']:.2f}x real time. Statistics over {s['cycles_in_window']} whole "
+        f"gait cycles, t = {s['window_s'][0]:.2f} .. {s['window_s'][1]:.2f} s; every value is a "
+        f"mean over {s['log_period_s'] * 1e3:g} ms of plant steps.",
+    ]
+    if s["error"]:
+        lines += ["", f"**The run stopped early:** {s['error']}"]
+    clear = min(s["swing_clear_fraction"].values())
+    drag = max(s["swing_drag_fraction"].values())
+    lines += [
+        "", f"- walking: {s['mean_forward_speed_m_s']:.3f} m/s against the gait's "
+        f"{s['gait_speed_m_s']:.3f} m/s; largest tilt {s['max_tilt_deg']:.1f} deg; swing feet "
+        f"clear of the ground {clear * 100:.0f} % of scheduled swing, on it {drag * 100:.0f} % of "
+        f"mid-swing (worst legs; the rest is early touchdown); worst loop gap "
+        f"{s['max_loop_gap_m'] * 1e3:.4f} mm",
+        "", "| leg | motor | demand p99 | demand peak | applied p99 | RMS | seed static | "
+        "trot static | J^T F peak | dyn/seed | dyn/trot | SF | verdict | clipped | p99 speed "
+        "(rad/s) |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for leg, motors in s["legs"].items():
+        for name, m in motors.items():
+            lines.append(
+                f"| {leg} | {name} | {m['demand_p99_Nm']:.2f} | {m['demand_peak_Nm']:.2f} | "
+                f"{m['p99_torque_Nm']:.2f} | {m['rms_torque_Nm']:.2f} | {m['static_seed_Nm']:.2f} | "
+                f"{m['static_trot_Nm']:.2f} | {m['static_contact_Nm']:.2f} | "
+                f"{m['dynamic_to_seed_static']:.2f}x | {m['dynamic_to_trot_static']:.2f}x | "
+                f"{m['safety_factor']:.2f} | {m['verdict'].upper()} | "
+                f"{m['saturated_fraction'] * 100:.1f} % | {m['p99_speed_rad_s']:.2f} |")
+    lines += ["", "Torque split (RMS over the window, N·m): contact -J^T F, links M q'' + c + G, "
+              "rotor N^2 J q'', friction; residual = applied - their sum.", "",
+              "| leg | motor | contact | links | rotor | friction | residual |",
+              "|---|---|---|---|---|---|---|"]
+    for leg, motors in s["legs"].items():
+        for name, m in motors.items():
+            d = m["decomposition_rms_Nm"]
+            lines.append(f"| {leg} | {name} | {d['contact']:.3f} | {d['links']:.3f} | "
+                         f"{d['rotor']:.3f} | {d['friction']:.3f} | {d['residual']:.3f} |")
+    lines += ["", f"Units N·m unless stated. Motor limit {params.motor.peak_torque_Nm:g} N·m at "
+              f"the output, torque-speed line to {params.motor.no_load_speed_rad_s:.2f} rad/s. "
+              "Demand = the controller's command before saturation; SF = motor limit / demand "
+              f"p99. Seed static: the seed's G(q) with {params.robot.weight_share_kg:.3f} kg at "
+              "the foot. Per-cycle spreads are in summary.json."]
+    return "\n".join(lines) + "\n"
+
+
+def _finite(value):
+    """The summary with non-finite numbers (a diverged run) as null, so the JSON stays valid."""
+    if isinstance(value, dict):
+        return {k: _finite(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [_finite(v) for v in value]
+    if isinstance(value, float) and not np.isfinite(value):
+        return None
+    return value
+
+
+def write_summary(summary: dict, params: Params, out_dir: Path) -> list[Path]:
+    """Write SUMMARY_FILES into out_dir, each atomically, summary.json last: call it after every
+    other output of the run is written, so a summary.json always describes complete files."""
+    texts = (markdown(summary, params),
+             json.dumps(_finite(summary), indent=2, allow_nan=False) + "\n")
+    out_dir.mkdir(parents=True, exist_ok=True)
+    return [write_atomic(out_dir / name, text) for name, text in zip(SUMMARY_FILES, texts)]
