@@ -33,7 +33,6 @@ EXIT_CODES = """exit codes:
   130  interrupted by SIGINT (Ctrl-C), 143 by SIGTERM; simulate writes what it has first"""
 
 EXIT_INTERNAL = 3
-
 DEFAULTS = Scenario()
 
 

@@ -13,7 +13,6 @@ from fivebar_drake.mechanisms.fivebar.singularity import workspace
 
 
 MODEL_STYLE = {"seed": "--", "full": "-", "full_trot": ":"}
-
 COMPONENTS = (("inertial", "inertial M q''"), ("coriolis", "Coriolis c(q, q')"),
               ("link_weight", "link weights"), ("foot_load", "foot load m_leg g"),
               ("total", "total"))

@@ -15,9 +15,7 @@ from fivebar_drake.robots.quadruped.config import sampling_error
 
 
 SIDE_BY_SIDE = ("seed", "full")
-
 REPORT_FILES = ("report.md", "report.json")
-
 ANALYSIS_FILES = REPORT_FILES + tuple(f"{name}.png" for name in FIGURES)   # what analyze writes
 
 

@@ -15,7 +15,6 @@ from fivebar_drake.core.validation import ParameterError
 
 
 TEMP_PREFIX = ".fivebar-tmp-"   # temporary files of an atomic write, named so a later run removes them
-
 _UMASK = os.umask(0)
 
 os.umask(_UMASK)

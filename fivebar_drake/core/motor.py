@@ -57,7 +57,6 @@ class Motor:
         return self.gear_ratio**2 * self.rotor_inertia_kg_m2
 
 FRICTION_SMOOTHING_RAD_S = 0.05   # Coulomb friction reaches its full value at this joint speed
-
 PEAK_TOLERANCE = 1e-12            # relative: a delivered torque this close to the peak is at it
 
 

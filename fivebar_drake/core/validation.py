@@ -11,30 +11,18 @@ import math
 # for (a ~7 kg quadruped with ~0.3 m legs) and is there to catch a slip, such as millimetres
 # written as metres or grams as kilograms, before it turns into a result that looks valid.
 MAX_LENGTH_M = 2.0              # any length or coordinate: "105" for 0.105 m is refused
-
 MAX_MASS_KG = 500.0             # any mass: "6700" (grams) for the 6.7 kg robot is refused
-
 MAX_GRAVITY_M_S2 = 30.0         # the largest surface gravity in the solar system is 24.8 (Jupiter)
-
 MAX_GAIT_FREQUENCY_HZ = 10.0    # small quadrupeds trot at 1-5 Hz; no hip motor of the kind follows 10
-
 MAX_SAMPLES = 10_000            # per cycle: central differences are exact to ~1e-7 of the peaks long
-
 #                                 before; the IK mode tracking costs ~10 us per sample in Python
 MAX_TORQUE_NM = 1000.0          # hip motors of legged robots this size give well under 100 N m
-
 MAX_GEAR_RATIO = 1000.0         # the largest harmonic drives are ~160:1
-
 MAX_SPEED_RAD_S = 10_000.0      # ~95 000 RPM at the output: beyond any motor
-
 MAX_ROTOR_INERTIA_KG_M2 = 1.0   # a small outrunner's rotor is ~1e-6 kg m^2
-
 MAX_FRICTION_COEFFICIENT = 5.0  # rubber on rough ground is 1-2
-
 MAX_CONTACT_STIFFNESS_N_M = 1e9  # a steel ball on steel is ~1e8-1e9 N/m
-
 MAX_RELAXATION_TIME_S = 1.0     # a foot pad still dissipating a second after touchdown is no foot
-
 MAX_SAFETY_FACTOR = 100.0       # a verdict threshold beyond this can never pass
 
 

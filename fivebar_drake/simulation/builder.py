@@ -24,11 +24,10 @@ from fivebar_drake.simulation.systems import FootLegController, GaitSource, deri
 
 
 IMPLICIT_TIME_STEP_S = 1e-3   # plant step of the closures SAP treats implicitly
-
 MAX_PLANT_STEPS = 20_000_000   # duration / time step: at ~0.3 ms of wall time per plant step
-
 #                                (measured, 2 cores) about two hours
 MIN_LOG_INTERVALS_PER_CYCLE = 100   # the statistics take peaks and percentiles of the recorded
+#                                     interval means: coarser intervals smear a cycle's peaks
 
 
 @dataclass

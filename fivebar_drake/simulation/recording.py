@@ -29,9 +29,7 @@ from fivebar_drake.simulation.summary import MOTORS, Signals
 
 
 RECORDING_FILE = "run.rrd"
-
 TIMELINE = "sim_time"
-
 FORCE_ARROW_M_PER_N = 0.001    # 1 mm of arrow per newton
 
 

@@ -41,12 +41,8 @@ def load_run(path: "str | Path | None" = None, **overrides) -> tuple[Scenario, P
     return scenario, params
 
 FALL_TILT_DEG = 45.0   # a body tilted further has fallen: the run stops
-
 SLICE_S = 0.01         # simulated time between checks for divergence and a stop request
-
 PROGRESS_LINES = 20    # progress lines over a run
-
-#                                     interval means: coarser intervals smear a cycle's peaks
 DIVERGED_GAP_M = 1e-3  # a loop open by more than this (1 % of a link) has come apart
 
 

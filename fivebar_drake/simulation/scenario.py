@@ -32,29 +32,19 @@ from fivebar_drake.robots.quadruped.plant import CLOSURES
 
 # Bounds of the scenario's values, each with the reason it exists.
 MAX_LOG_ROWS = 500_000            # recorded intervals kept in memory, ~6 kB each (measured) from the
-
 #                                   recorder to the recording: ~3 GB; 1000 s at the default 2 ms
 MIN_TIME_STEP_S = 1e-6            # any step or period: the explicit bushing needs ~34 us; nothing
-
 #                                   in the robot is faster
 MIN_BANDWIDTH_HZ = 0.1            # a loop this slow cannot follow any gait
-
 CONTROL_SAMPLES_PER_BANDWIDTH = 20  # a digital loop samples >= 20x its bandwidth, or its gains
-
 #                                     (derived as if continuous) lose their phase margin
 MAX_DELAY_BANDWIDTH_PHASE = 0.25  # delay * swing bandwidth < 1/4: a quarter period of delay
-
 #                                   costs the swing loop 90 deg of phase, all its margin
 MAX_DAMPING_RATIO = 2.0           # well past critical (1): more only slows the loops
-
 MAX_CATCH_GAIN = 10.0             # the reflex saturates at the step height long before
-
 MAX_CATCH_RATE_S = 1.0            # a velocity lead longer than a gait cycle anticipates nothing
-
 MAX_LOOP_GAP_M = 1e-3             # 1 % of a link: a looser loop is not the 5-bar's kinematics
-
 MIN_LOOP_GAP_M = 1e-7             # the bushing's stiffness is loop force / gap: beyond ~1e8 N/m
-
 #                                   SAP's compliant constraint is no longer compliant
 MAX_PHASE_RAD = 2 * math.pi       # a gait phase is an angle of the cycle: one turn either way
 

@@ -40,13 +40,9 @@ from fivebar_drake.simulation.scenario import Scenario
 
 
 MOTORS = ("A", "B")
-
 SUMMARY_FILES = ("summary.md", "summary.json")   # summary.json last: its presence means complete
-
 MIN_CYCLES = 3            # fewer whole cycles than this give no verdict
-
 PERCENTILE = 99.0
-
 SWING_CONTACT_N = 1.0     # a swing foot pressing harder than this (~1.5 % of the weight) drags
 
 # Mid-swing, where a foot on the ground drags: after lift-off and before the descent to an early

@@ -21,7 +21,6 @@ from fivebar_drake.mechanisms.fivebar.geometry import LegGeometry
 
 
 KNEES_OUT = (1, 1)
-
 ALL_MODES = ((1, 1), (1, -1), (-1, 1), (-1, -1))
 
 

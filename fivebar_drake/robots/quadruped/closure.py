@@ -24,7 +24,6 @@ from fivebar_drake.robots.quadruped.sdf import Bushing
 
 
 STABILITY_MARGIN = 0.8   # fraction of the explicit stability bound a + 2 b < 4
-
 DAMPING_RATIO = 0.3
 
 

@@ -26,7 +26,6 @@ from fivebar_drake.robots.quadruped.params import Body, Params, Robot
 # at most params.MAX_SAMPLES); a difference above SAMPLING_ERROR_WARN of the peak is reported
 # with the analysis.
 REFERENCE_REFINEMENT = 8
-
 SAMPLING_ERROR_WARN = 0.05   # the speed check and safety factors move visibly beyond this
 
 

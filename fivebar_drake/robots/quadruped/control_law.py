@@ -26,7 +26,6 @@ from fivebar_drake.mechanisms.fivebar.kinematics import forward_pose, inverse_po
 
 
 TOUCHDOWN_BAND_M = 0.004   # a descending swing foot this close to the ground joins the support
-
 MOMENT_LEVER_M = 0.1       # the wrench fit weighs a moment like a force at this lever
 
 

@@ -24,7 +24,6 @@ from fivebar_drake.robots.quadruped.sdf import (Bushing, LEGS, body_height, hip_
 # about the hinge) as two compliant SAP distance constraints, treated implicitly; "bushing_rpy",
 # Drake's explicit LinearBushingRollPitchYaw; "ball", a rigid SAP ball constraint.
 CLOSURES = ("bushing", "bushing_rpy", "ball")
-
 OFFSET_M = 0.02   # the second distance constraint's point on DE: this far off the link at E
 
 
@@ -82,7 +81,6 @@ def leg_indices(plant: MultibodyPlant, instance, leg: str) -> LegIndices:
                       actuators=np.array(actuators))
 
 GROUND_SIZE_M = 40.0   # flat ground, top face at z = 0
-
 GROUND_DEPTH_M = 1.0
 
 
