@@ -68,15 +68,14 @@ def plant_alone(scenario, params, setup, actuation, duration: float):
     """(real-time factor, final state) of the same plant, closure, contact and step fed the
     run's per-step joint torques (zero-order hold) with no Python systems."""
     builder = DiagramBuilder()
-    plant, instance, legs = add_robot(builder, params, scenario.closure, setup.bushing,
-                                      setup.time_step_s)
+    plant, instance, layout = add_robot(builder, params, setup.design)
     times, torques = actuation
     source = builder.AddSystem(TrajectorySource(PiecewisePolynomial.ZeroOrderHold(times,
                                                                                   torques.T)))
     builder.Connect(source.get_output_port(), plant.get_actuation_input_port())
     simulator = Simulator(builder.Build())
     context = plant.GetMyMutableContextFromRoot(simulator.get_mutable_context())
-    set_standing_pose(plant, context, instance, legs, params)
+    set_standing_pose(plant, context, instance, layout.legs, params)
     simulator.Initialize()
     start = time.perf_counter()
     simulator.AdvanceTo(duration)
@@ -104,7 +103,7 @@ def python_time_per_block(duration: float) -> tuple[dict, float, float]:
     finally:
         for cls, update in originals.items():
             cls._update = update
-    return dict(spent), result.wall_s, duration / setup.time_step_s
+    return dict(spent), result.wall_s, duration / setup.design.time_step_s
 
 
 def peak_rss_mb(duration: float) -> float:
@@ -129,7 +128,7 @@ def main():
         rtf[closure] = summary["real_time_factor"]
         gap[closure] = summary["max_loop_gap_m"]
         share[closure] = rec / (result.wall_s + post + rec)
-        print(f"{closure:>12} {setup.time_step_s * 1e3:9.4f} {result.wall_s:12.2f} "
+        print(f"{closure:>12} {setup.design.time_step_s * 1e3:9.4f} {result.wall_s:12.2f} "
               f"{rtf[closure]:8.2f}x {gap[closure] * 1e3:14.4f} {rec:8.2f} "
               f"{share[closure] * 100:12.1f}%" + (f"  stopped: {result.error}" if result.error
                                                   else ""))

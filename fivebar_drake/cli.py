@@ -90,7 +90,7 @@ def _simulate(args, signals) -> int:
     result, setup = simulate(scenario, params, progress=True, stop=lambda: signals.name)
     sig = run_signals(result, setup, params, scenario)
     summary = summarize(sig, scenario, params, setup, result, seed)
-    written = write_sim_plots(sig, setup.legs, params, summary, out)
+    written = write_sim_plots(sig, setup.layout.legs, params, summary, out)
     written.append(write_recording(out / RECORDING_FILE, sig, setup, params, scenario,
                                    result.table["state"], summary))
     written += write_summary(summary, params, out)        # last: summary.json says it is complete
@@ -140,11 +140,11 @@ def _compare(args, signals) -> int:
 def _models(args, signals) -> int:
     from fivebar_drake.simulation.runner import load_run
     from fivebar_drake.robots.quadruped.sdf import MODEL_FILES, write_models
-    from fivebar_drake.simulation.builder import closure_parameters
+    from fivebar_drake.simulation.builder import closure_design
 
     scenario, params = load_run(args.scenario, closure="bushing_rpy", params_file=args.config)
     out = prepare_output_dir(args.out, "--out", MODEL_FILES)
-    _, bushing, _, _ = closure_parameters(scenario, params)
+    bushing = closure_design(scenario, params).bushing
     for path in write_models(params, bushing, out):
         say(f"wrote {path}")
     return 0

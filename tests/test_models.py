@@ -10,13 +10,13 @@ from pydrake.visualization import ModelVisualizer
 from fivebar_drake.robots.quadruped.plant import add_model
 from fivebar_drake.simulation.scenario import load_scenario
 from fivebar_drake.robots.quadruped.sdf import MODEL_FILES, body_mass_properties
-from fivebar_drake.simulation.builder import closure_parameters
+from fivebar_drake.simulation.builder import closure_design
 
 SDF = Path(__file__).parent.parent / "sdf"
 
 
 def test_committed_models_match_the_parameter_file(params):
-    _, bushing, _, _ = closure_parameters(load_scenario(closure="bushing_rpy"), params)
+    bushing = closure_design(load_scenario(closure="bushing_rpy"), params).bushing
     for name, (make, closure) in MODEL_FILES.items():
         assert (SDF / name).read_text() == make(params, closure, bushing), \
             f"sdf/{name} is stale: run `fivebar-drake models`"
@@ -37,7 +37,7 @@ def test_quadruped_plant_is_physical(params, closure):
     plant = MultibodyPlant(1e-3)
     plant.set_discrete_contact_approximation(DiscreteContactApproximation.kSap)
     instance, legs = add_model(plant, params, "quadruped", closure,
-                               closure_parameters(load_scenario(closure="bushing"), params)[1])
+                               closure_design(load_scenario(closure="bushing"), params).bushing)
     plant.Finalize()
     context = plant.CreateDefaultContext()
     assert plant.CalcTotalMass(context) == pytest.approx(params.robot.total_mass_kg, rel=1e-12)

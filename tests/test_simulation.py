@@ -17,7 +17,7 @@ from fivebar_drake.mechanisms.fivebar.kinematics import UnreachableError, forwar
 from fivebar_drake.simulation.recording import read_series
 from fivebar_drake.simulation.scenario import load_scenario
 from fivebar_drake.robots.quadruped.plant import set_standing_pose
-from fivebar_drake.simulation.builder import build_diagram
+from fivebar_drake.simulation.builder import build_diagram, check_run
 from fivebar_drake.simulation.runner import simulate
 from fivebar_drake.simulation.summary import signals, summarize
 
@@ -71,9 +71,9 @@ def test_default_trot_is_credible(run):
         s = u / (1 - params.gait.duty_factor)
         loaded = sig.foot_force_world[inside, i, 2] > 1.0
         mid = swing & (s >= 0.1) & (s <= 0.7)
-        assert np.mean(loaded[mid]) <= 0.02, setup.legs[i]
-        assert np.mean(loaded[swing]) <= 0.20, setup.legs[i]
-        assert summary["swing_clear_fraction"][setup.legs[i]] == pytest.approx(
+        assert np.mean(loaded[mid]) <= 0.02, setup.layout.legs[i]
+        assert np.mean(loaded[swing]) <= 0.20, setup.layout.legs[i]
+        assert summary["swing_clear_fraction"][setup.layout.legs[i]] == pytest.approx(
             1 - np.mean(loaded[swing]), abs=0.02)
 
 
@@ -200,14 +200,14 @@ def test_controller_acts_on_the_state_sampled_at_its_tick(delay):
     later) and is released delay ticks later."""
     scenario = load_scenario(closure="ball", control_delay_periods=delay)
     params = scenario.load_params()
-    diagram, setup = build_diagram(scenario, params)
+    diagram, setup = build_diagram(scenario, params, check_run(scenario, params))
     simulator = Simulator(diagram)
     context = simulator.get_mutable_context()
     plant_context = setup.plant.GetMyMutableContextFromRoot(context)
-    set_standing_pose(setup.plant, plant_context, setup.instance, setup.legs, params)
+    set_standing_pose(setup.plant, plant_context, setup.instance, setup.layout.legs, params)
     simulator.Initialize()
     controller, gait = setup.controller, diagram.GetSubsystemByName("gait_source")
-    period, dt = scenario.control_period_s, setup.time_step_s
+    period, dt = scenario.control_period_s, setup.design.time_step_s
     tick = 0.7                                                  # gait running, a tick time
     simulator.AdvanceTo(tick)                                   # events at t_k not yet handled
     state_k = setup.plant.GetPositionsAndVelocities(plant_context).copy()

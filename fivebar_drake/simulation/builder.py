@@ -11,19 +11,18 @@ from pydrake.systems.primitives import DiscreteTimeIntegrator, Multiplexer, Vect
 
 from fivebar_drake.core.footpath import stance_start
 from fivebar_drake.core.motor import MotorModel
-from fivebar_drake.core.validation import ParameterError, check_number, require
+from fivebar_drake.core.validation import check_number, require
 from fivebar_drake.mechanisms.fivebar.dynamics import mass_matrix
 from fivebar_drake.mechanisms.fivebar.geometry import physical_izz
 from fivebar_drake.mechanisms.fivebar.kinematics import inverse
-from fivebar_drake.robots.quadruped.closure import bushing_parameters, loop_load
+from fivebar_drake.robots.quadruped.closure import design_closure
 from fivebar_drake.robots.quadruped.control_law import ControlGains
 from fivebar_drake.robots.quadruped.params import Params
-from fivebar_drake.robots.quadruped.plant import RobotLayout, add_robot, leg_indices, robot_layout
+from fivebar_drake.robots.quadruped.plant import ClosureDesign, RobotLayout, add_robot
 from fivebar_drake.simulation.scenario import Scenario
 from fivebar_drake.simulation.systems import FootLegController, GaitSource, derive_gains
 
 
-IMPLICIT_TIME_STEP_S = 1e-3   # plant step of the closures SAP treats implicitly
 MAX_PLANT_STEPS = 20_000_000   # duration / time step: at ~0.3 ms of wall time per plant step
 #                                (measured, 2 cores) about two hours
 MIN_LOG_INTERVALS_PER_CYCLE = 100   # the statistics take peaks and percentiles of the recorded
@@ -32,17 +31,13 @@ MIN_LOG_INTERVALS_PER_CYCLE = 100   # the statistics take peaks and percentiles 
 
 @dataclass
 class Setup:
-    """What the builder made: plant handles, indices and the derived closure parameters."""
+    """What the builder made: the plant and its model instance, the plain-data layout, the
+    closure design it was built with, the controller's gains and the blocks the runner reads."""
 
     plant: object
     instance: object
-    legs: tuple
-    indices: dict
-    time_step_s: float
-    bushing: object
-    m_eff_kg: float
-    loop_force_N: float
     layout: RobotLayout
+    design: ClosureDesign
     gains: ControlGains
     recorder: VectorLogSink
     motor_log: VectorLogSink
@@ -51,27 +46,10 @@ class Setup:
     actuation_log: VectorLogSink | None = None
 
 
-def closure_parameters(scenario: Scenario, params: Params):
-    """(time step s, Bushing or None, m_eff kg, loop force N) for the scenario's closure. The
-    bushing's stiffness and damping come from the knee's effective mass, the loop force and the
-    accepted gap (bushing.bushing_parameters); SAP treats the compliant "bushing" implicitly, so
-    it runs at IMPLICIT_TIME_STEP_S, while the explicit "bushing_rpy" needs the step its
-    stability bound allows."""
-    m_eff, force = loop_load(params)
-    if scenario.closure == "ball":
-        return scenario.time_step_s or IMPLICIT_TIME_STEP_S, None, m_eff, force
-    bushing, dt = bushing_parameters(m_eff, force, scenario.target_loop_gap_m)
-    if scenario.closure == "bushing":
-        return scenario.time_step_s or IMPLICIT_TIME_STEP_S, bushing, m_eff, force
-    if scenario.time_step_s > dt:
-        raise ParameterError(
-            f"scenario.time_step_s = {scenario.time_step_s!r}: the explicit bushing (k = "
-            f"{bushing.stiffness_N_m:.3g} N/m, m_eff = {m_eff * 1e3:.2f} g) is stable up to "
-            f"{dt:.3g} s; use 0 (derived) or a smaller step, a larger target_loop_gap_m, or the "
-            "implicit closure 'bushing'", "scenario.time_step_s")
-    # the largest stable step that divides the log period, so every log interval has whole steps
-    derived = scenario.log_period_s / math.ceil(scenario.log_period_s / dt - 1e-9)
-    return scenario.time_step_s or derived, bushing, m_eff, force
+def closure_design(scenario: Scenario, params: Params) -> ClosureDesign:
+    """The scenario's loop closure, designed before assembly (closure.design_closure)."""
+    return design_closure(params, scenario.closure, scenario.target_loop_gap_m,
+                          scenario.time_step_s, scenario.log_period_s)
 
 
 def recorded_periods(scenario: Scenario, time_step: float) -> tuple[float, int]:
@@ -81,13 +59,14 @@ def recorded_periods(scenario: Scenario, time_step: float) -> tuple[float, int]:
     return log_period, round(log_period / scenario.motor_period_s)
 
 
-def check_run(scenario: Scenario, params: Params) -> float:
-    """The plant's time step (s) for the scenario, after the checks that need the parameters
-    and the step (ParameterError naming the field): the step against the motor model's period,
-    the foot contact's time scale and the number of steps; the recorded interval against the
-    step and the gait, the pose rate against the interval; the load transfer against the
-    stance."""
-    step = closure_parameters(scenario, params)[0]
+def check_run(scenario: Scenario, params: Params) -> ClosureDesign:
+    """The scenario's closure design (closure_design), after the checks that need the
+    parameters and the plant's step (ParameterError naming the field): the step against the
+    motor model's period, the foot contact's time scale and the number of steps; the recorded
+    interval against the step and the gait, the pose rate against the interval; the load
+    transfer against the stance."""
+    design = closure_design(scenario, params)
+    step = design.time_step_s
     field = "scenario.time_step_s"
     derived = "" if scenario.time_step_s else f"; 0 derives {step:g} s for the closure"
     check_number(field, step, high=scenario.motor_period_s,
@@ -117,7 +96,7 @@ def check_run(scenario: Scenario, params: Params) -> float:
     check_number("scenario.load_transfer_s", scenario.load_transfer_s, high=stance_s / 2,
                  why=f"a foot must take up its load and give it off within its stance of "
                      f"{stance_s:g} s")
-    return step
+    return design
 
 
 def controller_gains(scenario: Scenario, params: Params, layout: RobotLayout) -> ControlGains:
@@ -132,57 +111,73 @@ def controller_gains(scenario: Scenario, params: Params, layout: RobotLayout) ->
                         scenario.damping_ratio)
 
 
-def build_diagram(scenario: Scenario, params: Params, log_actuation: bool = False):
-    """Assemble the Diagram for the scenario; returns (diagram, Setup). log_actuation: also log
-    the joint torques the plant receives at every step (Setup.actuation_log), to replay the run
-    on the plant alone."""
-    time_step, bushing, m_eff, force = closure_parameters(scenario, params)
-    builder = DiagramBuilder()
-    plant, instance, legs = add_robot(builder, params, scenario.closure, bushing, time_step)
-    indices = {leg: leg_indices(plant, instance, leg) for leg in legs}
-    layout = robot_layout(plant, instance, legs, params)
+def add_controller(builder: DiagramBuilder, scenario: Scenario, params: Params, plant,
+                   instance, layout: RobotLayout) -> tuple[FootLegController, MotorModel]:
+    """Add gait source -> leg controller -> motor model -> the plant's actuation, the controller
+    and the motor model sampling the plant state; returns (controller, motor model)."""
     gains = controller_gains(scenario, params, layout)
-
     gait = builder.AddNamedSystem("gait_source", GaitSource(
         params.gait, scenario.gait, scenario.phases_rad, scenario.stand_s, scenario.ramp_s,
         scenario.load_transfer_s, scenario.control_period_s))
     controller = builder.AddNamedSystem("leg_controller", FootLegController(
         params, layout, gains, scenario.control_period_s, scenario.control_delay_periods,
         scenario.catch_gain, scenario.catch_rate_s, scenario.touchdown_detection))
-    speed_index = np.zeros(plant.num_actuators(), dtype=int)    # joint speed of each actuator
+    speed_index = np.zeros(layout.actuators.size, dtype=int)    # joint speed of each actuator
     speed_index[layout.actuators.ravel()] = layout.v_index.ravel() + layout.nq
     motor = builder.AddNamedSystem("motor_model", MotorModel(
         params.motor, speed_index, layout.nx, scenario.motor_period_s))
-    # every plant step counted in C++: the integral of the contact forces; one row per log
-    # interval (the plant state and that integral at its end); the motor's held values once
-    # per motor sample (they are constant in between)
-    n_act, nv = plant.num_actuators(), plant.num_velocities()
-    integrator = builder.AddNamedSystem("contact_integral", DiscreteTimeIntegrator(nv, time_step))
-    rows = builder.AddNamedSystem("rows", Multiplexer([layout.nx, nv]))
-    log_period, per_row = recorded_periods(scenario, time_step)
-    recorder = builder.AddNamedSystem("recorder", VectorLogSink(layout.nx + nv, log_period))
-    motor_log = builder.AddNamedSystem("motor_log", VectorLogSink(3 * n_act,
-                                                                  scenario.motor_period_s))
-
     state = plant.get_state_output_port(instance)
-    builder.Connect(gait.GetOutputPort("foot_references"), controller.GetInputPort("foot_references"))
+    builder.Connect(gait.GetOutputPort("foot_references"),
+                    controller.GetInputPort("foot_references"))
     builder.Connect(state, controller.GetInputPort("plant_state"))
-    builder.Connect(controller.GetOutputPort("torque_command"), motor.GetInputPort("torque_command"))
+    builder.Connect(controller.GetOutputPort("torque_command"),
+                    motor.GetInputPort("torque_command"))
     builder.Connect(state, motor.GetInputPort("plant_state"))
     builder.Connect(motor.GetOutputPort("applied_torque"), plant.get_actuation_input_port())
+    return controller, motor
+
+
+def add_recorders(builder: DiagramBuilder, scenario: Scenario, plant, instance,
+                  layout: RobotLayout, motor: MotorModel, time_step: float):
+    """Add the measurements, all in C++: the integral of the contact forces over every plant
+    step; one row per log interval (the plant state and that integral at its end); the motor's
+    held values once per motor sample (constant in between). Returns (recorder, motor log,
+    motor samples per row)."""
+    integrator = builder.AddNamedSystem("contact_integral",
+                                        DiscreteTimeIntegrator(layout.nv, time_step))
+    rows = builder.AddNamedSystem("rows", Multiplexer([layout.nx, layout.nv]))
+    log_period, per_row = recorded_periods(scenario, time_step)
+    recorder = builder.AddNamedSystem("recorder", VectorLogSink(layout.nx + layout.nv,
+                                                                log_period))
+    motor_log = builder.AddNamedSystem("motor_log", VectorLogSink(3 * layout.actuators.size,
+                                                                  scenario.motor_period_s))
     builder.Connect(plant.get_generalized_contact_forces_output_port(instance),
                     integrator.get_input_port())
     builder.Connect(motor.GetOutputPort("motor_record"), motor_log.get_input_port())
-    builder.Connect(state, rows.get_input_port(0))
+    builder.Connect(plant.get_state_output_port(instance), rows.get_input_port(0))
     builder.Connect(integrator.get_output_port(), rows.get_input_port(1))
     builder.Connect(rows.get_output_port(), recorder.get_input_port())
+    return recorder, motor_log, per_row
+
+
+def build_diagram(scenario: Scenario, params: Params, design: ClosureDesign,
+                  log_actuation: bool = False):
+    """Assemble the Diagram for the scenario with its closure designed beforehand (check_run,
+    closure_design): the robot, the controller, the recorders. Returns (diagram, Setup).
+    log_actuation: also log the joint torques the plant receives at every step
+    (Setup.actuation_log), to replay the run on the plant alone."""
+    builder = DiagramBuilder()
+    plant, instance, layout = add_robot(builder, params, design)
+    controller, motor = add_controller(builder, scenario, params, plant, instance, layout)
+    recorder, motor_log, per_row = add_recorders(builder, scenario, plant, instance, layout,
+                                                 motor, design.time_step_s)
     actuation_log = None
     if log_actuation:
-        actuation_log = builder.AddNamedSystem("actuation_log", VectorLogSink(n_act, time_step))
+        actuation_log = builder.AddNamedSystem("actuation_log", VectorLogSink(
+            layout.actuators.size, design.time_step_s))
         builder.Connect(motor.GetOutputPort("applied_torque"), actuation_log.get_input_port())
-    setup = Setup(plant=plant, instance=instance, legs=legs, indices=indices,
-                  time_step_s=time_step, bushing=bushing, m_eff_kg=m_eff, loop_force_N=force,
-                  layout=layout, gains=gains, recorder=recorder, motor_log=motor_log,
+    setup = Setup(plant=plant, instance=instance, layout=layout, design=design,
+                  gains=controller.constants.gains, recorder=recorder, motor_log=motor_log,
                   motor_samples_per_row=per_row, controller=controller,
                   actuation_log=actuation_log)
     return builder.Build(), setup

@@ -68,11 +68,11 @@ def _link_points(setup: Setup, params: Params, state_rows: np.ndarray):
     g = params.leg
     ends = {"AC": g.ac_m, "BD": g.bd_m, "CE": g.ce_m, "DE": g.de_m + g.ef_m}
     bodies = [{n: plant.GetBodyByName(f"{leg}_{n}", setup.instance) for n in ends}
-              for leg in setup.legs]
-    out = np.zeros((len(state_rows), len(setup.legs), 6, 3))
+              for leg in setup.layout.legs]
+    out = np.zeros((len(state_rows), len(setup.layout.legs), 6, 3))
     for f, row in enumerate(state_rows):
         plant.SetPositions(context, row[:nq])
-        for i in range(len(setup.legs)):
+        for i in range(len(setup.layout.legs)):
             pose = {n: plant.EvalBodyPoseInWorld(context, body) for n, body in bodies[i].items()}
             tip = {n: pose[n].multiply(np.array([ends[n], 0.0, 0.0])) for n in ends}
             e = pose["DE"].multiply(np.array([g.de_m, 0.0, 0.0]))
@@ -91,7 +91,7 @@ def write_recording(path: Path, sig: Signals, setup: Setup, params: Params,
     rec.set_log_time_enabled(False)
     rec.set_log_tick_enabled(False)
     with atomic_path(path) as tmp:
-        rec.save(str(tmp), default_blueprint=blueprint(setup.legs))
+        rec.save(str(tmp), default_blueprint=blueprint(setup.layout.legs))
         with rec:
             if len(sig.t):
                 _log_scene(rec, sig, setup, params, scenario, state)
@@ -116,7 +116,7 @@ def _log_scene(rec, sig, setup, params, scenario, state):
     rec.send_columns("world/body", indexes=time, columns=rr.Transform3D.columns(
         translation=sig.body_p[frames], quaternion=np.column_stack([quat[:, 1:], quat[:, :1]])))
     points = _link_points(setup, params, state[frames])
-    for i, leg in enumerate(setup.legs):
+    for i, leg in enumerate(setup.layout.legs):
         strips = [s for f in range(len(frames)) for s in (points[f, i, :4], points[f, i, 4:])]
         rec.send_columns(f"world/legs/{leg}", indexes=time, columns=rr.LineStrips3D.columns(
             strips=strips).partition([2] * len(frames)))
@@ -136,7 +136,7 @@ def _log_series(rec, sig, setup, params, summary):
     n = len(sig.t)
     start, end = summary["window_s"]
     cycle_ends = start + params.gait.period_s * np.arange(1, summary["cycles_in_window"] + 1)
-    for i, leg in enumerate(setup.legs):
+    for i, leg in enumerate(setup.layout.legs):
         _scalars(rec, f"loop_gap/{leg}", sig.t, sig.gap[:, i], leg)
         _scalars(rec, f"contact/{leg}/tangential", sig.t, sig.foot_force_plane[:, i, 0])
         _scalars(rec, f"contact/{leg}/normal", sig.t, sig.foot_force_plane[:, i, 1])

@@ -61,7 +61,7 @@ def interval_table(setup: Setup, params: Params, context) -> dict:
     dt = np.diff(times)[:, None]
     q_act = np.zeros((len(times), lay.q_index.size))
     q_act[:, lay.actuators.ravel()] = states[:, lay.q_index.ravel()]
-    tree_q = np.array([setup.indices[leg].q for leg in setup.legs])
+    tree_q = np.array([setup.layout.indices[leg].q for leg in setup.layout.legs])
     # the motor's samples in each interval: those from its start up to before its end
     motor = setup.motor_log.FindLog(context)
     rows = len(times) - 1
@@ -100,12 +100,12 @@ def simulate(scenario: Scenario, params: Params, progress=True, log_actuation=Fa
     with its likely cause). stop: polled every SLICE_S of simulated time; a non-empty answer
     (the name of a signal) ends the run there (SimResult.interrupted). log_actuation: see
     build_diagram."""
-    check_run(scenario, params)
-    diagram, setup = build_diagram(scenario, params, log_actuation)
+    design = check_run(scenario, params)
+    diagram, setup = build_diagram(scenario, params, design, log_actuation)
     simulator = Simulator(diagram)
     context = simulator.get_mutable_context()
     set_standing_pose(setup.plant, setup.plant.GetMyMutableContextFromRoot(context),
-                      setup.instance, setup.legs, params)
+                      setup.instance, setup.layout.legs, params)
     simulator.Initialize()
     # every discrete update once, outside the timing: loads (or on a first run compiles) the
     # compiled kernels
@@ -113,7 +113,7 @@ def simulate(scenario: Scenario, params: Params, progress=True, log_actuation=Fa
     tell = (lambda text: say(text, sys.stderr)) if progress else (lambda text: None)
     duration = scenario.duration_s
     tell(f"simulating {duration:g} s, closure {scenario.closure}, "
-         f"time step {setup.time_step_s * 1e3:.3f} ms")
+         f"time step {setup.design.time_step_s * 1e3:.3f} ms")
     start, error, interrupted = time.perf_counter(), "", ""
     slices = max(1, math.ceil(duration / SLICE_S - 1e-9))
     every = max(1, slices // PROGRESS_LINES)
@@ -161,7 +161,7 @@ def divergence(message: str, t: float, scenario: Scenario, params: Params, setup
     recent = {k: v[max(0, first_bad - 10):first_bad] for k, v in table.items()}
     drake = message.strip().splitlines()[0] if message.strip() else "no message"
     head = f"the simulation diverged at t = {t:.3f} s"
-    step = f"scenario.time_step_s = {setup.time_step_s:g} s"
+    step = f"scenario.time_step_s = {setup.design.time_step_s:g} s"
     if not len(recent["t"]):
         return f"{head} at its start ({drake}); check the time step ({step}) and the gains"
     gap = recent["gap"].max(axis=0)
@@ -169,7 +169,7 @@ def divergence(message: str, t: float, scenario: Scenario, params: Params, setup
     speed = np.abs(recent["speed"]).max()
     clipped = float(np.mean(recent["clipped_peak"] + recent["clipped_line"]))
     if gap.max() > DIVERGED_GAP_M:
-        leg = setup.legs[int(np.argmax(gap))]
+        leg = setup.layout.legs[int(np.argmax(gap))]
         what = (f"the loop of leg {leg} came apart (gap {gap.max() * 1e3:.2f} mm); likely cause: "
                 f"{step} is too coarse for the {scenario.closure} closure's stiffness: use a "
                 "smaller time step, a larger target_loop_gap_m, or the closure 'bushing'")

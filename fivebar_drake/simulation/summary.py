@@ -119,7 +119,7 @@ def signals(result: SimResult, setup: Setup, params: Params, scenario: Scenario)
                               np.nan)
     weight = params.robot.total_mass_kg * params.robot.gravity_m_s2
     loads = np.where(gaiting, stance_loads(params.gait, scenario.gait, tau_gait,
-                                           scenario.phases_rad, weight).T, weight / len(setup.legs))
+                                           scenario.phases_rad, weight).T, weight / len(setup.layout.legs))
     full = full_model(params)
     trot_static = static_torques(params.leg, params.links,
                                  dataclasses.replace(full, foot_load_N=loads), pose, lj)
@@ -148,7 +148,7 @@ def foot_forces(generalized, setup: Setup, params: Params, pose, down) -> np.nda
     perp = lambda v: np.stack([-v[..., 1], v[..., 0]], -1)  # noqa: E731
     p = pose.f + down[:, None, :]
     jac_t = np.stack([perp(p - params.leg.b), perp(p - pose.d)], -2)      # rows of J_P^T
-    tau = np.stack([generalized[:, [setup.indices[leg].v[k] for leg in setup.legs]]
+    tau = np.stack([generalized[:, [setup.layout.indices[leg].v[k] for leg in setup.layout.legs]]
                     for k in (1, 3)], -1)
     return np.linalg.solve(jac_t, tau[..., None])[..., 0]
 
@@ -245,7 +245,7 @@ def summarize(sig: Signals, scenario: Scenario, params: Params, setup: Setup,
     cycle = np.clip(np.floor((sig.t[win] - start - half_row) / params.gait.period_s), 0,
                     max(cycles - 1, 0)).astype(int)
     legs = {leg: {name: motor_summary(sig, params, win, cycle, cycles, i, j)
-                  for j, name in enumerate(MOTORS)} for i, leg in enumerate(setup.legs)}
+                  for j, name in enumerate(MOTORS)} for i, leg in enumerate(setup.layout.legs)}
     completed = not result.error and not result.interrupted
     sufficient = completed and cycles >= MIN_CYCLES
     motors = [(leg, name, m) for leg, ms in legs.items() for name, m in ms.items()]
@@ -271,21 +271,21 @@ def summarize(sig: Signals, scenario: Scenario, params: Params, setup: Setup,
         "gait_frequency_hz": params.gait.frequency_hz,
         "swing_clear_fraction": {leg: float(1 - sig.swing_contact[win, i].sum()
                                             / max(scheduled_swing[i], 1))
-                                 for i, leg in enumerate(setup.legs)},
-        "swing_drag_fraction": {leg: _drag(sig, win, i) for i, leg in enumerate(setup.legs)},
+                                 for i, leg in enumerate(setup.layout.legs)},
+        "swing_drag_fraction": {leg: _drag(sig, win, i) for i, leg in enumerate(setup.layout.legs)},
         "body_height_m": {"min": float(sig.body_p[:, 2].min()), "max": float(sig.body_p[:, 2].max())}
         if len(sig.t) else None,
         "max_loop_gap_m": float(np.max(sig.gap)) if len(sig.t) else math.nan,
         "max_loop_gap_per_leg_m": {leg: float(np.max(sig.gap[:, i])) if len(sig.t) else math.nan
-                                   for i, leg in enumerate(setup.legs)},
-        "time_step_s": setup.time_step_s,
+                                   for i, leg in enumerate(setup.layout.legs)},
+        "time_step_s": setup.design.time_step_s,
         "log_period_s": scenario.log_period_s,
         "real_time_factor": t_end / result.wall_s if result.wall_s > 0 else math.nan,
         "wall_time_s": result.wall_s,
-        "bushing": None if setup.bushing is None else {
-            "stiffness_N_m": setup.bushing.stiffness_N_m,
-            "damping_N_s_m": setup.bushing.damping_N_s_m},
-        "knee_effective_mass_kg": setup.m_eff_kg, "design_loop_force_N": setup.loop_force_N,
+        "bushing": None if setup.design.bushing is None else {
+            "stiffness_N_m": setup.design.bushing.stiffness_N_m,
+            "damping_N_s_m": setup.design.bushing.damping_N_s_m},
+        "knee_effective_mass_kg": setup.design.m_eff_kg, "design_loop_force_N": setup.design.loop_force_N,
         "controller_gains": {k: np.asarray(v).tolist() for k, v in
                              setup.gains._asdict().items()},
         "seed_peak_torque_Nm": seed_peak,

@@ -11,15 +11,18 @@ k = F / gap, then the largest dt with a + 4 zeta sqrt(a) = 4 margin, and d = 2 z
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from pydrake.multibody.plant import MultibodyPlant
 
+from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.mechanisms.fivebar.gait import sample_gait
 from fivebar_drake.mechanisms.fivebar.loop import tree_positions
 from fivebar_drake.robots.quadruped.inverse_dynamics import loop_jacobian, plane_point_jacobian
 from fivebar_drake.robots.quadruped.leg_loads import trot_model
 from fivebar_drake.robots.quadruped.params import Params
-from fivebar_drake.robots.quadruped.plant import add_model, leg_indices
+from fivebar_drake.robots.quadruped.plant import ClosureDesign, add_model, leg_indices
 from fivebar_drake.robots.quadruped.sdf import Bushing
 
 
@@ -74,3 +77,30 @@ def bushing_parameters(m_eff_kg: float, loop_force_N: float, target_gap_m: float
     dt = float(root_a * np.sqrt(m_eff_kg / k))
     d = 2.0 * damping_ratio * np.sqrt(k * m_eff_kg)
     return Bushing(stiffness_N_m=float(k), damping_N_s_m=float(d)), dt
+
+
+IMPLICIT_TIME_STEP_S = 1e-3   # plant step of the closures SAP treats implicitly
+
+
+def design_closure(params: Params, closure: str, target_gap_m: float, time_step_s: float = 0.0,
+                   log_period_s: float = 2e-3) -> ClosureDesign:
+    """The closure for the parameters: the bushing's stiffness and damping from the knee's
+    effective mass, the loop force and the accepted gap (bushing_parameters). SAP treats the
+    compliant "bushing" and the "ball" implicitly, so they run at IMPLICIT_TIME_STEP_S, while the
+    explicit "bushing_rpy" needs the step its stability bound allows: the largest stable step
+    that divides log_period_s (s), so every log interval has whole steps. time_step_s > 0 asks
+    for a step (ParameterError if the explicit bushing is unstable at it)."""
+    m_eff, force = loop_load(params)
+    if closure == "ball":
+        return ClosureDesign(closure, time_step_s or IMPLICIT_TIME_STEP_S, None, m_eff, force)
+    bushing, dt = bushing_parameters(m_eff, force, target_gap_m)
+    if closure == "bushing":
+        return ClosureDesign(closure, time_step_s or IMPLICIT_TIME_STEP_S, bushing, m_eff, force)
+    if time_step_s > dt:
+        raise ParameterError(
+            f"scenario.time_step_s = {time_step_s!r}: the explicit bushing (k = "
+            f"{bushing.stiffness_N_m:.3g} N/m, m_eff = {m_eff * 1e3:.2f} g) is stable up to "
+            f"{dt:.3g} s; use 0 (derived) or a smaller step, a larger target_loop_gap_m, or the "
+            "implicit closure 'bushing'", "scenario.time_step_s")
+    derived = log_period_s / math.ceil(log_period_s / dt - 1e-9)
+    return ClosureDesign(closure, time_step_s or derived, bushing, m_eff, force)

@@ -27,6 +27,19 @@ CLOSURES = ("bushing", "bushing_rpy", "ball")
 OFFSET_M = 0.02   # the second distance constraint's point on DE: this far off the link at E
 
 
+@dataclass(frozen=True)
+class ClosureDesign:
+    """A loop closure designed before the plant is assembled (plain data): the closure
+    (plant.CLOSURES), the plant's time step (s), the bushing (None for the rigid ball) and what
+    it was designed from, the knee's effective mass (kg) and the largest loop force (N)."""
+
+    closure: str
+    time_step_s: float
+    bushing: Bushing | None
+    m_eff_kg: float
+    loop_force_N: float
+
+
 def check_closure(closure: str) -> None:
     if closure not in CLOSURES:
         raise ValueError(f"closure = {closure!r}: allowed {list(CLOSURES)}")
@@ -96,24 +109,24 @@ def robot_layout(plant, instance, legs, params: Params) -> RobotLayout:
     com = spatial.get_com()
     inertia = spatial.Shift(com).CalcRotationalInertia().CopyToFullMatrix3()
     return RobotLayout(
-        q_index=np.array([indices[leg].q[:2] for leg in legs]),
+        legs=tuple(legs), indices=indices, q_index=np.array([indices[leg].q[:2] for leg in legs]),
         v_index=np.array([indices[leg].v[:2] for leg in legs]),
         actuators=np.array([indices[leg].actuators for leg in legs]),
         body_q=body.floating_positions_start(), body_v=body.floating_velocities_start_in_v(),
-        nq=plant.num_positions(), nx=plant.num_multibody_states(),
+        nq=plant.num_positions(), nv=plant.num_velocities(), nx=plant.num_multibody_states(),
         hips_m=np.array([hip_positions(params)[leg] for leg in legs]), com_m=np.asarray(com),
         mass_kg=spatial.get_mass(), inertia_kg_m2=inertia)
 
 
-def add_robot(builder: DiagramBuilder, params: Params, closure: str, bushing, time_step: float):
-    """Add the finalized quadruped plant (SAP, closed loops) and flat ground to builder;
-    returns (plant, model instance, leg names)."""
-    plant, _ = AddMultibodyPlantSceneGraph(builder, time_step)
+def add_robot(builder: DiagramBuilder, params: Params, design: ClosureDesign):
+    """Add the finalized quadruped plant (SAP at the design's time step, loops closed as
+    designed) and flat ground to builder; returns (plant, model instance, RobotLayout)."""
+    plant, _ = AddMultibodyPlantSceneGraph(builder, design.time_step_s)
     # unsampled output ports: a block updating at tick t reads the state at t, as a driver would
     ApplyMultibodyPlantConfig(MultibodyPlantConfig(
-        time_step=time_step, discrete_contact_approximation="sap",
+        time_step=design.time_step_s, discrete_contact_approximation="sap",
         use_sampled_output_ports=False), plant)
-    instance, legs = add_model(plant, params, "quadruped", closure, bushing)
+    instance, legs = add_model(plant, params, "quadruped", design.closure, design.bushing)
     ground = ProximityProperties()
     mu = params.body.foot_friction
     AddContactMaterial(friction=CoulombFriction(mu, mu), properties=ground)
@@ -121,7 +134,7 @@ def add_robot(builder: DiagramBuilder, params: Params, closure: str, bushing, ti
                                     Box(GROUND_SIZE_M, GROUND_SIZE_M, GROUND_DEPTH_M), "ground",
                                     ground)
     plant.Finalize()
-    return plant, instance, legs
+    return plant, instance, robot_layout(plant, instance, legs, params)
 
 
 def standing_height(params: Params) -> float:
@@ -144,18 +157,22 @@ def set_standing_pose(plant, context, instance, legs, params: Params) -> None:
 
 @dataclass(frozen=True)
 class RobotLayout:
-    """What the controller needs to know about the plant: per leg (legs, 2) the plant q and v
+    """The finalized plant as plain data (what the controller and the post-processing need):
+    the leg names and each leg's joint indices (LegIndices); per leg (legs, 2) the plant q and v
     indices of motors A and B and their actuation indices; the body's first position index
     (quaternion w, x, y, z, then position) and velocity index (angular then linear, world
-    frame); nq, nx; hip positions (legs, 3) m and the robot's COM (3,) m in the body frame;
+    frame); nq, nv, nx; hip positions (legs, 3) m and the robot's COM (3,) m in the body frame;
     robot mass (kg) and inertia about the COM (3, 3) kg*m^2."""
 
+    legs: tuple[str, ...]
+    indices: dict[str, LegIndices]
     q_index: np.ndarray
     v_index: np.ndarray
     actuators: np.ndarray
     body_q: int
     body_v: int
     nq: int
+    nv: int
     nx: int
     hips_m: np.ndarray
     com_m: np.ndarray
