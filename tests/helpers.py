@@ -2,8 +2,7 @@
 
 import numpy as np
 
-from fivebar_drake.mechanisms.fivebar.kinematics import forward
-from fivebar_drake.mechanisms.fivebar.geometry import LINK_NAMES
+from fivebar_drake.mechanisms.fivebar import LINK_NAMES, forward
 
 
 def link_geometry(params, q, e_branch):
@@ -35,7 +34,7 @@ def central_difference(fun, q, h=1e-6):
 
 def random_poses(params, rng, n=200):
     """Motor angles scattered around the gait's knees-out poses (all reachable)."""
-    from fivebar_drake.mechanisms.fivebar.gait import sample_gait
+    from fivebar_drake.mechanisms.fivebar import sample_gait
 
     base = sample_gait(params.leg, params.gait).pose.q
     q = base[rng.integers(0, len(base), n)] + rng.uniform(-0.15, 0.15, (n, 2))

@@ -10,10 +10,9 @@ from pydrake.systems.framework import DiagramBuilder
 from pydrake.common.value import AbstractValue
 
 from fivebar_drake.robots.quadruped.closure import bushing_parameters
-from fivebar_drake.mechanisms.fivebar.kinematics import inverse
-from fivebar_drake.mechanisms.fivebar.loop import tree_positions
+from fivebar_drake.mechanisms.fivebar import inverse, tree_positions
 from fivebar_drake.robots.quadruped.plant import add_model, leg_indices
-from fivebar_drake.robots.quadruped.sdf import Bushing
+from fivebar_drake.mechanisms.base import Bushing
 
 DT = 1e-3
 

@@ -5,11 +5,9 @@ import pytest
 
 from fivebar_drake.analysis.torques import analyze
 from fivebar_drake.robots.quadruped.config import with_gait
-from fivebar_drake.mechanisms.fivebar.dynamics import coriolis, mass_matrix, torques
-from fivebar_drake.mechanisms.fivebar.geometry import physical_izz
+from fivebar_drake.mechanisms.fivebar import (LINK_NAMES, coriolis, forward, mass_matrix,
+                                              physical_izz, torques)
 from fivebar_drake.robots.quadruped.leg_loads import full_model, seed_model
-from fivebar_drake.mechanisms.fivebar.kinematics import forward
-from fivebar_drake.mechanisms.fivebar.geometry import LINK_NAMES
 
 from helpers import central_difference, link_geometry, random_poses
 

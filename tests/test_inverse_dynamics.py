@@ -8,12 +8,9 @@ from pydrake.multibody.plant import MultibodyPlant
 from pydrake.multibody.tree import MultibodyForces
 
 from fivebar_drake.robots.quadruped.config import with_gait
-from fivebar_drake.mechanisms.fivebar.dynamics import torques
+from fivebar_drake.mechanisms.fivebar import LegPose, sample_gait, torques, tree_positions
 from fivebar_drake.robots.quadruped.leg_loads import full_model
-from fivebar_drake.mechanisms.fivebar.gait import sample_gait
-from fivebar_drake.mechanisms.fivebar.kinematics import LegPose
 from fivebar_drake.robots.quadruped.inverse_dynamics import projected_inverse_dynamics
-from fivebar_drake.mechanisms.fivebar.loop import tree_positions
 from fivebar_drake.robots.quadruped.plant import add_model, leg_indices
 
 

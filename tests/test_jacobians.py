@@ -1,9 +1,7 @@
 import numpy as np
 
-from fivebar_drake.mechanisms.fivebar.jacobians import (bias_accelerations, link_jacobians,
-                                                        point_jacobians)
-from fivebar_drake.mechanisms.fivebar.kinematics import forward
-from fivebar_drake.mechanisms.fivebar.geometry import LegGeometry
+from fivebar_drake.mechanisms.fivebar import (LegGeometry, bias_accelerations, forward,
+                                              link_jacobians, point_jacobians)
 
 from helpers import central_difference, link_geometry, random_poses
 from test_kinematics import coaxial_leg

@@ -3,10 +3,8 @@ import dataclasses
 import numpy as np
 import pytest
 
-from fivebar_drake.mechanisms.fivebar.gait import sample_gait
-from fivebar_drake.mechanisms.fivebar.kinematics import (ALL_MODES, KNEES_OUT, UnreachableError,
-                                                       forward, inverse, knee_modes, reachable)
-from fivebar_drake.mechanisms.fivebar.geometry import LegGeometry
+from fivebar_drake.mechanisms.fivebar import (ALL_MODES, KNEES_OUT, LegGeometry, UnreachableError,
+                                              forward, inverse, knee_modes, reachable, sample_gait)
 
 
 def workspace_grid(params):

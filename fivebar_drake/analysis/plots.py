@@ -8,8 +8,7 @@ import numpy as np
 
 from fivebar_drake.analysis.torques import Analysis
 from fivebar_drake.core.files import atomic_path
-from fivebar_drake.mechanisms.fivebar.geometry import MOTORS
-from fivebar_drake.mechanisms.fivebar.singularity import workspace
+from fivebar_drake.mechanisms.fivebar import MOTORS, workspace
 
 
 MODEL_STYLE = {"seed": "--", "full": "-", "full_trot": ":"}

@@ -10,7 +10,7 @@ from fivebar_drake.analysis.plots import FIGURES
 from fivebar_drake.analysis.torques import Analysis
 from fivebar_drake.core.files import write_atomic
 from fivebar_drake.core.footpath import stance_speed
-from fivebar_drake.mechanisms.fivebar.geometry import LINK_NAMES, MOTORS, physical_izz
+from fivebar_drake.mechanisms.fivebar import LINK_NAMES, MOTORS, physical_izz
 from fivebar_drake.robots.quadruped.config import sampling_error
 
 

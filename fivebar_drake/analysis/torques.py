@@ -8,10 +8,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from fivebar_drake.core.checks import verdict
-from fivebar_drake.mechanisms.fivebar.dynamics import DynamicsModel, TorqueBreakdown, torques
-from fivebar_drake.mechanisms.fivebar.gait import GaitSamples, sample_gait
-from fivebar_drake.mechanisms.fivebar.geometry import MOTORS
-from fivebar_drake.mechanisms.fivebar.singularity import SingularityMeasures, singularity_measures
+from fivebar_drake.mechanisms.fivebar import (DynamicsModel, GaitSamples, MOTORS,
+                                              SingularityMeasures, TorqueBreakdown, sample_gait,
+                                              singularity_measures)
 from fivebar_drake.robots.quadruped.leg_loads import full_model, seed_model, trot_model
 from fivebar_drake.robots.quadruped.params import Params
 
@@ -69,7 +68,7 @@ def analyze(params: Params, path: str = "seed_ellipse") -> Analysis:
     samples = sample_gait(params.leg, params.gait, path)
     models = {m.name: m for m in (seed_model(params), full_model(params),
                                   trot_model(params, path, samples.t))}
-    tbs = {name: torques(params.leg, params.links, m, samples.pose, samples.qd, samples.qdd)
+    tbs = {name: params.mechanism.torques(m, samples.pose, samples.qd, samples.qdd)
            for name, m in models.items()}
     measures = singularity_measures(params.leg, samples.pose)
     results = {

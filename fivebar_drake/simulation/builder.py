@@ -12,9 +12,6 @@ from pydrake.systems.primitives import DiscreteTimeIntegrator, Multiplexer, Vect
 from fivebar_drake.core.footpath import stance_start
 from fivebar_drake.core.motor import MotorModel
 from fivebar_drake.core.validation import check_number, require
-from fivebar_drake.mechanisms.fivebar.dynamics import mass_matrix
-from fivebar_drake.mechanisms.fivebar.geometry import physical_izz
-from fivebar_drake.mechanisms.fivebar.kinematics import inverse
 from fivebar_drake.robots.quadruped.closure import design_closure
 from fivebar_drake.robots.quadruped.control_law import ControlGains
 from fivebar_drake.robots.quadruped.params import Params
@@ -102,9 +99,9 @@ def check_run(scenario: Scenario, params: Params) -> ClosureDesign:
 def controller_gains(scenario: Scenario, params: Params, layout: RobotLayout) -> ControlGains:
     """Gains from the robot's numbers: the swing joint's inertia is the largest diagonal entry
     of the leg's mass matrix at home plus the reflected rotor inertia (systems.derive_gains)."""
-    home = inverse(params.leg, np.array([params.gait.x_center_m, params.gait.y_home_m]))
-    izz = physical_izz(params.leg, params.links)
-    leg_inertia = (np.max(np.diag(mass_matrix(params.leg, params.links, izz, home)))
+    leg = params.mechanism
+    home = leg.inverse(np.array([params.gait.x_center_m, params.gait.y_home_m]))
+    leg_inertia = (np.max(np.diag(leg.mass_matrix(home)))
                    + params.motor.reflected_inertia_kg_m2)
     return derive_gains(layout.mass_kg, layout.inertia_kg_m2, leg_inertia,
                         scenario.swing_bandwidth_hz, scenario.body_bandwidth_hz,

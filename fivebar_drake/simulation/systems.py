@@ -12,9 +12,7 @@ from pydrake.systems.framework import LeafSystem
 from fivebar_drake.core.compiled import jit
 from fivebar_drake.core.footpath import (Gait, path_constants, path_point, phase_of, stance_start,
                                          stance_weight_at)
-from fivebar_drake.mechanisms.fivebar.geometry import LINK_NAMES, physical_izz
-from fivebar_drake.mechanisms.fivebar.jacobians import com_fractions
-from fivebar_drake.mechanisms.fivebar.kinematics import forward, inverse
+from fivebar_drake.mechanisms.fivebar import (LINK_NAMES, com_fractions, physical_izz)
 from fivebar_drake.robots.quadruped.control_law import ControlGains, LawConstants, leg_command
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.plant import RobotLayout
@@ -124,7 +122,7 @@ class FootLegController(LeafSystem):
                  delay_periods: int, catch_gain: float, catch_rate_s: float,
                  touchdown_detection: bool):
         super().__init__()
-        self._params, self._layout = params, layout
+        self._mechanism, self._layout = params.mechanism, layout
         self.constants = LawConstants(
             q_index=layout.q_index, v_index=layout.v_index, actuators=layout.actuators,
             body_q=layout.body_q, body_v=layout.body_v, nq=layout.nq,
@@ -156,8 +154,8 @@ class FootLegController(LeafSystem):
         out, goal, finite = leg_command(self.constants, np.asarray(references, dtype=float),
                                         np.asarray(state, dtype=float))
         if not finite:                        # name the reason, if it is a reach
-            inverse(self._params.leg, goal)
-            forward(self._params.leg, state[self._layout.q_index])
+            self._mechanism.inverse(goal)
+            self._mechanism.forward(state[self._layout.q_index])
         return out
 
     def _update(self, context, discrete_state):

@@ -17,13 +17,12 @@ import numpy as np
 from pydrake.multibody.plant import MultibodyPlant
 
 from fivebar_drake.core.validation import ParameterError
-from fivebar_drake.mechanisms.fivebar.gait import sample_gait
-from fivebar_drake.mechanisms.fivebar.loop import tree_positions
+from fivebar_drake.mechanisms.fivebar import sample_gait, tree_positions
 from fivebar_drake.robots.quadruped.inverse_dynamics import loop_jacobian, plane_point_jacobian
 from fivebar_drake.robots.quadruped.leg_loads import trot_model
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.plant import ClosureDesign, add_model, leg_indices
-from fivebar_drake.robots.quadruped.sdf import Bushing
+from fivebar_drake.mechanisms.base import Bushing
 
 
 STABILITY_MARGIN = 0.8   # fraction of the explicit stability bound a + 2 b < 4

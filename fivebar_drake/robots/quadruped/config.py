@@ -15,9 +15,8 @@ from fivebar_drake.core.files import read_input_text
 from fivebar_drake.core.footpath import Gait, PATHS, evaluate
 from fivebar_drake.core.motor import Motor
 from fivebar_drake.core.validation import MAX_SAMPLES, ParameterError, require
-from fivebar_drake.mechanisms.fivebar.gait import sample_gait
-from fivebar_drake.mechanisms.fivebar.geometry import LegGeometry, LinkInertia
-from fivebar_drake.mechanisms.fivebar.kinematics import KNEES_OUT, UnreachableError, inverse
+from fivebar_drake.mechanisms.fivebar import (KNEES_OUT, LegGeometry, LinkInertia,
+                                              UnreachableError, inverse, sample_gait)
 from fivebar_drake.robots.quadruped.params import Body, Params, Robot
 
 

@@ -19,10 +19,9 @@ import numpy as np
 
 from fivebar_drake.core.compiled import jit
 from fivebar_drake.core.rotation import body_rotation, wrap
-from fivebar_drake.mechanisms.fivebar.dynamics import coriolis_at, mass_matrix_at, static_at
-from fivebar_drake.mechanisms.fivebar.jacobians import (bias_at, foot_from, link_jacobians_at,
-                                                        pose_jacobians)
-from fivebar_drake.mechanisms.fivebar.kinematics import forward_pose, inverse_pose
+from fivebar_drake.mechanisms.fivebar import (bias_at, coriolis_at, foot_from, forward_pose,
+                                              inverse_pose, link_jacobians_at, mass_matrix_at,
+                                              pose_jacobians, static_at)
 
 
 TOUCHDOWN_BAND_M = 0.004   # a descending swing foot this close to the ground joins the support

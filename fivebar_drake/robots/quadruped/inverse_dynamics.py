@@ -13,8 +13,7 @@ from pydrake.multibody.math import SpatialForce
 from pydrake.multibody.plant import MultibodyPlant
 from pydrake.multibody.tree import JacobianWrtVariable, MultibodyForces
 
-from fivebar_drake.mechanisms.fivebar.kinematics import LegPose
-from fivebar_drake.mechanisms.fivebar.loop import tree_positions
+from fivebar_drake.mechanisms.fivebar import LegPose, tree_positions
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.plant import LegIndices
 

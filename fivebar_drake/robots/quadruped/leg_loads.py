@@ -6,8 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from fivebar_drake.core.footpath import TROT_PHASES_RAD, stance_loads
-from fivebar_drake.mechanisms.fivebar.dynamics import DynamicsModel
-from fivebar_drake.mechanisms.fivebar.geometry import LINK_NAMES, physical_izz
+from fivebar_drake.mechanisms.fivebar import DynamicsModel, LINK_NAMES, physical_izz
 from fivebar_drake.robots.quadruped.params import Params
 
 

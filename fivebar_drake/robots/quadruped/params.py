@@ -12,7 +12,7 @@ from fivebar_drake.core.validation import (MAX_CONTACT_STIFFNESS_N_M, MAX_FRICTI
                                            MAX_GRAVITY_M_S2, MAX_LENGTH_M, MAX_MASS_KG,
                                            MAX_RELAXATION_TIME_S, check_lengths, check_number,
                                            require)
-from fivebar_drake.mechanisms.fivebar.geometry import LINK_NAMES, LegGeometry, LinkInertia
+from fivebar_drake.mechanisms.fivebar import LINK_NAMES, FiveBarLeg, LegGeometry, LinkInertia
 
 
 LEGS_BUILT = 4   # the simulation builds a quadruped (sdf_model.LEGS): robot.legs must say so
@@ -77,6 +77,9 @@ class Body:
 
 @dataclass(frozen=True)
 class Params:
+    """The quadruped's parameter file: each leg's geometry and link inertias, the robot's
+    masses, the gait, the hip motors, the verdict thresholds and the body."""
+
     leg: LegGeometry
     links: dict[str, LinkInertia]
     robot: Robot
@@ -84,6 +87,11 @@ class Params:
     motor: Motor
     checks: Checks
     body: Body
+
+    @property
+    def mechanism(self) -> FiveBarLeg:
+        """Each leg as a Mechanism (mechanisms.base)."""
+        return FiveBarLeg(self.leg, self.links)
 
     def __post_init__(self):
         require(sorted(self.links) == sorted(LINK_NAMES), "links", sorted(self.links),

@@ -13,10 +13,10 @@ from pydrake.multibody.plant import (AddMultibodyPlantSceneGraph, CoulombFrictio
                                      MultibodyPlantConfig, ApplyMultibodyPlantConfig)
 from pydrake.systems.framework import DiagramBuilder
 
-from fivebar_drake.mechanisms.fivebar.kinematics import inverse
-from fivebar_drake.mechanisms.fivebar.loop import JOINTS, tree_positions
+from fivebar_drake.mechanisms.fivebar import JOINTS
 from fivebar_drake.robots.quadruped.params import Params
-from fivebar_drake.robots.quadruped.sdf import (Bushing, LEGS, body_height, hip_positions,
+from fivebar_drake.mechanisms.base import Bushing
+from fivebar_drake.robots.quadruped.sdf import (LEGS, body_height, hip_positions,
                                                 quadruped_sdf, single_leg_sdf)
 
 
@@ -146,7 +146,7 @@ def set_standing_pose(plant, context, instance, legs, params: Params) -> None:
     """Standing pose in a plant context: every loop closed exactly (closed-form IK), at rest,
     feet at (x_center, y_home) on the ground."""
     foot = np.array([params.gait.x_center_m, params.gait.y_home_m])
-    x = tree_positions(inverse(params.leg, foot))
+    x = params.mechanism.tree_positions(params.mechanism.inverse(foot))
     q = plant.GetPositions(context)
     for leg in legs:
         q[leg_indices(plant, instance, leg).q] = x
