@@ -4,21 +4,13 @@ import dataclasses
 
 import numpy as np
 import pytest
-from pydrake.multibody.plant import MultibodyPlant
 from pydrake.multibody.tree import MultibodyForces
 
 from fivebar_drake.robots.quadruped.config import with_gait
 from fivebar_drake.mechanisms.fivebar import LegPose, sample_gait, torques, tree_positions
 from fivebar_drake.robots.quadruped.leg_loads import full_model
 from fivebar_drake.robots.quadruped.inverse_dynamics import projected_inverse_dynamics
-from fivebar_drake.robots.quadruped.plant import add_model, leg_indices
-
-
-def fixed_leg(params):
-    plant = MultibodyPlant(0.0)
-    instance, _ = add_model(plant, params, "leg", None)
-    plant.Finalize()
-    return plant, plant.CreateDefaultContext(), instance, leg_indices(plant, instance, "leg")
+from fivebar_drake.robots.quadruped.closure import fixed_leg
 
 
 @pytest.fixture()

@@ -29,7 +29,9 @@ STABILITY_MARGIN = 0.8   # fraction of the explicit stability bound a + 2 b < 4
 DAMPING_RATIO = 0.3
 
 
-def _fixed_leg(params: Params):
+def fixed_leg(params: Params):
+    """One leg on a welded hip, as a finalized continuous plant without closure (a tree):
+    (plant, default context, model instance, LegIndices)."""
     plant = MultibodyPlant(0.0)
     instance, _ = add_model(plant, params, "leg", None)
     plant.Finalize()
@@ -41,7 +43,7 @@ def loop_load(params: Params):
     """Effective mass at the knee (kg, least over the gait) and the largest loop force (N) over
     the gait under trot loading (half the robot's weight on a stance foot), both from the Drake
     model of one fixed-hip leg: lambda = J_phi^-T tau_tree[phi]."""
-    plant, context, instance, idx = _fixed_leg(params)
+    plant, context, instance, idx = fixed_leg(params)
     samples = sample_gait(params.leg, params.gait)
     load = trot_model(params, samples.path, samples.t).foot_load_N
     x = tree_positions(samples.pose)
