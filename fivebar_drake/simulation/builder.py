@@ -6,20 +6,24 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 import numpy as np
+from pydrake.multibody.plant import (ApplyMultibodyPlantConfig, MultibodyPlant,
+                                     MultibodyPlantConfig)
 from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import DiscreteTimeIntegrator, Multiplexer, VectorLogSink
 
 from fivebar_drake.core.footpath import stance_start
 from fivebar_drake.core.motor import MotorModel
-from fivebar_drake.core.validation import check_number, require
+from fivebar_drake.core.validation import ParameterError, check_number, require
 from fivebar_drake.robots.quadruped.closure import design_closure
 from fivebar_drake.robots.quadruped.control_law import ControlGains
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.plant import ClosureDesign, RobotLayout, add_robot
-from fivebar_drake.simulation.scenario import Scenario
+from fivebar_drake.simulation.scenario import Scenario, config_fields
 from fivebar_drake.simulation.systems import FootLegController, GaitSource, derive_gains
 
 
+SAP_CLOSURES = ("bushing", "ball")              # closed by SAP constraints
+SAP_APPROXIMATIONS = ("sap", "lagged", "similar")   # Drake's approximations solved by SAP
 MAX_PLANT_STEPS = 20_000_000   # duration / time step: at ~0.3 ms of wall time per plant step
 #                                (measured, 2 cores) about two hours
 MIN_LOG_INTERVALS_PER_CYCLE = 100   # the statistics take peaks and percentiles of the recorded
@@ -56,6 +60,29 @@ def recorded_periods(scenario: Scenario, time_step: float) -> tuple[float, int]:
     return log_period, round(log_period / scenario.motor_period_s)
 
 
+def check_plant_config(scenario: Scenario, time_step: float) -> None:
+    """scenario.plant_config fits this robot and the closure (ParameterError naming the field):
+    its time step is the closure's, the output ports unsampled (the controller and the motor
+    model read the state at their tick), a SAP solver for the SAP constraint closures, and
+    Drake accepts it."""
+    config, field = scenario.plant_config, "scenario.plant_config"
+    require(config.time_step == 0.0, f"{field}.time_step", config.time_step,
+            "must be 0: the plant's step is scenario.time_step_s (0 = derived for the closure)")
+    require(not config.use_sampled_output_ports, f"{field}.use_sampled_output_ports", True,
+            "must be false: the controller and the motor model read the state at their tick")
+    if scenario.closure in SAP_CLOSURES:
+        require(config.discrete_contact_approximation in SAP_APPROXIMATIONS,
+                f"{field}.discrete_contact_approximation", config.discrete_contact_approximation,
+                f"the '{scenario.closure}' closure is a SAP constraint: use one of "
+                f"{list(SAP_APPROXIMATIONS)} (another solver would ignore it)")
+    trial = MultibodyPlantConfig(**config_fields(config))
+    trial.time_step = time_step
+    try:
+        ApplyMultibodyPlantConfig(trial, MultibodyPlant(time_step))
+    except (RuntimeError, ValueError) as err:
+        raise ParameterError(f"{field}: Drake refuses it: {err}", field) from None
+
+
 def check_run(scenario: Scenario, params: Params) -> ClosureDesign:
     """The scenario's closure design (closure_design), after the checks that need the
     parameters and the plant's step (ParameterError naming the field): the step against the
@@ -64,6 +91,7 @@ def check_run(scenario: Scenario, params: Params) -> ClosureDesign:
     transfer against the stance."""
     design = closure_design(scenario, params)
     step = design.time_step_s
+    check_plant_config(scenario, step)
     field = "scenario.time_step_s"
     derived = "" if scenario.time_step_s else f"; 0 derives {step:g} s for the closure"
     check_number(field, step, high=scenario.motor_period_s,
@@ -164,7 +192,7 @@ def build_diagram(scenario: Scenario, params: Params, design: ClosureDesign,
     log_actuation: also log the joint torques the plant receives at every step
     (Setup.actuation_log), to replay the run on the plant alone."""
     builder = DiagramBuilder()
-    plant, instance, layout = add_robot(builder, params, design)
+    plant, instance, layout = add_robot(builder, params, design, scenario.plant_config)
     controller, motor = add_controller(builder, scenario, params, plant, instance, layout)
     recorder, motor_log, per_row = add_recorders(builder, scenario, plant, instance, layout,
                                                  motor, design.time_step_s)

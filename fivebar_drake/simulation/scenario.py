@@ -21,13 +21,15 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Optional
 import yaml
+from pydrake.multibody.plant import MultibodyPlantConfig
+from pydrake.systems.analysis import SimulatorConfig
 
 from fivebar_drake.core.files import read_input_text
 from fivebar_drake.core.footpath import PATHS, TROT_PHASES_RAD
 from fivebar_drake.core.validation import ParameterError, check_number, require
 from fivebar_drake.robots.quadruped.config import load_params, with_gait
 from fivebar_drake.robots.quadruped.params import Params
-from fivebar_drake.robots.quadruped.plant import CLOSURES
+from fivebar_drake.robots.quadruped.plant import CLOSURES, default_plant_config
 
 
 # Bounds of the scenario's values, each with the reason it exists.
@@ -49,6 +51,19 @@ MIN_LOOP_GAP_M = 1e-7             # the bushing's stiffness is loop force / gap:
 MAX_PHASE_RAD = 2 * math.pi       # a gait phase is an angle of the cycle: one turn either way
 
 
+def config_fields(config) -> dict:
+    """A Drake config's fields as a plain dict."""
+    return {f.name: getattr(config, f.name) for f in type(config).__fields__}
+
+
+def default_simulator_config() -> SimulatorConfig:
+    """Run as fast as possible; publish only where a system asks."""
+    return SimulatorConfig(target_realtime_rate=0.0, publish_every_time_step=False)
+
+
+DRAKE_CONFIGS = {"plant_config": MultibodyPlantConfig, "simulator_config": SimulatorConfig}
+DEFAULT_CONFIGS = {MultibodyPlantConfig: default_plant_config,
+                   SimulatorConfig: default_simulator_config}
 def _doc(default, doc: str, factory=None):
     """A Scenario field with its default (or default factory) and its description (README)."""
     if factory is not None:
@@ -94,6 +109,26 @@ class Scenario:
     gait_y_home_m: Optional[float] = _doc(None, "override of gait.y_home_m")
     gait_frequency_hz: Optional[float] = _doc(None, "override of gait.frequency_hz")
     gait_duty_factor: Optional[float] = _doc(None, "override of gait.duty_factor")
+    plant_config: MultibodyPlantConfig = _doc(
+        None, "Drake's MultibodyPlantConfig (fields as a mapping, over this default); its "
+              "time_step comes from the closure design (time_step_s)",
+        factory=default_plant_config)
+    simulator_config: SimulatorConfig = _doc(
+        None, "Drake's SimulatorConfig of the run (fields as a mapping, over this default)",
+        factory=default_simulator_config)
+
+    def __getstate__(self) -> dict:
+        """Picklable: Drake's configs travel as their fields."""
+        return {**self.__dict__, **{name: config_fields(getattr(self, name))
+                                    for name in DRAKE_CONFIGS}}
+
+    def __eq__(self, other) -> bool:
+        """Field by field, Drake's configs by their fields."""
+        return isinstance(other, Scenario) and self.__getstate__() == other.__getstate__()
+
+    def __setstate__(self, state: dict) -> None:
+        self.__dict__.update({**state, **{name: kind(**state[name])
+                                          for name, kind in DRAKE_CONFIGS.items()}})
 
     def validate(self) -> None:
         """Check every field (type, finite, bounds; ParameterError naming the first bad field,
@@ -150,8 +185,8 @@ class Scenario:
     def load_params(self) -> Params:
         """The parameter file with this scenario's gait overrides (validated: reachable gait)."""
         params = load_params(self.params_file or None)
-        overrides = {name[len("gait_"):]: value for name, value in dataclasses.asdict(self).items()
-                     if name.startswith("gait_") and value is not None}
+        overrides = {f.name[len("gait_"):]: getattr(self, f.name) for f in dataclasses.fields(self)
+                     if f.name.startswith("gait_") and getattr(self, f.name) is not None}
         try:
             return with_gait(params, **overrides) if overrides else params
         except ParameterError as err:
@@ -162,6 +197,14 @@ class Scenario:
 UNITS = {"_s": "s", "_m": "m", "_hz": "Hz", "_rad": "rad", "_periods": "controller periods"}
 
 
+def _changed_fields(config) -> str:
+    """The fields where a config differs from Drake's default, as YAML flow."""
+    drake = config_fields(type(config)())
+    changed = {k: v for k, v in config_fields(config).items() if v != drake[k]}
+    return "{" + ", ".join(f"{k}: {str(v).lower() if isinstance(v, bool) else v}"
+                           for k, v in changed.items()) + "}"
+
+
 def fields_markdown() -> str:
     """The README's table of the scenario fields: name, type, default, unit, meaning."""
     kinds = typing.get_type_hints(Scenario)
@@ -169,9 +212,11 @@ def fields_markdown() -> str:
     rows = ["| field | type | default | unit | meaning |", "|---|---|---|---|---|"]
     for f in dataclasses.fields(Scenario):
         kind = {float: "number", int: "integer", bool: "true/false", str: "text"}.get(
-            kinds[f.name], "list of numbers" if kinds[f.name] == list[float] else "number or null")
+            kinds[f.name], "list of numbers" if kinds[f.name] == list[float] else
+            "mapping" if kinds[f.name] in DRAKE_CONFIGS.values() else "number or null")
         default = getattr(defaults, f.name)
-        shown = ("null" if default is None else f'"{default}"' if isinstance(default, str) else
+        shown = (_changed_fields(default) if f.name in DRAKE_CONFIGS else
+                 "null" if default is None else f'"{default}"' if isinstance(default, str) else
                  str(default).lower() if isinstance(default, bool) else
                  "[" + ", ".join(f"{v:.4g}" for v in default) + "]"
                  if isinstance(default, list) else f"{default:g}")
@@ -181,7 +226,20 @@ def fields_markdown() -> str:
 
 
 def _typed(name: str, kind, value):
-    """value checked against a field's type (a number of a float field as a float)."""
+    """value checked against a field's type (a number of a float field as a float; a Drake
+    config from the mapping of its fields, over the field's default)."""
+    if kind in DRAKE_CONFIGS.values():
+        if isinstance(value, kind):
+            return value
+        require(isinstance(value, dict), name, value, f"must be a mapping of {kind.__name__} "
+                f"fields {[f.name for f in kind.__fields__]}")
+        types = {f.name: f.type for f in kind.__fields__}
+        fields = config_fields(DEFAULT_CONFIGS[kind]())
+        for key, item in value.items():
+            require(key in types, f"{name}.{key}", item,
+                    f"unknown field; {kind.__name__} has {list(types)}")
+            fields[key] = _typed(f"{name}.{key}", types[key], item)
+        return kind(**fields)
     if kind is float:
         return check_number(name, value)
     if kind is int:
@@ -234,8 +292,9 @@ def read_scenario_file(path) -> dict:
 def source_of(err: ParameterError, path, overrides: dict) -> str:
     """Where a scenario error comes from: the command line for an overridden field, else the
     file (or the built-in scenario)."""
-    given = {f"scenario.{k}" for k in overrides}
-    return "command line" if err.field.split("[")[0] in given else str(path or "built-in scenario")
+    field = err.field.split("[")[0]
+    given = any(field == f"scenario.{k}" or field.startswith(f"scenario.{k}.") for k in overrides)
+    return "command line" if given else str(path or "built-in scenario")
 
 
 def load_scenario(path: "str | Path | None" = None, **overrides) -> Scenario:

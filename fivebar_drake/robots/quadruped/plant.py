@@ -5,12 +5,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 import numpy as np
-from pydrake.multibody.parsing import Parser
-from pydrake.multibody.plant import MultibodyPlant
 from pydrake.geometry import AddContactMaterial, Box, ProximityProperties
 from pydrake.math import RigidTransform
-from pydrake.multibody.plant import (AddMultibodyPlantSceneGraph, CoulombFriction,
-                                     MultibodyPlantConfig, ApplyMultibodyPlantConfig)
+from pydrake.multibody.parsing import Parser
+from pydrake.multibody.plant import (AddMultibodyPlant, CoulombFriction, MultibodyPlant,
+                                     MultibodyPlantConfig)
 from pydrake.systems.framework import DiagramBuilder
 
 from fivebar_drake.mechanisms.fivebar import JOINTS
@@ -118,14 +117,24 @@ def robot_layout(plant, instance, legs, params: Params) -> RobotLayout:
         mass_kg=spatial.get_mass(), inertia_kg_m2=inertia)
 
 
-def add_robot(builder: DiagramBuilder, params: Params, design: ClosureDesign):
-    """Add the finalized quadruped plant (SAP at the design's time step, loops closed as
-    designed) and flat ground to builder; returns (plant, model instance, RobotLayout)."""
-    plant, _ = AddMultibodyPlantSceneGraph(builder, design.time_step_s)
-    # unsampled output ports: a block updating at tick t reads the state at t, as a driver would
-    ApplyMultibodyPlantConfig(MultibodyPlantConfig(
-        time_step=design.time_step_s, discrete_contact_approximation="sap",
-        use_sampled_output_ports=False), plant)
+def default_plant_config() -> MultibodyPlantConfig:
+    """The plant this robot needs: SAP (the loop closures are SAP constraints); unsampled output
+    ports, so a block updating at tick t reads the state at t, as a driver would. time_step 0
+    here (not Drake's default): the closure design sets it."""
+    return MultibodyPlantConfig(time_step=0.0, discrete_contact_approximation="sap",
+                                use_sampled_output_ports=False)
+
+
+def add_robot(builder: DiagramBuilder, params: Params, design: ClosureDesign,
+              plant_config: MultibodyPlantConfig | None = None):
+    """Add the finalized quadruped plant (plant_config, default default_plant_config, at the
+    design's time step, loops closed as designed) and flat ground to builder; returns (plant,
+    model instance, RobotLayout)."""
+    config = MultibodyPlantConfig(**{f.name: getattr(plant_config or default_plant_config(),
+                                                     f.name)
+                                     for f in MultibodyPlantConfig.__fields__})
+    config.time_step = design.time_step_s
+    plant, _ = AddMultibodyPlant(config, builder)
     instance, legs = add_model(plant, params, "quadruped", design.closure, design.bushing)
     ground = ProximityProperties()
     mu = params.body.foot_friction
