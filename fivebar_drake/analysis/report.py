@@ -54,7 +54,7 @@ def path_text(analysis: Analysis) -> str:
     if analysis.samples.path == "seed_ellipse":
         return (f"the seed's ellipse x = {g.x_center_m * 1e3:g} + {g.a_m * 1e3:g} cos(wt) mm, "
                 f"y = {g.y_home_m * 1e3:g} + {g.b_m * 1e3:g} sin(wt) mm")
-    return (f"the trot path (footpath.py): stance flat at y = {g.y_home_m * 1e3:g} mm over the "
+    return (f"the trot path (core/footpath.py): stance flat at y = {g.y_home_m * 1e3:g} mm over the "
             f"stride 2a = {2 * g.a_m * 1e3:g} mm at {stance_speed(g, 'trot'):.3f} m/s, duty "
             f"factor {g.duty_factor:g} (stance fraction of the cycle), swing lifting the foot by "
             f"b = {g.b_m * 1e3:g} mm with matched touchdown speed")

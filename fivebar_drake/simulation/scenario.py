@@ -8,7 +8,7 @@ Units: s, m, rad, N*m. A YAML file names any subset of the fields, e.g.
 
 Every field is checked on load (type, finite, within its bounds; the file and field named in
 the error); the checks that need the parameters and the plant's time step are in
-simulation.check_run.
+builder.check_run.
 """
 
 from __future__ import annotations
@@ -76,7 +76,7 @@ class Scenario:
     """What to simulate and how; each field's description is in its metadata["doc"]."""
 
     duration_s: float = _doc(8.0, "simulated time from t = 0")
-    gait: str = _doc("trot", f"foot path, one of {', '.join(PATHS)} (footpath.py)")
+    gait: str = _doc("trot", f"foot path, one of {', '.join(PATHS)} (core/footpath.py)")
     closure: str = _doc("bushing", f"loop closure, one of {', '.join(CLOSURES)}")
     time_step_s: float = _doc(0.0, "plant step; 0 = derived (bushing, ball: 1 ms; bushing_rpy: "
                                    "its stability bound)")

@@ -1,4 +1,4 @@
-"""A foot path (footpath.py: the seed's ellipse or the trot path) sampled over one cycle, the IK
+"""A foot path (core/footpath.py: the seed's ellipse or the trot path) sampled over one cycle, the IK
 mode tracking along it (seed 000 appendix B) and periodic central differences (seed 000
 section 5)."""
 

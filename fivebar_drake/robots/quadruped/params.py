@@ -15,7 +15,7 @@ from fivebar_drake.core.validation import (MAX_CONTACT_STIFFNESS_N_M, MAX_FRICTI
 from fivebar_drake.mechanisms.fivebar import LINK_NAMES, FiveBarLeg, LegGeometry, LinkInertia
 
 
-LEGS_BUILT = 4   # the simulation builds a quadruped (sdf_model.LEGS): robot.legs must say so
+LEGS_BUILT = 4   # the simulation builds a quadruped (sdf.LEGS): robot.legs must say so
 
 
 @dataclass(frozen=True)
