@@ -287,12 +287,12 @@ def test_yaml_numbers_without_a_dot_are_numbers(tmp_path):
 
 def test_internal_error_points_to_a_log(tmp_path, capsys, monkeypatch):
     """An unexpected error is a short message and a log file with the traceback (exit 3)."""
-    from fivebar_drake.analysis import torques as analysis
+    from fivebar_drake import pipeline
 
     def broken(*args, **kwargs):
         raise ZeroDivisionError("injected")
 
-    monkeypatch.setattr(analysis, "analyze", broken)
+    monkeypatch.setattr(pipeline, "analyze", broken)
     assert main(["analyze", "--out", str(tmp_path)]) == 3
     err = capsys.readouterr().err
     assert "Traceback" not in err and "internal error" in err and "injected" in err

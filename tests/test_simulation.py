@@ -9,34 +9,29 @@ import pytest
 from pydrake.systems.analysis import Simulator
 from rerun.chunk import RrdReader
 
-from fivebar_drake.analysis.torques import analyze
 from fivebar_drake.cli import main
 from fivebar_drake.core.footpath import stance_speed
 from fivebar_drake.mechanisms.fivebar.jacobians import foot_jacobian
 from fivebar_drake.mechanisms.fivebar.kinematics import UnreachableError, forward
+from fivebar_drake.pipeline import run_simulation, summarize_run
 from fivebar_drake.simulation.recording import read_series
 from fivebar_drake.simulation.scenario import load_scenario
 from fivebar_drake.robots.quadruped.plant import set_standing_pose
 from fivebar_drake.simulation.builder import build_diagram, check_run
-from fivebar_drake.simulation.runner import simulate
-from fivebar_drake.simulation.summary import signals, summarize
+from fivebar_drake.simulation.summary import signals
 
 TEST_DURATION_S = 4.5   # 0.5 s standing, 1 s ramp, 3 whole trot cycles
 
 
 def _run(closure, **overrides):
-    scenario = load_scenario(duration_s=TEST_DURATION_S, closure=closure, **overrides)
-    params = scenario.load_params()
-    result, setup = simulate(scenario, params, progress=False)
-    sig = signals(result, setup, params, scenario)
-    summary = summarize(sig, scenario, params, setup, result,
-                        analyze(params).results["results"]["seed"])
-    return scenario, params, result, setup, sig, summary
+    record = run_simulation(load_scenario(duration_s=TEST_DURATION_S, closure=closure,
+                                          **overrides), progress=False)
+    return record.scenario, record.params, record, signals(record), summarize_run(record)
 
 
 @pytest.fixture(scope="module")
 def runs():
-    """The default trot with each closure: closure -> (scenario, params, result, setup, signals,
+    """The default trot with each closure: closure -> (scenario, params, record, signals,
     summary)."""
     return {closure: _run(closure) for closure in ("ball", "bushing", "bushing_rpy")}
 
@@ -48,9 +43,9 @@ def run(request, runs):
 
 def test_default_trot_is_credible(run):
     """Upright, walking at >= 70 % of the path's speed, swing feet clear, nothing NaN."""
-    scenario, params, result, setup, sig, summary = run
-    assert not result.error and summary["completed"]
-    assert np.all(np.isfinite(result.table["state"]))
+    scenario, params, record, sig, summary = run
+    assert not record.error and summary["completed"]
+    assert np.all(np.isfinite(record.table["state"]))
     quat = sig.body_quat / np.linalg.norm(sig.body_quat, axis=1, keepdims=True)
     tilt = np.degrees(np.arccos(1 - 2 * (quat[:, 1] ** 2 + quat[:, 2] ** 2)))  # body z vs up
     assert tilt.max() <= 10.0
@@ -71,14 +66,14 @@ def test_default_trot_is_credible(run):
         s = u / (1 - params.gait.duty_factor)
         loaded = sig.foot_force_world[inside, i, 2] > 1.0
         mid = swing & (s >= 0.1) & (s <= 0.7)
-        assert np.mean(loaded[mid]) <= 0.02, setup.layout.legs[i]
-        assert np.mean(loaded[swing]) <= 0.20, setup.layout.legs[i]
-        assert summary["swing_clear_fraction"][setup.layout.legs[i]] == pytest.approx(
+        assert np.mean(loaded[mid]) <= 0.02, record.layout.legs[i]
+        assert np.mean(loaded[swing]) <= 0.20, record.layout.legs[i]
+        assert summary["swing_clear_fraction"][record.layout.legs[i]] == pytest.approx(
             1 - np.mean(loaded[swing]), abs=0.02)
 
 
 def test_loop_gap_below_a_tenth_of_a_millimetre(run):
-    scenario, params, result, setup, sig, summary = run
+    scenario, params, record, sig, summary = run
     assert sig.gap.shape == (len(sig.t), 4)
     assert np.max(sig.gap) < 1e-4
 
@@ -87,7 +82,7 @@ def test_applied_torque_matches_contact_load_in_stance(run):
     """Per step measurement: in full stance the motors carry the ground force (the leg is
     light), so the applied torque and -J^T F agree within 10 % RMS per motor; the torque split
     (contact + links + rotor + friction) sums back to the applied torque within 5 % RMS."""
-    scenario, params, result, setup, sig, summary = run
+    scenario, params, record, sig, summary = run
     start, end = summary["window_s"]
     inside = (sig.t > start) & (sig.t <= end)
     for i in range(4):
@@ -106,7 +101,7 @@ def test_applied_torque_matches_contact_load_in_stance(run):
 def test_contact_torque_is_jacobian_transpose_times_force(run):
     """-J^T F at one sample, J_F by finite differences of FK, the contact point's offset by
     hand (flat ground: the sphere's lowest point), F rotated by hand."""
-    scenario, params, result, setup, sig, summary = run
+    scenario, params, record, sig, summary = run
     k = int(np.argmax(sig.foot_force_plane[:, 0, 1]))            # FL under load
     q = sig.q[k, 0]
     h = 1e-7
@@ -134,7 +129,7 @@ def test_contact_torque_is_jacobian_transpose_times_force(run):
 def test_closures_agree_on_rms_torque(runs, closure, tolerance):
     """Per-motor RMS applied torque over whole cycles against the rigid ball closure: the
     implicit compliant bushing within 10 %, the explicit bushing within 15 %."""
-    ball, other = runs["ball"][5], runs[closure][5]
+    ball, other = runs["ball"][4], runs[closure][4]
     assert ball["window_s"] == other["window_s"] and ball["cycles_in_window"] == 3
     assert other["max_loop_gap_m"] < 1e-4
     for leg in ("FL", "FR", "RL", "RR"):
@@ -147,7 +142,7 @@ def test_closures_agree_on_rms_torque(runs, closure, tolerance):
 def test_measured_ground_forces_carry_the_robot(run):
     """Vertical momentum over whole cycles: the feet's mean vertical force (from the
     generalized contact forces) equals the weight plus the body's momentum change."""
-    scenario, params, result, setup, sig, summary = run
+    scenario, params, record, sig, summary = run
     start, end = summary["window_s"]
     inside = (sig.t > start) & (sig.t <= end)
     weight = params.robot.total_mass_kg * params.robot.gravity_m_s2
@@ -161,7 +156,7 @@ def test_summary_text_follows_the_parameters(runs):
     """summary.md and the answer take their figures from the parameters used, none written in."""
     from fivebar_drake.simulation.summary import answer, markdown
 
-    scenario, params, result, setup, sig, summary = runs["ball"]
+    scenario, params, record, sig, summary = runs["ball"]
     other = dataclasses.replace(params, robot=dataclasses.replace(params.robot, structure_kg=2.5),
                                 motor=dataclasses.replace(params.motor, peak_torque_Nm=7.0))
     text = markdown(summary, other).split(summary["answer"])[1] + answer(summary, other)
@@ -170,7 +165,7 @@ def test_summary_text_follows_the_parameters(runs):
 
 
 def test_window_is_whole_cycles(run):
-    scenario, params, result, setup, sig, summary = run
+    scenario, params, record, sig, summary = run
     start, end = summary["window_s"]
     period = params.gait.period_s
     for edge in (start, end):
