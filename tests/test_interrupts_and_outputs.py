@@ -30,6 +30,7 @@ def start_simulation(out, seconds):
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("signum, code", [(signal.SIGINT, 130), (signal.SIGTERM, 143)])
 def test_signal_stops_simulate_and_keeps_what_it_has(tmp_path, signum, code):
     out = tmp_path / "a run"                            # a space: the printed command quotes it
