@@ -16,6 +16,7 @@ duration).
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
@@ -78,12 +79,15 @@ def write_analysis(record: AnalysisRecord, out_dir: str | Path) -> list[Path]:
 def run_simulation(scenario: Scenario, params: Params | None = None, progress: bool = True,
                    stop: Callable[[], str] | None = None,
                    log_actuation: bool = False) -> SimulationRecord:
-    """Simulate the scenario (checked first: ParameterError naming the field); params: None
-    loads the scenario's (Scenario.load_params). progress: print progress lines to stderr.
+    """Simulate the scenario (a validated copy of it; every check before a run first:
+    ParameterError naming the field); params: None loads the scenario's
+    (Scenario.load_params). progress: print progress lines to stderr.
     stop: polled every 10 ms of simulated time, a non-empty answer (a signal's name) ends the
     run there (record.interrupted). log_actuation: also record the joint torques the plant
     received at every step (record.actuation). A run that stops early (diverged, fell over)
     still returns what it recorded, with record.error saying why."""
+    scenario = dataclasses.replace(scenario)
+    scenario.validate()
     return simulate(scenario, scenario.load_params() if params is None else params,
                     progress=progress, log_actuation=log_actuation, stop=stop)
 

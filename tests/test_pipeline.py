@@ -137,3 +137,36 @@ def test_a_run_crosses_a_process_boundary():
     assert equal(dataclasses.replace(remote, wall_s=0.0), dataclasses.replace(local, wall_s=0.0))
     clock = lambda s: {k: v for k, v in s.items() if k not in WALL_CLOCK}  # noqa: E731
     assert equal(clock(summarize_run(remote)), clock(summarize_run(local)))
+
+
+def test_run_simulation_checks_the_scenario_it_is_given():
+    """A Scenario made in code is checked like a scenario file: a clear error, no run."""
+    from fivebar_drake.core.validation import ParameterError
+    from fivebar_drake.simulation.scenario import Scenario
+
+    with pytest.raises(ParameterError, match=r"scenario.duration_s = -1.0: must be >= 0.002"):
+        run_simulation(Scenario(duration_s=-1), progress=False)
+
+
+def test_write_simulation_never_leaves_a_stale_summary(tmp_path, monkeypatch):
+    """The writer alone keeps the guarantee: a previous run's summary.json is removed before
+    anything is written, so a write that fails midway leaves no summary claiming completeness."""
+    from fivebar_drake import pipeline
+
+    (tmp_path / "summary.json").write_text('{"completed": true}')
+    (tmp_path / "notes.txt").write_text("mine")
+    record = run_simulation(load_scenario(duration_s=0.1, closure="ball"), progress=False)
+
+    def broken(*args, **kwargs):
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(pipeline, "write_recording", broken)
+    with pytest.raises(OSError, match="No space left"):
+        write_simulation(record, tmp_path)
+    assert not (tmp_path / "summary.json").exists()
+    assert (tmp_path / "sim_torques.png").exists() and (tmp_path / "notes.txt").read_text() == "mine"
+    monkeypatch.undo()
+    summary, paths = write_simulation(record, tmp_path)
+    assert json.loads((tmp_path / "summary.json").read_text())["duration_s"] == pytest.approx(0.1)
+    assert [p.name for p in paths] == ["sim_torques.png", "sim_motion.png", "run.rrd",
+                                       "summary.md", "summary.json"]
