@@ -13,8 +13,7 @@ import time  # noqa: E402
 
 import numpy as np  # noqa: E402
 
-from fivebar_drake.mechanisms.fivebar.jacobians import foot_jacobian  # noqa: E402
-from fivebar_drake.mechanisms.fivebar.kinematics import forward, inverse  # noqa: E402
+from fivebar_drake.mechanisms.fivebar import foot_jacobian, forward, inverse
 from fivebar_drake.robots.quadruped.config import load_params  # noqa: E402
 
 

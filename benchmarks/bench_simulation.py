@@ -2,13 +2,14 @@
 (default 10) with each loop closure; the plant alone replaying the default run's actuation,
 step by step (the replay must end in the run's exact state, or the figure is not of the same
 run), alternating with the default run --pairs times (the ratio is the median over the pairs:
-this machine's speed drifts between runs); where the default run's time goes (plant, the Python blocks, the rest of the Diagram,
-summary, recording); and the peak memory of a 10 s and a 60 s default run (each in a fresh
-process). Prints tables, then, as its last line, one JSON object:
-rtf (per closure), plant_alone_rtf, diagram_to_plant_ratio (and _per_pair), max_loop_gap_m (per closure),
-rms_torque_agreement (largest per-motor relative RMS difference against `ball`),
-logging_share (recording time / whole simulate job), peak_rss_mb_10s, peak_rss_mb_60s,
-split_us_per_step."""
+this machine's speed drifts between runs); where the default run's time goes (plant, the Python
+blocks, the rest of the Diagram, the summary and the output files after the run); and the peak
+memory of a 10 s and a 60 s default run (each in a fresh process). Every run goes through the
+pipeline (run_simulation, summarize_run, write_simulation). Prints tables, then, as its last
+line, one JSON object: rtf (per closure), plant_alone_rtf, diagram_to_plant_ratio (and
+_per_pair), max_loop_gap_m (per closure), rms_torque_agreement (largest per-motor relative RMS
+difference against `ball`), output_share (writing the run's files: plots, recording, summary /
+whole simulate job), peak_rss_mb_10s, peak_rss_mb_60s, split_us_per_step."""
 
 from __future__ import annotations
 
@@ -27,48 +28,40 @@ from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import TrajectorySource
 from pydrake.trajectories import PiecewisePolynomial
 
+from fivebar_drake.pipeline import run_simulation, summarize_run, write_simulation
+from fivebar_drake.robots.quadruped.plant import CLOSURES, add_robot, set_standing_pose
 from fivebar_drake.simulation import systems
-from fivebar_drake.analysis.torques import analyze
-from fivebar_drake.robots.quadruped.plant import CLOSURES
-from fivebar_drake.simulation.recording import write_recording
 from fivebar_drake.simulation.scenario import load_scenario
-from fivebar_drake.robots.quadruped.plant import add_robot, set_standing_pose
-from fivebar_drake.simulation.runner import simulate
-from fivebar_drake.simulation.summary import signals, summarize
 
 MEMORY_RUN = """
 import resource, sys
+from fivebar_drake.pipeline import run_simulation
 from fivebar_drake.simulation.scenario import load_scenario
-from fivebar_drake.simulation.runner import simulate
-scenario = load_scenario(duration_s=float(sys.argv[1]))
-simulate(scenario, scenario.load_params(), progress=False)
+run_simulation(load_scenario(duration_s=float(sys.argv[1])), progress=False)
 print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024)
 """
 PYTHON_BLOCKS = {"gait source": systems.GaitSource, "leg controller": systems.FootLegController}
 
 
 def run_closure(closure: str, duration: float):
-    scenario = load_scenario(duration_s=duration, closure=closure)
-    params = scenario.load_params()
-    result, setup = simulate(scenario, params, progress=False)
+    """(record, summary, seconds to summarize, seconds to write the run's files) of the default
+    trot with the closure."""
+    record = run_simulation(load_scenario(duration_s=duration, closure=closure), progress=False)
     start = time.perf_counter()
-    sig = signals(result, setup, params, scenario)
-    summary = summarize(sig, scenario, params, setup, result,
-                        analyze(params).results["results"]["seed"])
+    summary = summarize_run(record)
     post = time.perf_counter() - start
     with tempfile.TemporaryDirectory() as tmp:
         start = time.perf_counter()
-        write_recording(Path(tmp) / "run.rrd", sig, setup, params, scenario,
-                        result.table["state"], summary)
-        rec = time.perf_counter() - start
-    return scenario, params, result, setup, summary, post, rec
+        write_simulation(record, Path(tmp))
+        files = time.perf_counter() - start
+    return record, summary, post, files
 
 
-def plant_alone(scenario, params, setup, actuation, duration: float):
+def plant_alone(params, design, actuation, duration: float):
     """(real-time factor, final state) of the same plant, closure, contact and step fed the
     run's per-step joint torques (zero-order hold) with no Python systems."""
     builder = DiagramBuilder()
-    plant, instance, layout = add_robot(builder, params, setup.design)
+    plant, instance, layout = add_robot(builder, params, design)
     times, torques = actuation
     source = builder.AddSystem(TrajectorySource(PiecewisePolynomial.ZeroOrderHold(times,
                                                                                   torques.T)))
@@ -98,12 +91,11 @@ def python_time_per_block(duration: float) -> tuple[dict, float, float]:
     for name, cls in PYTHON_BLOCKS.items():
         cls._update = timed(name, originals[cls])
     try:
-        scenario = load_scenario(duration_s=duration)
-        result, setup = simulate(scenario, scenario.load_params(), progress=False)
+        record = run_simulation(load_scenario(duration_s=duration), progress=False)
     finally:
         for cls, update in originals.items():
             cls._update = update
-    return dict(spent), result.wall_s, duration / setup.design.time_step_s
+    return dict(spent), record.wall_s, duration / record.design.time_step_s
 
 
 def peak_rss_mb(duration: float) -> float:
@@ -120,28 +112,29 @@ def main():
     args = parser.parse_args()
     print(f"{args.duration:g} s default trot per closure; one core")
     print(f"{'closure':>12} {'step (ms)':>9} {'sim wall (s)':>12} {'real-time':>9} "
-          f"{'worst gap (mm)':>14} {'rec (s)':>8} {'logging share':>13}")
+          f"{'worst gap (mm)':>14} {'files (s)':>9} {'output share':>12}")
     runs, rtf, gap, share = {}, {}, {}, {}
     for closure in CLOSURES:
-        scenario, params, result, setup, summary, post, rec = run_closure(closure, args.duration)
-        runs[closure] = (scenario, params, result, setup, summary, post, rec)
+        record, summary, post, files = run_closure(closure, args.duration)
+        runs[closure] = (record, summary, post, files)
         rtf[closure] = summary["real_time_factor"]
         gap[closure] = summary["max_loop_gap_m"]
-        share[closure] = rec / (result.wall_s + post + rec)
-        print(f"{closure:>12} {setup.design.time_step_s * 1e3:9.4f} {result.wall_s:12.2f} "
-              f"{rtf[closure]:8.2f}x {gap[closure] * 1e3:14.4f} {rec:8.2f} "
-              f"{share[closure] * 100:12.1f}%" + (f"  stopped: {result.error}" if result.error
+        share[closure] = files / (record.wall_s + files)
+        print(f"{closure:>12} {record.design.time_step_s * 1e3:9.4f} {record.wall_s:12.2f} "
+              f"{rtf[closure]:8.2f}x {gap[closure] * 1e3:14.4f} {files:9.2f} "
+              f"{share[closure] * 100:11.1f}%" + (f"  stopped: {record.error}" if record.error
                                                   else ""))
-    scenario, params, result, setup, _, post, rec = runs["bushing"]
+    record, _, post, files = runs["bushing"]
     # the diagram and the plant alone in alternation, args.pairs times: the ratio of each pair
     # (this machine's speed drifts by 10-20 % between runs), its median is the figure
     ratios, alones, same = [], [], True
     for _ in range(args.pairs):
-        logged, logged_setup = simulate(scenario, params, progress=False, log_actuation=True)
-        alone, final = plant_alone(scenario, params, logged_setup, logged.actuation,
+        logged = run_simulation(record.scenario, record.params, progress=False,
+                                log_actuation=True)
+        alone, final = plant_alone(logged.params, logged.design, logged.actuation,
                                    args.duration)
         same &= np.array_equal(final, logged.table["state"][-1]) and np.array_equal(
-            logged.table["state"][-1], result.table["state"][-1])
+            logged.table["state"][-1], record.table["state"][-1])
         ratios.append(args.duration / logged.wall_s / alone)
         alones.append(alone)
     alone, ratio = float(np.median(alones)), float(np.median(ratios))
@@ -155,13 +148,13 @@ def main():
     per_step["rest of the Diagram (Drake dispatch, C++ motor model and logs, cache effects)"] = (
         wall / steps * 1e6 - sum(per_step.values()))
     per_step["summary (after the run)"] = post / steps * 1e6
-    per_step["Rerun recording (after the run)"] = rec / steps * 1e6
+    per_step["output files: plots, recording, summary (after the run)"] = files / steps * 1e6
     print(f"where the time goes, default run with timers (wall {wall / steps * 1e6:.0f} us per "
           "plant step):")
     for name, us in per_step.items():
         print(f"  {name:55s} {us:7.1f} us/step")
-    ball = runs["ball"][4]["legs"]
-    agreement = {c: max(abs(runs[c][4]["legs"][leg][m]["rms_torque_Nm"]
+    ball = runs["ball"][1]["legs"]
+    agreement = {c: max(abs(runs[c][1]["legs"][leg][m]["rms_torque_Nm"]
                             / ball[leg][m]["rms_torque_Nm"] - 1)
                         for leg in ball for m in ball[leg]) for c in CLOSURES if c != "ball"}
     print("per-motor RMS torque against ball, largest difference: "
@@ -173,7 +166,7 @@ def main():
                       "diagram_to_plant_ratio": ratio,
                       "diagram_to_plant_ratio_per_pair": ratios,
                       "max_loop_gap_m": gap, "rms_torque_agreement": agreement,
-                      "logging_share": share["bushing"], "peak_rss_mb_10s": rss10,
+                      "output_share": share["bushing"], "peak_rss_mb_10s": rss10,
                       "peak_rss_mb_60s": rss60,
                       "split_us_per_step": {k: round(v, 1) for k, v in per_step.items()}}))
 

@@ -44,18 +44,15 @@ def _analyze(args, signals) -> int:
     import matplotlib
 
     matplotlib.use("Agg")  # files only, never a window
-    from fivebar_drake.analysis.torques import analyze
-    from fivebar_drake.analysis.plots import write_plots
-    from fivebar_drake.analysis.report import ANALYSIS_FILES, write_report
+    from fivebar_drake import pipeline
 
     start = time.perf_counter()
-    params = load_params(args.config)
-    out = prepare_output_dir(args.out, "--out", ANALYSIS_FILES)
+    params = load_params(args.config)             # bad input: exit 2 before the folder is touched
+    out = prepare_output_dir(args.out, "--out", pipeline.ANALYSIS_FILES)
     say(f"parameters: {args.config or 'packaged default'}")
-    analysis = analyze(params, path=args.gait)
-    sampled = sampling_error(params, args.gait)
-    written = write_plots(analysis, out) + write_report(analysis, out, sampled)  # report.json last
-    readings = [(model, motor, m) for model, motors in analysis.results["results"].items()
+    record = pipeline.run_analysis(params, gait=args.gait)
+    written = pipeline.write_analysis(record, out)
+    readings = [(model, motor, m) for model, motors in record.results.items()
                 for motor, m in motors.items()]
     say(f"foot path: {args.gait}; every reading, the lowest safety factor first:")
     for model, motor, m in sorted(readings, key=lambda r: r[2]["safety_factor"]):
@@ -65,8 +62,8 @@ def _analyze(args, signals) -> int:
     say(f"wrote {len(written)} files to {out.resolve()} in {time.perf_counter() - start:.1f} s:")
     for path in written:
         say(f"  {path}")
-    if sampled["warning"]:
-        _err(f"warning: {sampled['warning']}")
+    if record.sampling_error["warning"]:
+        _err(f"warning: {record.sampling_error['warning']}")
     return 0
 
 
@@ -74,26 +71,14 @@ def _simulate(args, signals) -> int:
     import matplotlib
 
     matplotlib.use("Agg")
-    from fivebar_drake.analysis.torques import analyze
-    from fivebar_drake.simulation.recording import RECORDING_FILE, write_recording
+    from fivebar_drake import pipeline
     from fivebar_drake.simulation.runner import load_run
-    from fivebar_drake.simulation.plots import SIM_PLOT_FILES, write_sim_plots
-    from fivebar_drake.simulation.runner import simulate
-    from fivebar_drake.simulation.summary import (SUMMARY_FILES, signals as run_signals, summarize,
-                                                  write_summary)
 
     scenario, params = load_run(args.scenario, duration_s=args.duration, closure=args.closure,
                                 gait=args.gait, params_file=args.config)
-    out = prepare_output_dir(args.out, "--out", SIM_PLOT_FILES + (RECORDING_FILE,) + SUMMARY_FILES)
-    seed = analyze(params).results["results"]["seed"]
-    warning = sampling_error(params, "seed_ellipse")["warning"]
-    result, setup = simulate(scenario, params, progress=True, stop=lambda: signals.name)
-    sig = run_signals(result, setup, params, scenario)
-    summary = summarize(sig, scenario, params, setup, result, seed)
-    written = write_sim_plots(sig, setup.layout.legs, params, summary, out)
-    written.append(write_recording(out / RECORDING_FILE, sig, setup, params, scenario,
-                                   result.table["state"], summary))
-    written += write_summary(summary, params, out)        # last: summary.json says it is complete
+    out = prepare_output_dir(args.out, "--out", pipeline.SIMULATION_FILES)
+    record = pipeline.run_simulation(scenario, params, progress=True, stop=lambda: signals.name)
+    summary, written = pipeline.write_simulation(record, out)   # summary.json last
     say(f"{summary['gait']} gait, {summary['closure']} closure: {summary['duration_s']:.2f} s "
         f"simulated, {summary['real_time_factor']:.2f}x real time, worst loop gap "
         f"{summary['max_loop_gap_m'] * 1e3:.4f} mm, {summary['cycles_in_window']} whole cycles, "
@@ -108,16 +93,17 @@ def _simulate(args, signals) -> int:
     say(f"wrote {len(written)} files to {out.resolve()}:")
     for path in written:
         say(f"  {path}")
-    say(f"open the recording with: rerun {shlex.quote(str(out / RECORDING_FILE))}")
+    say(f"open the recording with: rerun {shlex.quote(str(out / pipeline.RECORDING_FILE))}")
+    warning = sampling_error(params, "seed_ellipse")["warning"]
     if warning:
         _err(f"warning: the seed's reference figures: {warning}")
     if signals.signum:
         _err(f"{summary['error']}: wrote what was simulated (summary.json: completed false, "
-             "interrupted true)" if result.interrupted else
+             "interrupted true)" if record.interrupted else
              f"interrupted by {signals.name} after the run: its files are complete")
         return 128 + signals.signum
-    if result.error:
-        _err(f"error: the run stopped early: {result.error}")
+    if record.error:
+        _err(f"error: the run stopped early: {record.error}")
         return 1
     if summary["verdict"] == "insufficient":
         _err(f"error: no verdict: {summary['answer']}")

@@ -151,6 +151,20 @@ CASES = {
                             "must be >= 1e-06"),
     "log period of 10 s": scen("duration_s: 20.0\nlog_period_s: 10\n",
                                "scenario.log_period_s = 10.0", "intervals per gait cycle"),
+    "plant config not a mapping": scen("plant_config: sap\n", "scenario.plant_config = 'sap'",
+                                       "must be a mapping of MultibodyPlantConfig"),
+    "plant config unknown field": scen("plant_config: {solver: sap}\n",
+                                       "scenario.plant_config.solver", "unknown field"),
+    "plant config time step": scen("plant_config: {time_step: 0.001}\n",
+                                   "scenario.plant_config.time_step = 0.001", "time_step_s"),
+    "closure constraints need SAP": scen(
+        "plant_config: {discrete_contact_approximation: tamsi}\n",
+        "scenario.plant_config.discrete_contact_approximation = 'tamsi'", "SAP constraint"),
+    "plant config Drake refuses": scen("plant_config: {contact_model: magic}\n",
+                                       "scenario.plant_config", "Drake refuses it"),
+    "simulator config text for a number": scen(
+        "simulator_config: {target_realtime_rate: fast}\n",
+        "scenario.simulator_config.target_realtime_rate = 'fast'", "must be a number"),
     "log period not whole motor periods": scen(
         "closure: ball\ntime_step_s: 5e-4\nmotor_period_s: 8e-4\n",
         "scenario.log_period_s = 0.002", "whole number of motor periods"),
@@ -287,12 +301,12 @@ def test_yaml_numbers_without_a_dot_are_numbers(tmp_path):
 
 def test_internal_error_points_to_a_log(tmp_path, capsys, monkeypatch):
     """An unexpected error is a short message and a log file with the traceback (exit 3)."""
-    from fivebar_drake.analysis import torques as analysis
+    from fivebar_drake import pipeline
 
     def broken(*args, **kwargs):
         raise ZeroDivisionError("injected")
 
-    monkeypatch.setattr(analysis, "analyze", broken)
+    monkeypatch.setattr(pipeline, "analyze", broken)
     assert main(["analyze", "--out", str(tmp_path)]) == 3
     err = capsys.readouterr().err
     assert "Traceback" not in err and "internal error" in err and "injected" in err

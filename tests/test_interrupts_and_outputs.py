@@ -17,7 +17,7 @@ from rerun.chunk import RrdReader
 from fivebar_drake.cli import main
 from fivebar_drake.robots.quadruped.config import DEFAULT_PATH, load_params, with_gait
 from fivebar_drake.core.files import TEMP_PREFIX, write_atomic
-from fivebar_drake.mechanisms.fivebar.gait import sample_gait
+from fivebar_drake.mechanisms.fivebar import sample_gait
 
 STALE = {"summary.json": '{"completed": true, "verdict": "pass", "stale": true}\n',
          "summary.md": "stale\n", "run.rrd": "not a recording", "sim_torques.png": "stale",
@@ -30,6 +30,7 @@ def start_simulation(out, seconds):
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("signum, code", [(signal.SIGINT, 130), (signal.SIGTERM, 143)])
 def test_signal_stops_simulate_and_keeps_what_it_has(tmp_path, signum, code):
     out = tmp_path / "a run"                            # a space: the printed command quotes it
@@ -123,7 +124,7 @@ def test_a_failure_while_writing_leaves_no_summary(tmp_path, capsys, monkeypatch
     """summary.json is written last: if writing the recording fails, there is none (the
     previous run's was removed before the run), so no stale or premature summary says
     completed."""
-    from fivebar_drake.simulation import recording
+    from fivebar_drake import pipeline
 
     out = tmp_path / "run"
     out.mkdir()
@@ -132,7 +133,7 @@ def test_a_failure_while_writing_leaves_no_summary(tmp_path, capsys, monkeypatch
     def broken(*args, **kwargs):
         raise OSError(28, "No space left on device")
 
-    monkeypatch.setattr(recording, "write_recording", broken)
+    monkeypatch.setattr(pipeline, "write_recording", broken)
     code = main(["simulate", "--duration", "0.1", "--closure", "ball", "--out", str(out)])
     err = capsys.readouterr().err
     assert code == 3 and "Traceback" not in err and "No space left" in err
@@ -143,7 +144,7 @@ def test_a_failure_while_writing_leaves_no_summary(tmp_path, capsys, monkeypatch
 def test_new_analysis_first_removes_the_previous_files(tmp_path, capsys, monkeypatch):
     """An analysis that fails after its inputs were accepted leaves none of the previous
     analysis's files (they would pass for its results); other files stay."""
-    from fivebar_drake.analysis import plots
+    from fivebar_drake import pipeline
 
     (tmp_path / "report.json").write_text('{"stale": true}')
     (tmp_path / "workspace.png").write_text("stale")
@@ -153,7 +154,7 @@ def test_new_analysis_first_removes_the_previous_files(tmp_path, capsys, monkeyp
     def broken(*args, **kwargs):
         raise RuntimeError("injected")
 
-    monkeypatch.setattr(plots, "write_plots", broken)
+    monkeypatch.setattr(pipeline, "write_plots", broken)
     assert main(["analyze", "--out", str(tmp_path)]) == 3
     assert not (tmp_path / "workspace.png").exists() and not (tmp_path / "report.json").exists()
     assert not list(tmp_path.glob(TEMP_PREFIX + "*"))

@@ -9,34 +9,28 @@ import pytest
 from pydrake.systems.analysis import Simulator
 from rerun.chunk import RrdReader
 
-from fivebar_drake.analysis.torques import analyze
 from fivebar_drake.cli import main
 from fivebar_drake.core.footpath import stance_speed
-from fivebar_drake.mechanisms.fivebar.jacobians import foot_jacobian
-from fivebar_drake.mechanisms.fivebar.kinematics import UnreachableError, forward
+from fivebar_drake.mechanisms.fivebar import UnreachableError, foot_jacobian, forward
+from fivebar_drake.pipeline import run_simulation, summarize_run
 from fivebar_drake.simulation.recording import read_series
 from fivebar_drake.simulation.scenario import load_scenario
 from fivebar_drake.robots.quadruped.plant import set_standing_pose
 from fivebar_drake.simulation.builder import build_diagram, check_run
-from fivebar_drake.simulation.runner import simulate
-from fivebar_drake.simulation.summary import signals, summarize
+from fivebar_drake.simulation.summary import signals
 
 TEST_DURATION_S = 4.5   # 0.5 s standing, 1 s ramp, 3 whole trot cycles
 
 
 def _run(closure, **overrides):
-    scenario = load_scenario(duration_s=TEST_DURATION_S, closure=closure, **overrides)
-    params = scenario.load_params()
-    result, setup = simulate(scenario, params, progress=False)
-    sig = signals(result, setup, params, scenario)
-    summary = summarize(sig, scenario, params, setup, result,
-                        analyze(params).results["results"]["seed"])
-    return scenario, params, result, setup, sig, summary
+    record = run_simulation(load_scenario(duration_s=TEST_DURATION_S, closure=closure,
+                                          **overrides), progress=False)
+    return record.scenario, record.params, record, signals(record), summarize_run(record)
 
 
 @pytest.fixture(scope="module")
 def runs():
-    """The default trot with each closure: closure -> (scenario, params, result, setup, signals,
+    """The default trot with each closure: closure -> (scenario, params, record, signals,
     summary)."""
     return {closure: _run(closure) for closure in ("ball", "bushing", "bushing_rpy")}
 
@@ -46,11 +40,12 @@ def run(request, runs):
     return runs[request.param]
 
 
+@pytest.mark.slow
 def test_default_trot_is_credible(run):
     """Upright, walking at >= 70 % of the path's speed, swing feet clear, nothing NaN."""
-    scenario, params, result, setup, sig, summary = run
-    assert not result.error and summary["completed"]
-    assert np.all(np.isfinite(result.table["state"]))
+    scenario, params, record, sig, summary = run
+    assert not record.error and summary["completed"]
+    assert np.all(np.isfinite(record.table["state"]))
     quat = sig.body_quat / np.linalg.norm(sig.body_quat, axis=1, keepdims=True)
     tilt = np.degrees(np.arccos(1 - 2 * (quat[:, 1] ** 2 + quat[:, 2] ** 2)))  # body z vs up
     assert tilt.max() <= 10.0
@@ -71,23 +66,25 @@ def test_default_trot_is_credible(run):
         s = u / (1 - params.gait.duty_factor)
         loaded = sig.foot_force_world[inside, i, 2] > 1.0
         mid = swing & (s >= 0.1) & (s <= 0.7)
-        assert np.mean(loaded[mid]) <= 0.02, setup.layout.legs[i]
-        assert np.mean(loaded[swing]) <= 0.20, setup.layout.legs[i]
-        assert summary["swing_clear_fraction"][setup.layout.legs[i]] == pytest.approx(
+        assert np.mean(loaded[mid]) <= 0.02, record.layout.legs[i]
+        assert np.mean(loaded[swing]) <= 0.20, record.layout.legs[i]
+        assert summary["swing_clear_fraction"][record.layout.legs[i]] == pytest.approx(
             1 - np.mean(loaded[swing]), abs=0.02)
 
 
+@pytest.mark.slow
 def test_loop_gap_below_a_tenth_of_a_millimetre(run):
-    scenario, params, result, setup, sig, summary = run
+    scenario, params, record, sig, summary = run
     assert sig.gap.shape == (len(sig.t), 4)
     assert np.max(sig.gap) < 1e-4
 
 
+@pytest.mark.slow
 def test_applied_torque_matches_contact_load_in_stance(run):
     """Per step measurement: in full stance the motors carry the ground force (the leg is
     light), so the applied torque and -J^T F agree within 10 % RMS per motor; the torque split
     (contact + links + rotor + friction) sums back to the applied torque within 5 % RMS."""
-    scenario, params, result, setup, sig, summary = run
+    scenario, params, record, sig, summary = run
     start, end = summary["window_s"]
     inside = (sig.t > start) & (sig.t <= end)
     for i in range(4):
@@ -103,10 +100,11 @@ def test_applied_torque_matches_contact_load_in_stance(run):
             assert np.sqrt(np.mean(resid**2)) < 0.05 * np.sqrt(np.mean(sig.applied[inside, i, j]**2))
 
 
+@pytest.mark.slow
 def test_contact_torque_is_jacobian_transpose_times_force(run):
     """-J^T F at one sample, J_F by finite differences of FK, the contact point's offset by
     hand (flat ground: the sphere's lowest point), F rotated by hand."""
-    scenario, params, result, setup, sig, summary = run
+    scenario, params, record, sig, summary = run
     k = int(np.argmax(sig.foot_force_plane[:, 0, 1]))            # FL under load
     q = sig.q[k, 0]
     h = 1e-7
@@ -130,11 +128,12 @@ def test_contact_torque_is_jacobian_transpose_times_force(run):
     assert np.allclose(sig.static_contact[k, 0], -jp.T @ force, rtol=1e-5, atol=1e-5)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("closure, tolerance", [("bushing", 0.10), ("bushing_rpy", 0.15)])
 def test_closures_agree_on_rms_torque(runs, closure, tolerance):
     """Per-motor RMS applied torque over whole cycles against the rigid ball closure: the
     implicit compliant bushing within 10 %, the explicit bushing within 15 %."""
-    ball, other = runs["ball"][5], runs[closure][5]
+    ball, other = runs["ball"][4], runs[closure][4]
     assert ball["window_s"] == other["window_s"] and ball["cycles_in_window"] == 3
     assert other["max_loop_gap_m"] < 1e-4
     for leg in ("FL", "FR", "RL", "RR"):
@@ -144,10 +143,11 @@ def test_closures_agree_on_rms_torque(runs, closure, tolerance):
             assert b == pytest.approx(a, rel=tolerance), (leg, motor)
 
 
+@pytest.mark.slow
 def test_measured_ground_forces_carry_the_robot(run):
     """Vertical momentum over whole cycles: the feet's mean vertical force (from the
     generalized contact forces) equals the weight plus the body's momentum change."""
-    scenario, params, result, setup, sig, summary = run
+    scenario, params, record, sig, summary = run
     start, end = summary["window_s"]
     inside = (sig.t > start) & (sig.t <= end)
     weight = params.robot.total_mass_kg * params.robot.gravity_m_s2
@@ -157,11 +157,12 @@ def test_measured_ground_forces_carry_the_robot(run):
     assert mean_fz == pytest.approx(weight + dp, rel=0.01)
 
 
+@pytest.mark.slow
 def test_summary_text_follows_the_parameters(runs):
     """summary.md and the answer take their figures from the parameters used, none written in."""
     from fivebar_drake.simulation.summary import answer, markdown
 
-    scenario, params, result, setup, sig, summary = runs["ball"]
+    scenario, params, record, sig, summary = runs["ball"]
     other = dataclasses.replace(params, robot=dataclasses.replace(params.robot, structure_kg=2.5),
                                 motor=dataclasses.replace(params.motor, peak_torque_Nm=7.0))
     text = markdown(summary, other).split(summary["answer"])[1] + answer(summary, other)
@@ -169,8 +170,9 @@ def test_summary_text_follows_the_parameters(runs):
     assert f"{params.robot.weight_share_kg:.3f}" not in text
 
 
+@pytest.mark.slow
 def test_window_is_whole_cycles(run):
-    scenario, params, result, setup, sig, summary = run
+    scenario, params, record, sig, summary = run
     start, end = summary["window_s"]
     period = params.gait.period_s
     for edge in (start, end):
@@ -185,6 +187,7 @@ def test_window_is_whole_cycles(run):
     assert lo <= hi <= m["peak_torque_Nm"] + 1e-12
 
 
+@pytest.mark.slow
 def test_short_run_is_insufficient(tmp_path, capsys):
     out = tmp_path / "short"
     assert main(["simulate", "--duration", "3.0", "--closure", "ball", "--out", str(out)]) == 1
@@ -230,6 +233,7 @@ def test_controller_acts_on_the_state_sampled_at_its_tick(delay):
             controller.GetMyContextFromRoot(context)), expect)
 
 
+@pytest.mark.slow
 def test_simulate_cli_writes_outputs_and_recording(tmp_path, capsys):
     out = tmp_path / "sim"
     code = main(["simulate", "--duration", str(TEST_DURATION_S), "--closure", "ball", "--out",
@@ -295,6 +299,68 @@ def check_recording(path, summary):
     t, window = read_series(path, "/stats/window")
     assert t[window > 0].min() > start and t[window > 0].max() <= end + 1e-9
     assert reader.blueprints()                                  # the blueprint is in the file
+
+
+def plant_link_points(plant, instance, layout, params, positions):
+    """A, C, E, F, B, D (legs, 6, 3) in m from the plant's own body poses (Drake's kinematics
+    of the tree: E and F on link DE) at the plant positions."""
+    context = plant.CreateDefaultContext()
+    plant.SetPositions(context, positions)
+    g = params.leg
+    pose = lambda leg, link: plant.EvalBodyPoseInWorld(                        # noqa: E731
+        context, plant.GetBodyByName(f"{leg}_{link}", instance))
+    return np.array([[pose(leg, "AC").translation(), pose(leg, "AC").multiply([g.ac_m, 0, 0]),
+                      pose(leg, "DE").multiply([g.de_m, 0, 0]),
+                      pose(leg, "DE").multiply([g.de_m + g.ef_m, 0, 0]),
+                      pose(leg, "BD").translation(), pose(leg, "BD").multiply([g.bd_m, 0, 0])]
+                     for leg in layout.legs])
+
+
+@pytest.mark.slow
+def test_recorded_link_points_are_the_plants(run, rng):
+    """The recording's link points (5-bar FK of the motor angles, placed by the hip, the leg
+    plane and the body pose; no plant) against the plant's body poses: all six within 1 nm at
+    states whose loops are closed (IK poses, random body poses); at the run's states A, B, C, D
+    within 1 nm and E, F within the loop gap carried through the knee: the plant's E lies on the
+    circle about D within the gap of the circle about C, so |dE| <= gap / sin(angle CED), and
+    F = D + (DE + EF)/DE (E - D)."""
+    from pydrake.systems.framework import DiagramBuilder
+
+    from fivebar_drake.mechanisms.fivebar import inverse, tree_positions
+    from fivebar_drake.robots.quadruped.plant import add_robot
+    from fivebar_drake.simulation.recording import link_points
+
+    scenario, params, record, sig, summary = run
+    plant, instance, layout = add_robot(DiagramBuilder(), params, record.design)
+    g, gait = params.leg, params.gait
+    closed = []
+    for _ in range(5):
+        q = plant.GetPositions(plant.CreateDefaultContext())
+        for leg in layout.legs:
+            foot = [gait.x_center_m + rng.uniform(-1, 1) * gait.a_m,
+                    gait.y_home_m + rng.uniform(-1, 1) * gait.b_m]
+            q[layout.indices[leg].q] = tree_positions(inverse(g, np.array(foot)))
+        quat = rng.normal(size=4)
+        q[layout.body_q:layout.body_q + 7] = [*quat / np.linalg.norm(quat),
+                                              *rng.uniform(-1, 1, 3)]
+        closed.append(q)
+    ours = link_points(record.layout, params, np.array(closed))
+    for k, q in enumerate(closed):
+        assert np.allclose(ours[k], plant_link_points(plant, instance, layout, params, q),
+                           rtol=0, atol=1e-9)
+    rows = np.linspace(0, len(record.table["t"]) - 1, 40).astype(int)
+    ours = link_points(record.layout, params, record.table["state"][rows])
+    for k, row in enumerate(rows):
+        ref = plant_link_points(plant, instance, layout, params,
+                                record.table["state"][row, :layout.nq])
+        err = np.linalg.norm(ours[k] - ref, axis=-1)                           # (legs, 6)
+        assert np.all(err[:, [0, 1, 4, 5]] < 1e-9)
+        c, e, d = ref[:, 1], ref[:, 2], ref[:, 5]
+        u, v = c - e, d - e
+        sin_e = np.linalg.norm(np.cross(u, v), axis=-1) / np.linalg.norm(u, axis=-1) / g.de_m
+        bound = 1.1 * record.table["gap"][row] / sin_e + 1e-9
+        assert np.all(err[:, 2] <= bound) and np.all(err[:, 3] <= bound * (g.de_m + g.ef_m)
+                                                      / g.de_m), (row, err, bound)
 
 
 def test_two_runs_have_their_own_recording_ids(tmp_path):

@@ -8,7 +8,7 @@ from pathlib import Path
 
 from fivebar_drake.core.files import atomic_path, read_input_text, write_atomic
 from fivebar_drake.core.validation import ParameterError, require
-from fivebar_drake.mechanisms.fivebar.geometry import MOTORS
+from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.simulation.summary import MIN_CYCLES
 
 

@@ -1,9 +1,9 @@
 """Rerun recording (.rrd) of a simulated run, logged in columns, with its blueprint inside.
 
 Entities (timeline "sim_time"):
-- world/ground, world/body (box + pose), world/legs/<leg> (link segments), world/feet/<leg>
-  (foot trace), world/forces/<leg> (ground force arrows at the feet, 1 cm per 10 N), at
-  pose_rate_hz;
+- world/ground, world/body (box + pose), world/legs/<leg> (link segments: A-C-E-F and B-D-E),
+  world/feet/<leg> (foot trace), world/forces/<leg> (ground force arrows at the feet, 1 cm per
+  10 N), at pose_rate_hz;
 - per log interval (means over the plant steps of the interval): joints/<leg>/<A|B>/{angle,
   speed}, torque/<leg>/<A|B>/{commanded, applied, static_contact, static_trot, static_seed,
   limit_pos, limit_neg}, loop_gap/<leg> (worst gap of the interval), contact/<leg>/{normal,
@@ -22,15 +22,19 @@ import rerun as rr
 import rerun.blueprint as rrb
 
 from fivebar_drake.core.files import atomic_path
+from fivebar_drake.core.rotation import body_rotation
+from fivebar_drake.mechanisms.fivebar import forward_points
 from fivebar_drake.robots.quadruped.params import Params
-from fivebar_drake.simulation.builder import Setup
-from fivebar_drake.simulation.scenario import Scenario
+from fivebar_drake.robots.quadruped.plant import RobotLayout
+from fivebar_drake.robots.quadruped.sdf import plane_to_body
+from fivebar_drake.simulation.runner import SimulationRecord
 from fivebar_drake.simulation.summary import MOTORS, Signals
 
 
 RECORDING_FILE = "run.rrd"
 TIMELINE = "sim_time"
 FORCE_ARROW_M_PER_N = 0.001    # 1 mm of arrow per newton
+LEG_STRIPS = ([0, 1, 2, 3], [4, 5, 2])   # of link_points' A, C, E, F, B, D: A-C-E-F and B-D-E
 
 
 def blueprint(legs) -> rrb.Blueprint:
@@ -60,83 +64,83 @@ def _scalars(rec, path: str, t, values, name: str | None = None) -> None:
         rec.log(path, rr.SeriesLines(names=name), static=True)
 
 
-def _link_points(setup: Setup, params: Params, state_rows: np.ndarray):
-    """World positions (frames, legs, 6, 3) of A, C, E, F and B, D per leg, from the plant."""
-    plant = setup.plant
-    context = plant.CreateDefaultContext()
-    nq = plant.num_positions()
-    g = params.leg
-    ends = {"AC": g.ac_m, "BD": g.bd_m, "CE": g.ce_m, "DE": g.de_m + g.ef_m}
-    bodies = [{n: plant.GetBodyByName(f"{leg}_{n}", setup.instance) for n in ends}
-              for leg in setup.layout.legs]
-    out = np.zeros((len(state_rows), len(setup.layout.legs), 6, 3))
-    for f, row in enumerate(state_rows):
-        plant.SetPositions(context, row[:nq])
-        for i in range(len(setup.layout.legs)):
-            pose = {n: plant.EvalBodyPoseInWorld(context, body) for n, body in bodies[i].items()}
-            tip = {n: pose[n].multiply(np.array([ends[n], 0.0, 0.0])) for n in ends}
-            e = pose["DE"].multiply(np.array([g.de_m, 0.0, 0.0]))
-            out[f, i] = [pose["AC"].translation(), tip["AC"], e, tip["DE"],
-                         pose["BD"].translation(), tip["BD"]]
-    return out
+def link_points(layout: RobotLayout, params: Params, states: np.ndarray) -> np.ndarray:
+    """World positions (rows, legs, 6, 3) in m of the joints A, C, E, F, B, D of every leg for
+    plant states (rows, nx): the 5-bar's forward kinematics (the seed's E branch) of the motor
+    angles in the leg plane, placed by the hip (layout.hips_m, body frame), the leg plane's
+    rotation in the body and the body pose of the state. The plant's own E and F differ by at
+    most a few loop gaps; NaN where the motor angles cannot close the loop (a run that came
+    apart)."""
+    q = states[:, layout.q_index]                                     # (rows, legs, 2) rad
+    ta, tb = (np.ascontiguousarray(q[..., j].ravel()) for j in (0, 1))
+    cx, cy, dx, dy, ex, ey, fx, fy = forward_points(params.leg.core, ta, tb,
+                                                    np.ones_like(ta), True)
+    a, b = (np.broadcast_to(p, (ta.size, 2)) for p in (params.leg.a, params.leg.b))
+    plane = np.stack([a, np.stack([cx, cy], -1), np.stack([ex, ey], -1), np.stack([fx, fy], -1),
+                      b, np.stack([dx, dy], -1)], 1).reshape(q.shape[:2] + (6, 2))
+    in_body = plane_to_body(layout.hips_m[:, None, :], plane)
+    pose = states[:, layout.body_q:layout.body_q + 7]                 # quaternion wxyz, position
+    r_world_body = np.array([body_rotation(v) for v in pose[:, :4]])
+    return pose[:, None, None, 4:] + np.einsum("sij,slpj->slpi", r_world_body, in_body)
 
 
-def write_recording(path: Path, sig: Signals, setup: Setup, params: Params,
-                    scenario: Scenario, state: np.ndarray, summary: dict) -> Path:
-    """Write the .rrd file atomically (complete with its footer, then renamed into place);
-    state: the plant state of each log interval (for the 3-D poses)."""
+def write_recording(path: Path, sig: Signals, record: SimulationRecord, summary: dict) -> Path:
+    """Write the run's .rrd file atomically (complete with its footer, then renamed into place)
+    from its signals (summary.signals), its record (the 3-D poses come from the recorded plant
+    states) and its summary (statistics window, per-cycle peaks)."""
+    scenario = record.scenario
     path.parent.mkdir(parents=True, exist_ok=True)
     rec = rr.RecordingStream("fivebar_drake", recording_id=f"fivebar_drake-{scenario.gait}-"
                              f"{scenario.closure}-{uuid.uuid4().hex[:12]}")
     rec.set_log_time_enabled(False)
     rec.set_log_tick_enabled(False)
     with atomic_path(path) as tmp:
-        rec.save(str(tmp), default_blueprint=blueprint(setup.layout.legs))
+        rec.save(str(tmp), default_blueprint=blueprint(record.layout.legs))
         with rec:
             if len(sig.t):
-                _log_scene(rec, sig, setup, params, scenario, state)
-                _log_series(rec, sig, setup, params, summary)
+                _log_scene(rec, sig, record)
+                _log_series(rec, sig, record.layout.legs, record.params, summary)
         rec.disconnect()
     return path
 
 
-def _log_scene(rec, sig, setup, params, scenario, state):
-    state_forces = sig.foot_force_world
-    b = params.body
+def _log_scene(rec, sig: Signals, record: SimulationRecord):
+    b = record.params.body
     rec.log("world/ground", rr.Boxes3D(centers=[[0.0, 0.0, -0.005]], half_sizes=[[3.0, 3.0, 0.005]],
                                        colors=[[90, 110, 90]]), static=True)
     rec.log("world/body", rr.Boxes3D(half_sizes=[[b.length_m / 2, b.width_m / 2, b.height_m / 2]],
                                      colors=[[150, 150, 165]]), static=True)
     t = sig.t
-    frames = np.unique(np.searchsorted(t, np.arange(0.0, t[-1] + 1e-9, 1.0 / scenario.pose_rate_hz)))
+    frames = np.unique(np.searchsorted(t, np.arange(0.0, t[-1] + 1e-9,
+                                                    1.0 / record.scenario.pose_rate_hz)))
     frames = frames[frames < len(t)]
     tf = t[frames]
     time = [rr.TimeColumn(TIMELINE, duration=tf)]
     quat = sig.body_quat[frames]
     rec.send_columns("world/body", indexes=time, columns=rr.Transform3D.columns(
         translation=sig.body_p[frames], quaternion=np.column_stack([quat[:, 1:], quat[:, :1]])))
-    points = _link_points(setup, params, state[frames])
-    for i, leg in enumerate(setup.layout.legs):
-        strips = [s for f in range(len(frames)) for s in (points[f, i, :4], points[f, i, 4:])]
+    points = link_points(record.layout, record.params, record.table["state"][frames])
+    for i, leg in enumerate(record.layout.legs):
+        strips = [points[f, i, strip] for f in range(len(frames)) for strip in LEG_STRIPS]
         rec.send_columns(f"world/legs/{leg}", indexes=time, columns=rr.LineStrips3D.columns(
-            strips=strips).partition([2] * len(frames)))
+            strips=strips).partition([len(LEG_STRIPS)] * len(frames)))
         rec.log(f"world/legs/{leg}", rr.LineStrips3D.from_fields(radii=0.004), static=True)
         rec.log(f"world/feet/{leg}", rr.LineStrips3D([points[:, i, 3]], radii=0.0015,
                                                      colors=[[230, 80, 60]]), static=True)
         origin = points[:, i, 3] - np.array([0.0, 0.0, b.foot_radius_m])
-        force = state_forces[frames, i] * FORCE_ARROW_M_PER_N
+        force = sig.foot_force_world[frames, i] * FORCE_ARROW_M_PER_N
         rec.send_columns(f"world/forces/{leg}", indexes=time, columns=rr.Arrows3D.columns(
             origins=origin, vectors=force))
         rec.log(f"world/forces/{leg}", rr.Arrows3D.from_fields(colors=[[40, 160, 60]],
                                                                radii=0.002), static=True)
 
 
-def _log_series(rec, sig, setup, params, summary):
+def _log_series(rec, sig: Signals, legs, params: Params, summary: dict):
     limit = params.motor.peak_torque_Nm
     n = len(sig.t)
     start, end = summary["window_s"]
     cycle_ends = start + params.gait.period_s * np.arange(1, summary["cycles_in_window"] + 1)
-    for i, leg in enumerate(setup.layout.legs):
+    for i, leg in enumerate(legs):
         _scalars(rec, f"loop_gap/{leg}", sig.t, sig.gap[:, i], leg)
         _scalars(rec, f"contact/{leg}/tangential", sig.t, sig.foot_force_plane[:, i, 0])
         _scalars(rec, f"contact/{leg}/normal", sig.t, sig.foot_force_plane[:, i, 1])

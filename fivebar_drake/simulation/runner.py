@@ -1,5 +1,6 @@
 """Run a scenario: load it with its parameters, simulate with progress, stop requests and divergence
-diagnosis, and turn the recorders into one row per log interval."""
+diagnosis, and turn the recorders into one row per log interval of a plain-data SimulationRecord
+(no Drake object: it pickles, so it can cross a process boundary)."""
 
 from __future__ import annotations
 
@@ -10,15 +11,15 @@ import sys
 import time
 from typing import Callable
 import numpy as np
-from pydrake.systems.analysis import Simulator
+from pydrake.systems.analysis import ApplySimulatorConfig, Simulator
 
 from fivebar_drake.core.files import say
 from fivebar_drake.core.motor import clip_flags
 from fivebar_drake.core.rotation import tilt_deg
 from fivebar_drake.core.validation import ParameterError
-from fivebar_drake.mechanisms.fivebar.loop import loop_gaps
+from fivebar_drake.robots.quadruped.control_law import ControlGains
 from fivebar_drake.robots.quadruped.params import Params
-from fivebar_drake.robots.quadruped.plant import set_standing_pose
+from fivebar_drake.robots.quadruped.plant import ClosureDesign, RobotLayout, set_standing_pose
 from fivebar_drake.simulation.builder import Setup, build_diagram, check_run
 from fivebar_drake.simulation.scenario import Scenario, load_scenario, source_of
 
@@ -56,21 +57,22 @@ def interval_table(setup: Setup, params: Params, context) -> dict:
     Diagram's root context."""
     log = setup.recorder.FindLog(context)
     lay = setup.layout
-    times, data = log.sample_times(), log.data().T
+    # copies: the log's arrays are views into the Drake log, which the record must not hold
+    times, data = log.sample_times().copy(), log.data().T.copy()
     states, integrals = data[:, :lay.nx], data[:, lay.nx:]
     dt = np.diff(times)[:, None]
     q_act = np.zeros((len(times), lay.q_index.size))
     q_act[:, lay.actuators.ravel()] = states[:, lay.q_index.ravel()]
-    tree_q = np.array([setup.layout.indices[leg].q for leg in setup.layout.legs])
+    tree_q = np.array([lay.indices[leg].q for leg in lay.legs])
     # the motor's samples in each interval: those from its start up to before its end
     motor = setup.motor_log.FindLog(context)
     rows = len(times) - 1
     per_row = setup.motor_samples_per_row
-    samples = motor.data().T[:rows * per_row].reshape(rows, per_row, 3, -1)
+    samples = motor.data().T[:rows * per_row].copy().reshape(rows, per_row, 3, -1)
     command, delivered, applied = (samples[:, :, i] for i in range(3))
     at_peak, at_line = clip_flags(params.motor, command, delivered)
     return {"t": times[1:], "state": states[1:],
-            "gap": loop_gaps(params.leg, states[1:, tree_q]).reshape(len(dt), -1),
+            "gap": params.mechanism.loop_gaps(states[1:, tree_q]).reshape(len(dt), -1),
             "speed": np.diff(q_act, axis=0) / dt,
             "contact_generalized": np.diff(integrals, axis=0) / dt,
             "command": command.mean(1), "motor_torque": delivered.mean(1),
@@ -78,31 +80,45 @@ def interval_table(setup: Setup, params: Params, context) -> dict:
             "clipped_line": at_line.mean(1)}
 
 
-@dataclass
-class SimResult:
-    """What the recorder measured (interval_table: t, state, gap, speed, contact_generalized,
-    command, motor_torque, applied, clipped_peak, clipped_line), wall time (s), the error text
-    if the run stopped early, the signal that stopped it ("SIGINT", "SIGTERM"; "" if none), and
-    with log_actuation the times (steps,) s and joint torques (steps, n) N*m the plant received
-    at every step."""
+@dataclass(frozen=True)
+class SimulationRecord:
+    """A simulated run as plain data (numpy arrays and dataclasses, no Drake object), all that
+    post-processing needs: the scenario and parameters it ran with, the plant's layout
+    (RobotLayout: legs, joint and state indices, hips, mass properties), the closure design
+    (ClosureDesign: time step s, bushing), the controller gains (ControlGains, SI); the
+    recorder's table (interval_table: one row per log interval, SI); the wall time of the
+    stepping (s); the error text if the run stopped early ("" if not), the signal that stopped
+    it ("SIGINT", "SIGTERM"; "" if none); with log_actuation the times (steps,) s and joint
+    torques (steps, n) N*m in actuation order the plant received at every step, else None."""
 
-    table: dict
+    scenario: Scenario
+    params: Params
+    layout: RobotLayout
+    design: ClosureDesign
+    gains: ControlGains
+    table: dict[str, np.ndarray]
     wall_s: float
     error: str = ""
-    actuation: tuple | None = None
     interrupted: str = ""
+    actuation: tuple[np.ndarray, np.ndarray] | None = None
+
+    @property
+    def completed(self) -> bool:
+        """The run reached its requested duration (neither stopped early nor interrupted)."""
+        return not self.error and not self.interrupted
 
 
 def simulate(scenario: Scenario, params: Params, progress=True, log_actuation=False,
-             stop: Callable[[], str] | None = None):
-    """Check (check_run), build and run the scenario; returns (SimResult, Setup). A failure
-    mid-run keeps what was logged up to it (SimResult.error says what happened, for a divergence
-    with its likely cause). stop: polled every SLICE_S of simulated time; a non-empty answer
-    (the name of a signal) ends the run there (SimResult.interrupted). log_actuation: see
-    build_diagram."""
+             stop: Callable[[], str] | None = None) -> SimulationRecord:
+    """Check (check_run), build and run the scenario; returns its SimulationRecord. A failure
+    mid-run keeps what was logged up to it (SimulationRecord.error says what happened, for a
+    divergence with its likely cause). stop: polled every SLICE_S of simulated time; a non-empty
+    answer (the name of a signal) ends the run there (SimulationRecord.interrupted).
+    log_actuation: see build_diagram."""
     design = check_run(scenario, params)
     diagram, setup = build_diagram(scenario, params, design, log_actuation)
     simulator = Simulator(diagram)
+    ApplySimulatorConfig(scenario.simulator_config, simulator)
     context = simulator.get_mutable_context()
     set_standing_pose(setup.plant, setup.plant.GetMyMutableContextFromRoot(context),
                       setup.instance, setup.layout.legs, params)
@@ -137,8 +153,8 @@ def simulate(scenario: Scenario, params: Params, progress=True, log_actuation=Fa
                 wall = time.perf_counter() - start
                 tell(f"  t = {t:6.2f} s / {duration:g} s  ({t / wall:4.2f}x real time)")
     except RuntimeError as err:   # Drake's own errors: a divergence
-        error = divergence(str(err), context.get_time(), scenario, params, setup,
-                           interval_table(setup, params, context))
+        error = divergence(str(err), context.get_time(), scenario, params, setup.layout,
+                           setup.design, interval_table(setup, params, context))
     except ValueError as err:     # a fall, an unreachable target
         error = f"{err} (t = {context.get_time():.3f} s)"
     if error:
@@ -147,13 +163,15 @@ def simulate(scenario: Scenario, params: Params, progress=True, log_actuation=Fa
     actuation = None
     if setup.actuation_log is not None:
         log = setup.actuation_log.FindLog(context)
-        actuation = (log.sample_times(), log.data().T)
-    return SimResult(table=interval_table(setup, params, context), wall_s=wall, error=error,
-                     actuation=actuation, interrupted=interrupted), setup
+        actuation = (log.sample_times().copy(), log.data().T.copy())
+    return SimulationRecord(scenario=scenario, params=params, layout=setup.layout,
+                            design=setup.design, gains=setup.gains,
+                            table=interval_table(setup, params, context), wall_s=wall,
+                            error=error, interrupted=interrupted, actuation=actuation)
 
 
-def divergence(message: str, t: float, scenario: Scenario, params: Params, setup: Setup,
-               table: dict) -> str:
+def divergence(message: str, t: float, scenario: Scenario, params: Params, layout: RobotLayout,
+               design: ClosureDesign, table: dict) -> str:
     """What diverged, when and its likely cause in this tool's terms, from the last recorded
     intervals before the failure (Drake's message at the end)."""
     finite = np.all(np.isfinite(table["state"]), axis=1)
@@ -161,15 +179,15 @@ def divergence(message: str, t: float, scenario: Scenario, params: Params, setup
     recent = {k: v[max(0, first_bad - 10):first_bad] for k, v in table.items()}
     drake = message.strip().splitlines()[0] if message.strip() else "no message"
     head = f"the simulation diverged at t = {t:.3f} s"
-    step = f"scenario.time_step_s = {setup.design.time_step_s:g} s"
+    step = f"scenario.time_step_s = {design.time_step_s:g} s"
     if not len(recent["t"]):
         return f"{head} at its start ({drake}); check the time step ({step}) and the gains"
     gap = recent["gap"].max(axis=0)
-    height = recent["state"][:, setup.layout.body_q + 6]
+    height = recent["state"][:, layout.body_q + 6]
     speed = np.abs(recent["speed"]).max()
     clipped = float(np.mean(recent["clipped_peak"] + recent["clipped_line"]))
     if gap.max() > DIVERGED_GAP_M:
-        leg = setup.layout.legs[int(np.argmax(gap))]
+        leg = layout.legs[int(np.argmax(gap))]
         what = (f"the loop of leg {leg} came apart (gap {gap.max() * 1e3:.2f} mm); likely cause: "
                 f"{step} is too coarse for the {scenario.closure} closure's stiffness: use a "
                 "smaller time step, a larger target_loop_gap_m, or the closure 'bushing'")

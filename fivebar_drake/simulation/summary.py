@@ -28,18 +28,16 @@ from fivebar_drake.core.files import write_atomic
 from fivebar_drake.core.footpath import (cycle_phase, evaluate, stance_loads, stance_speed,
                                          stance_start)
 from fivebar_drake.core.rotation import body_rotation, tilt_deg
-from fivebar_drake.mechanisms.fivebar.dynamics import static_torques, torques
-from fivebar_drake.mechanisms.fivebar.jacobians import link_jacobians
-from fivebar_drake.mechanisms.fivebar.kinematics import forward
+from fivebar_drake.mechanisms.fivebar import (MOTORS, forward, link_jacobians, static_torques,
+                                              torques)
 from fivebar_drake.robots.quadruped.leg_loads import full_model, seed_model
 from fivebar_drake.robots.quadruped.params import Params
+from fivebar_drake.robots.quadruped.plant import RobotLayout
 from fivebar_drake.robots.quadruped.sdf import plane_rotation
-from fivebar_drake.simulation.builder import Setup
-from fivebar_drake.simulation.runner import SimResult
+from fivebar_drake.simulation.runner import SimulationRecord
 from fivebar_drake.simulation.scenario import Scenario
 
 
-MOTORS = ("A", "B")
 SUMMARY_FILES = ("summary.md", "summary.json")   # summary.json last: its presence means complete
 MIN_CYCLES = 3            # fewer whole cycles than this give no verdict
 PERCENTILE = 99.0
@@ -86,8 +84,11 @@ class Signals:
     swing_contact: np.ndarray
 
 
-def signals(result: SimResult, setup: Setup, params: Params, scenario: Scenario) -> Signals:
-    table, lay = result.table, setup.layout
+def signals(record: SimulationRecord) -> Signals:
+    """The run's signals (Signals) from its record alone: the recorder's table, the layout's
+    indices, the parameters and the scenario's gait schedule."""
+    table, lay = record.table, record.layout
+    params, scenario = record.params, record.scenario
     st, t = table["state"], table["t"]
     per_leg = lambda x: x[:, lay.actuators]  # noqa: E731  (rows, 8) -> (rows, legs, 2)
     qd = per_leg(table["speed"])
@@ -103,7 +104,7 @@ def signals(result: SimResult, setup: Setup, params: Params, scenario: Scenario)
     r_world_plane = np.array([body_rotation(v) @ plane_rotation() for v in quat])
     # contact point: the bottom of the foot sphere, (0, 0, -r) from its centre in the world
     down = -params.body.foot_radius_m * r_world_plane[:, 2, :2]          # leg plane (x, y)
-    force = foot_forces(table["contact_generalized"], setup, params, pose, down)
+    force = foot_forces(table["contact_generalized"], lay, params, pose, down)
     force_world = np.einsum("sij,slj->sli", r_world_plane[..., :2], force)
     jw_de = lj.jw[..., 3, :]                                            # (rows, legs, 2)
     j_contact = lj.jf.copy()
@@ -119,7 +120,7 @@ def signals(result: SimResult, setup: Setup, params: Params, scenario: Scenario)
                               np.nan)
     weight = params.robot.total_mass_kg * params.robot.gravity_m_s2
     loads = np.where(gaiting, stance_loads(params.gait, scenario.gait, tau_gait,
-                                           scenario.phases_rad, weight).T, weight / len(setup.layout.legs))
+                                           scenario.phases_rad, weight).T, weight / len(lay.legs))
     full = full_model(params)
     trot_static = static_torques(params.leg, params.links,
                                  dataclasses.replace(full, foot_load_N=loads), pose, lj)
@@ -140,7 +141,7 @@ def signals(result: SimResult, setup: Setup, params: Params, scenario: Scenario)
         swing_contact=(~stance) & gaiting & (force_world[..., 2] > SWING_CONTACT_N))
 
 
-def foot_forces(generalized, setup: Setup, params: Params, pose, down) -> np.ndarray:
+def foot_forces(generalized, layout: RobotLayout, params: Params, pose, down) -> np.ndarray:
     """Mean ground force on each foot (rows, legs, 2) in N, leg plane, from the interval means
     of the generalized contact forces (rows, nv): the contact point P (foot centre + down, leg
     plane) on link DE gives tau[theta_B] = (P - B)_perp . F and tau[phi_D] = (P - D)_perp . F
@@ -148,7 +149,7 @@ def foot_forces(generalized, setup: Setup, params: Params, pose, down) -> np.nda
     perp = lambda v: np.stack([-v[..., 1], v[..., 0]], -1)  # noqa: E731
     p = pose.f + down[:, None, :]
     jac_t = np.stack([perp(p - params.leg.b), perp(p - pose.d)], -2)      # rows of J_P^T
-    tau = np.stack([generalized[:, [setup.layout.indices[leg].v[k] for leg in setup.layout.legs]]
+    tau = np.stack([generalized[:, [layout.indices[leg].v[k] for leg in layout.legs]]
                     for k in (1, 3)], -1)
     return np.linalg.solve(jac_t, tau[..., None])[..., 0]
 
@@ -234,10 +235,12 @@ def _drag(sig: Signals, win, i: int) -> float:
     return float(np.mean(sig.swing_contact[win, i][mid])) if mid.any() else math.nan
 
 
-def summarize(sig: Signals, scenario: Scenario, params: Params, setup: Setup,
-              result: SimResult, seed_analysis: dict) -> dict:
-    """The summary.json dictionary (SI units). seed_analysis: the analysis results of the seed
-    model on the seed's ellipse (report.json's results.seed)."""
+def summarize(sig: Signals, record: SimulationRecord, seed_analysis: dict) -> dict:
+    """The summary.json dictionary (SI units) of a run from its signals (signals(record)) and
+    record. seed_analysis: the analysis results of the seed model on the seed's ellipse
+    (report.json's results.seed)."""
+    scenario, params, design = record.scenario, record.params, record.design
+    leg_names = record.layout.legs
     t_end = float(sig.t[-1]) if len(sig.t) else 0.0
     half_row = 0.5 * float(np.median(np.diff(sig.t))) if len(sig.t) > 1 else 0.0
     start, end, cycles = cycle_window(scenario, params, t_end + half_row)
@@ -245,8 +248,8 @@ def summarize(sig: Signals, scenario: Scenario, params: Params, setup: Setup,
     cycle = np.clip(np.floor((sig.t[win] - start - half_row) / params.gait.period_s), 0,
                     max(cycles - 1, 0)).astype(int)
     legs = {leg: {name: motor_summary(sig, params, win, cycle, cycles, i, j)
-                  for j, name in enumerate(MOTORS)} for i, leg in enumerate(setup.layout.legs)}
-    completed = not result.error and not result.interrupted
+                  for j, name in enumerate(MOTORS)} for i, leg in enumerate(leg_names)}
+    completed = record.completed
     sufficient = completed and cycles >= MIN_CYCLES
     motors = [(leg, name, m) for leg, ms in legs.items() for name, m in ms.items()]
     worst_leg, worst_motor, worst = min(motors, key=lambda x: (
@@ -259,9 +262,9 @@ def summarize(sig: Signals, scenario: Scenario, params: Params, setup: Setup,
     summary = {
         "gait": scenario.gait, "closure": scenario.closure,
         "duration_s": t_end, "requested_duration_s": scenario.duration_s,
-        "completed": completed, "interrupted": bool(result.interrupted),
-        "error": result.error or (f"interrupted by {result.interrupted} at t = {t_end:.2f} s"
-                                  if result.interrupted else ""),
+        "completed": completed, "interrupted": bool(record.interrupted),
+        "error": record.error or (f"interrupted by {record.interrupted} at t = {t_end:.2f} s"
+                                  if record.interrupted else ""),
         "cycles_in_window": cycles, "window_s": [start, end],
         "verdict": worst["verdict"] if sufficient else "insufficient",
         "worst_motor": f"{worst_leg} {worst_motor}",
@@ -271,23 +274,23 @@ def summarize(sig: Signals, scenario: Scenario, params: Params, setup: Setup,
         "gait_frequency_hz": params.gait.frequency_hz,
         "swing_clear_fraction": {leg: float(1 - sig.swing_contact[win, i].sum()
                                             / max(scheduled_swing[i], 1))
-                                 for i, leg in enumerate(setup.layout.legs)},
-        "swing_drag_fraction": {leg: _drag(sig, win, i) for i, leg in enumerate(setup.layout.legs)},
+                                 for i, leg in enumerate(leg_names)},
+        "swing_drag_fraction": {leg: _drag(sig, win, i) for i, leg in enumerate(leg_names)},
         "body_height_m": {"min": float(sig.body_p[:, 2].min()), "max": float(sig.body_p[:, 2].max())}
         if len(sig.t) else None,
         "max_loop_gap_m": float(np.max(sig.gap)) if len(sig.t) else math.nan,
         "max_loop_gap_per_leg_m": {leg: float(np.max(sig.gap[:, i])) if len(sig.t) else math.nan
-                                   for i, leg in enumerate(setup.layout.legs)},
-        "time_step_s": setup.design.time_step_s,
+                                   for i, leg in enumerate(leg_names)},
+        "time_step_s": design.time_step_s,
         "log_period_s": scenario.log_period_s,
-        "real_time_factor": t_end / result.wall_s if result.wall_s > 0 else math.nan,
-        "wall_time_s": result.wall_s,
-        "bushing": None if setup.design.bushing is None else {
-            "stiffness_N_m": setup.design.bushing.stiffness_N_m,
-            "damping_N_s_m": setup.design.bushing.damping_N_s_m},
-        "knee_effective_mass_kg": setup.design.m_eff_kg, "design_loop_force_N": setup.design.loop_force_N,
+        "real_time_factor": t_end / record.wall_s if record.wall_s > 0 else math.nan,
+        "wall_time_s": record.wall_s,
+        "bushing": None if design.bushing is None else {
+            "stiffness_N_m": design.bushing.stiffness_N_m,
+            "damping_N_s_m": design.bushing.damping_N_s_m},
+        "knee_effective_mass_kg": design.m_eff_kg, "design_loop_force_N": design.loop_force_N,
         "controller_gains": {k: np.asarray(v).tolist() for k, v in
-                             setup.gains._asdict().items()},
+                             record.gains._asdict().items()},
         "seed_peak_torque_Nm": seed_peak,
         "seed_static_estimate_optimistic": bool(worst["demand_p99_Nm"] > seed_peak),
         "motor_peak_torque_Nm": params.motor.peak_torque_Nm,

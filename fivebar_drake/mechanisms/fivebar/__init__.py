@@ -13,9 +13,9 @@ from fivebar_drake.mechanisms.fivebar.jacobians import (LinkJacobians, bias_acce
                                                          link_jacobians, link_jacobians_at,
                                                          point_jacobians, pose_jacobians)
 from fivebar_drake.mechanisms.fivebar.kinematics import (ALL_MODES, KNEES_OUT, LegPose,
-                                                          UnreachableError, forward, forward_pose,
-                                                          inverse, inverse_pose, knee_modes,
-                                                          reachable)
+                                                          UnreachableError, forward, forward_points,
+                                                          forward_pose, inverse, inverse_pose,
+                                                          knee_modes, reachable)
 from fivebar_drake.mechanisms.fivebar.leg import FiveBarLeg
 from fivebar_drake.mechanisms.fivebar.loop import JOINTS, loop_gaps, tree_positions
 from fivebar_drake.mechanisms.fivebar.singularity import (SingularityMeasures,
@@ -25,7 +25,7 @@ __all__ = ["ALL_MODES", "DynamicsModel", "FiveBarLeg", "GaitSamples", "JOINTS", 
            "LINK_NAMES", "LegGeometry", "LegPose", "LinkInertia", "LinkJacobians", "MOTORS",
            "SingularityMeasures", "TorqueBreakdown", "UnreachableError", "bias_accelerations",
            "bias_at", "com_fractions", "coriolis", "coriolis_at", "foot_from", "foot_jacobian", "forward",
-           "forward_pose", "inverse", "inverse_pose", "knee_modes", "link_jacobians", "link_jacobians_at",
+           "forward_points", "forward_pose", "inverse", "inverse_pose", "knee_modes", "link_jacobians", "link_jacobians_at",
            "loop_gaps", "mass_matrix", "mass_matrix_at", "physical_izz", "point_jacobians", "pose_jacobians", "reachable",
            "sample_gait", "singularity_measures", "static_at", "static_torques", "torques",
            "tree_positions", "workspace"]

@@ -61,14 +61,16 @@ def body_height(params: Params, foot_y):
     return params.body.foot_radius_m - params.body.hip_z_m - np.asarray(foot_y)
 
 
+def plane_to_body(hips_m, points_m) -> np.ndarray:
+    """Body-frame positions (m) of leg-plane points (..., 2) m of legs whose plane origins are at
+    hips_m (..., 3) m in the body frame (arrays broadcast): hip + R_body_plane [x, y, 0]."""
+    return np.asarray(hips_m) + np.asarray(points_m) @ plane_rotation()[:, :2].T
+
+
 def motor_positions(params: Params) -> np.ndarray:
     """Positions (8, 3) in m of the motor axes A and B of every leg in the body frame."""
-    rot = plane_rotation()
-    points = []
-    for hip in hip_positions(params).values():
-        for p in (params.leg.motor_a_m, params.leg.motor_b_m):
-            points.append(np.asarray(hip) + rot @ np.array([p[0], p[1], 0.0]))
-    return np.array(points)
+    hips = np.array(list(hip_positions(params).values()))[:, None, :]
+    return plane_to_body(hips, np.array([params.leg.motor_a_m, params.leg.motor_b_m])).reshape(-1, 3)
 
 
 def plane_rotation() -> np.ndarray:

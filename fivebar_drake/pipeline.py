@@ -1,0 +1,123 @@
+"""The toolkit's two jobs as functions: run, then write, with plain records in between.
+
+    run_analysis(config, gait)  -> AnalysisRecord    -> write_analysis(record, out_dir)
+    run_simulation(scenario)    -> SimulationRecord  -> summarize_run(record)
+                                                     -> write_simulation(record, out_dir)
+
+A record is plain data (numpy arrays and dataclasses: the parameters, the scenario, the plant's
+layout, the closure design, the controller gains, the recorded table; no Drake object), so it
+pickles: a run can happen in another process (a sweep's worker) and be summarized, plotted and
+recorded here, or later. The command line, the notebooks and the benchmarks go through these
+functions; the writers keep the command line's guarantees: each file written atomically, the
+previous run's files removed first, report.json and summary.json written last (a folder holding
+one holds a complete set, and summary.json's `completed` says whether the run reached its
+duration).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable
+
+from fivebar_drake.analysis.plots import write_plots
+from fivebar_drake.analysis.report import ANALYSIS_FILES, write_report
+from fivebar_drake.analysis.torques import Analysis, analyze
+from fivebar_drake.core.files import prepare_output_dir
+from fivebar_drake.robots.quadruped.config import load_params, sampling_error
+from fivebar_drake.robots.quadruped.params import Params
+from fivebar_drake.simulation.plots import SIM_PLOT_FILES, write_sim_plots
+from fivebar_drake.simulation.recording import RECORDING_FILE, write_recording
+from fivebar_drake.simulation.runner import SimulationRecord, simulate
+from fivebar_drake.simulation.scenario import Scenario
+from fivebar_drake.simulation.summary import SUMMARY_FILES, signals, summarize, write_summary
+
+
+SIMULATION_FILES = SIM_PLOT_FILES + (RECORDING_FILE,) + SUMMARY_FILES   # summary.json last
+
+
+@dataclass(frozen=True)
+class AnalysisRecord:
+    """The torque analysis of one foot path as plain data: the Analysis (parameters, sampled
+    gait, each model's torques in N*m, singularity measures, the JSON-ready results) and the
+    sampling error of its central differences (config.sampling_error: relative errors of the
+    peak joint speed and acceleration, the reference sample count, a warning or "")."""
+
+    analysis: Analysis
+    sampling_error: dict
+
+    @property
+    def params(self) -> Params:
+        return self.analysis.params
+
+    @property
+    def results(self) -> dict:
+        """report.json's results: per model ("seed", "full", "full_trot") and motor."""
+        return self.analysis.results["results"]
+
+
+def run_analysis(config: str | Path | Params | None = None,
+                 gait: str = "seed_ellipse") -> AnalysisRecord:
+    """The seed's torque analysis over one cycle of the foot path `gait` (footpath.PATHS).
+    config: a parameter file (TOML), None for the packaged one, or parameters already loaded.
+    ParameterError naming the file and field for a bad parameter file."""
+    params = config if isinstance(config, Params) else load_params(config)
+    return AnalysisRecord(analysis=analyze(params, path=gait),
+                          sampling_error=sampling_error(params, gait))
+
+
+def write_analysis(record: AnalysisRecord, out_dir: str | Path) -> list[Path]:
+    """Write ANALYSIS_FILES into out_dir (made if needed), each atomically: first remove a
+    previous analysis's files, then the plots, report.md and report.json last. Returns the
+    paths in the order written."""
+    out = prepare_output_dir(out_dir, "out_dir", ANALYSIS_FILES)
+    return write_plots(record.analysis, out) + write_report(record.analysis, out,
+                                                            record.sampling_error)
+
+
+def run_simulation(scenario: Scenario, params: Params | None = None, progress: bool = True,
+                   stop: Callable[[], str] | None = None,
+                   log_actuation: bool = False) -> SimulationRecord:
+    """Simulate the scenario (a validated copy of it; every check before a run first:
+    ParameterError naming the field); params: None loads the scenario's
+    (Scenario.load_params). progress: print progress lines to stderr.
+    stop: polled every 10 ms of simulated time, a non-empty answer (a signal's name) ends the
+    run there (record.interrupted). log_actuation: also record the joint torques the plant
+    received at every step (record.actuation). A run that stops early (diverged, fell over)
+    still returns what it recorded, with record.error saying why."""
+    scenario = dataclasses.replace(scenario)
+    scenario.validate()
+    return simulate(scenario, scenario.load_params() if params is None else params,
+                    progress=progress, log_actuation=log_actuation, stop=stop)
+
+
+def seed_reference(params: Params) -> dict:
+    """The static reference of every simulation summary: the seed model on the seed's ellipse
+    (report.json's results.seed, per motor)."""
+    return analyze(params).results["results"]["seed"]
+
+
+def _review(record: SimulationRecord):
+    """(Signals, summary dictionary) of a run."""
+    sig = signals(record)
+    return sig, summarize(sig, record, seed_reference(record.params))
+
+
+def summarize_run(record: SimulationRecord) -> dict:
+    """The run's summary (summary.json's dictionary, SI units): whole-cycle statistics per leg
+    and motor against the static estimates, the verdict and the answer in one sentence."""
+    return _review(record)[1]
+
+
+def write_simulation(record: SimulationRecord, out_dir: str | Path) -> tuple[dict, list[Path]]:
+    """Write SIMULATION_FILES into out_dir (made if needed), each atomically: first remove a
+    previous run's files, then the plots, the Rerun recording, summary.md and summary.json
+    last, so a summary.json always describes complete files. Returns (the summary as written,
+    the paths in the order written)."""
+    out = prepare_output_dir(out_dir, "out_dir", SIMULATION_FILES)
+    sig, summary = _review(record)
+    written = write_sim_plots(sig, record.layout.legs, record.params, summary, out)
+    written.append(write_recording(out / RECORDING_FILE, sig, record, summary))
+    written += write_summary(summary, record.params, out)
+    return summary, written

@@ -1,0 +1,85 @@
+"""The package's structure: layers with one-way imports, no import circle, the 5-bar used through
+its package, and the mechanism interface implemented."""
+
+import ast
+from pathlib import Path
+
+import pytest
+
+import fivebar_drake
+from fivebar_drake.mechanisms.base import Mechanism
+from fivebar_drake.robots.quadruped.config import load_params
+
+PACKAGE = Path(fivebar_drake.__file__).parent
+# a module may import from its own layer and the layers before it; analysis and simulation are
+# side by side and do not import each other
+LAYERS = {"core": 0, "mechanisms": 1, "robots": 2, "analysis": 3, "simulation": 3, "pipeline": 4,
+          "cli": 5, "__main__": 6}
+
+
+def module_name(path: Path) -> str:
+    parts = path.relative_to(PACKAGE.parent).with_suffix("").parts
+    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+
+def imports() -> dict[str, set[str]]:
+    """Each module of the package -> the package modules it imports (a name imported from a
+    package that is one of its modules counts as that module)."""
+    graph = {}
+    for path in PACKAGE.rglob("*.py"):
+        found = set()
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.ImportFrom) and (node.module or "").startswith("fivebar_drake"):
+                subs = {f"{node.module}.{a.name}" for a in node.names}
+                found |= {m for m in subs if (PACKAGE.parent / (m.replace(".", "/") + ".py"))
+                          .exists()} or {node.module}
+            elif isinstance(node, ast.Import):
+                found |= {a.name for a in node.names if a.name.startswith("fivebar_drake")}
+        graph[module_name(path)] = found
+    return graph
+
+
+def layer(module: str) -> str:
+    parts = module.split(".")
+    return parts[1] if len(parts) > 1 else ""
+
+
+def test_imports_run_one_way_between_layers():
+    wrong = [f"{m} -> {d}" for m, deps in imports().items() for d in deps
+             if layer(m) in LAYERS and layer(d) in LAYERS and layer(m) != layer(d)
+             and LAYERS[layer(d)] >= LAYERS[layer(m)]]
+    assert not wrong, wrong
+
+
+def test_no_import_circle():
+    graph, state, circles = imports(), {}, []
+
+    def visit(m, stack):
+        state[m] = "open"
+        for d in graph.get(m, ()):
+            if state.get(d) == "open":
+                circles.append(stack[stack.index(d):] + [d])
+            elif d in graph and d not in state:
+                visit(d, stack + [d])
+        state[m] = "done"
+
+    for m in graph:
+        if m not in state:
+            visit(m, [m])
+    assert not circles, circles
+
+
+def test_the_five_bar_is_used_through_its_package():
+    inside = "fivebar_drake.mechanisms.fivebar"
+    wrong = [f"{m} -> {d}" for m, deps in imports().items() if not m.startswith(inside)
+             for d in deps if d.startswith(inside + ".")]
+    assert not wrong, wrong
+
+
+def test_the_five_bar_leg_is_a_mechanism():
+    params = load_params()
+    leg = params.mechanism
+    assert isinstance(leg, Mechanism)
+    home = leg.inverse([params.gait.x_center_m, params.gait.y_home_m])
+    assert leg.forward(home.q, home.e_branch).f == pytest.approx(home.f, abs=1e-12)
+    assert leg.loop_gaps(leg.tree_positions(home)) < 1e-12
