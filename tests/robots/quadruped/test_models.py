@@ -12,7 +12,7 @@ from fivebar_drake.simulation.scenario import load_scenario
 from fivebar_drake.robots.quadruped.sdf import MODEL_FILES, body_mass_properties
 from fivebar_drake.simulation.builder import closure_design
 
-SDF = Path(__file__).parent.parent / "sdf"
+SDF = Path(__file__).parents[3] / "sdf"
 
 
 def test_committed_models_match_the_parameter_file(params):

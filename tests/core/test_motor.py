@@ -1,4 +1,4 @@
-"""Motor model against hand-computed points; bushing design against the 1-DOF explicit step."""
+"""The motor model (Drake C++ primitives) against hand-computed points and the rated line."""
 
 import dataclasses
 
@@ -6,8 +6,6 @@ import numpy as np
 import pytest
 from pydrake.systems.analysis import Simulator
 
-from fivebar_drake.robots.quadruped.closure import bushing_parameters
-from fivebar_drake.core.footpath import stance_weight
 from fivebar_drake.core.motor import MotorModel, clip_flags
 
 
@@ -62,47 +60,3 @@ def test_motor_model_saturates_on_the_rated_line(motor):
                                             motor.peak_torque_Nm), atol=1e-12)
     np.testing.assert_allclose(down, np.where(speed < 0, -motor.torque_limit(speed),
                                               -motor.peak_torque_Nm), atol=1e-12)
-
-
-def step_growth(k, d, m, dt, steps=4000):
-    """Largest |x| over the last 10 % of steps of the explicit spring-damper step (symplectic
-    Euler) started from x = 1, v = 0: decays towards 0 if stable, grows if not."""
-    x, v, peak = 1.0, 0.0, 0.0
-    for i in range(steps):
-        v += dt * (-k * x - d * v) / m
-        x += dt * v
-        if not np.isfinite(x):
-            return np.inf
-        if i >= 0.9 * steps:
-            peak = max(peak, abs(x))
-    return peak
-
-
-@pytest.mark.parametrize("zeta", [0.1, 0.3, 0.7])
-def test_bushing_step_is_stable_and_bound_is_tight(zeta):
-    m, force, gap = 0.006, 34.0, 4e-6
-    bushing, dt = bushing_parameters(m, force, gap, damping_ratio=zeta, margin=0.8)
-    k, d = bushing.stiffness_N_m, bushing.damping_N_s_m
-    assert force / k == pytest.approx(gap)
-    assert d == pytest.approx(2 * zeta * np.sqrt(k * m))
-    assert step_growth(k, d, m, dt) < 1e-2
-    _, dt_limit = bushing_parameters(m, force, gap, damping_ratio=zeta, margin=1.0)
-    assert step_growth(k, d, m, 1.05 * dt_limit) > 1e3          # just past the bound: diverges
-
-
-def test_bushing_rejects_bad_input():
-    with pytest.raises(ValueError, match=r"target_gap_m = 0.0: must be > 0"):
-        bushing_parameters(0.01, 30.0, 0.0)
-
-
-def test_stance_weight_hands_load_over_smoothly(params):
-    """0 in swing, 1 in mid-stance, rising and falling smoothly over the transfer time."""
-    import dataclasses
-
-    gait = dataclasses.replace(params.gait, duty_factor=0.75, frequency_hz=1.0)
-    t = np.linspace(0.0, 1.0, 100001)
-    w = stance_weight(gait, "trot", t, 0.0, 0.04)
-    assert np.all(w[t < 0.25] == 0.0)                       # swing: u < 1 - beta
-    assert np.all(w[(t > 0.29) & (t < 0.96)] == 1.0)        # 40 ms after touchdown .. before lift-off
-    assert np.max(np.abs(np.diff(w))) < 1e-3                # continuous at 10 us steps
-    assert w[np.searchsorted(t, 0.27)] == pytest.approx(0.5, abs=1e-3)   # halfway up at 20 ms

@@ -10,7 +10,7 @@ import pytest
 
 from fivebar_drake.analysis.torques import analyze
 from fivebar_drake.cli import main
-from fivebar_drake.core.footpath import TROT_PHASES_RAD, evaluate, stance_loads
+from fivebar_drake.core.footpath import TROT_PHASES_RAD, evaluate, stance_loads, stance_weight
 from fivebar_drake.analysis.plots import FIGURES
 from fivebar_drake.analysis.report import markdown
 
@@ -151,3 +151,14 @@ def test_report_and_plots_describe_the_path_analysed(params):
     seed_md = markdown(analyze(params))
     assert f"{g.a_m * 1e3:g} cos(wt)" in seed_md and f"{g.b_m * 1e3:g} sin(wt)" in seed_md
     assert "duty factor" not in seed_md.split("## Table 3")[0]
+
+
+def test_stance_weight_hands_load_over_smoothly(params):
+    """0 in swing, 1 in mid-stance, rising and falling smoothly over the transfer time."""
+    gait = dataclasses.replace(params.gait, duty_factor=0.75, frequency_hz=1.0)
+    t = np.linspace(0.0, 1.0, 100001)
+    w = stance_weight(gait, "trot", t, 0.0, 0.04)
+    assert np.all(w[t < 0.25] == 0.0)                       # swing: u < 1 - beta
+    assert np.all(w[(t > 0.29) & (t < 0.96)] == 1.0)        # 40 ms after touchdown .. before lift-off
+    assert np.max(np.abs(np.diff(w))) < 1e-3                # continuous at 10 us steps
+    assert w[np.searchsorted(t, 0.27)] == pytest.approx(0.5, abs=1e-3)   # halfway up at 20 ms
