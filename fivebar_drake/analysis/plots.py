@@ -6,6 +6,7 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 import numpy as np
 
+from fivebar_drake.analysis.report import FIGURE_NAMES
 from fivebar_drake.analysis.torques import Analysis
 from fivebar_drake.core.files import atomic_path
 from fivebar_drake.mechanisms.fivebar import MOTORS, workspace
@@ -123,6 +124,6 @@ def write_plots(an: Analysis, out_dir: Path) -> list[Path]:
     out_dir.mkdir(parents=True, exist_ok=True)
     return [_save(figure(an), out_dir / f"{name}.png") for name, figure in FIGURES.items()]
 
-FIGURES = {"joint_angles": joint_angles, "joint_rates": joint_rates,
-           "torque_components": torque_components, "total_torque": total_torque,
-           "workspace": workspace_map}
+# the report names the figures (report.FIGURE_NAMES, without importing matplotlib); in its order
+FIGURES = dict(zip(FIGURE_NAMES, (joint_angles, joint_rates, torque_components, total_torque,
+                                  workspace_map)))

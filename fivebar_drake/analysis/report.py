@@ -6,7 +6,6 @@ import json
 import math
 from pathlib import Path
 
-from fivebar_drake.analysis.plots import FIGURES
 from fivebar_drake.analysis.torques import Analysis
 from fivebar_drake.core.files import write_atomic
 from fivebar_drake.core.footpath import stance_speed
@@ -16,7 +15,8 @@ from fivebar_drake.robots.quadruped.config import sampling_error
 
 SIDE_BY_SIDE = ("seed", "full")
 REPORT_FILES = ("report.md", "report.json")
-ANALYSIS_FILES = REPORT_FILES + tuple(f"{name}.png" for name in FIGURES)   # what analyze writes
+FIGURE_NAMES = ("joint_angles", "joint_rates", "torque_components", "total_torque", "workspace")
+ANALYSIS_FILES = REPORT_FILES + tuple(f"{name}.png" for name in FIGURE_NAMES)  # what analyze writes
 
 
 def assumptions(analysis: Analysis) -> list[str]:
@@ -139,7 +139,7 @@ def markdown(analysis: Analysis, sampled: dict | None = None) -> str:
               f"{path['min_abs_det_jf_m2']:.3e} m^2", "", "## Assumptions", ""]
     lines += [f"- {a}" for a in assumptions(analysis)]
     lines += ["", "## Plots", ""]
-    lines += [f"![{name}]({name}.png)" for name in FIGURES]
+    lines += [f"![{name}]({name}.png)" for name in FIGURE_NAMES]
     return "\n".join(lines) + "\n"
 
 
