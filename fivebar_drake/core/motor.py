@@ -64,8 +64,9 @@ class MotorModel(Diagram):
     """Commanded torque and joint speed -> torque at the joints, built from Drake's C++
     primitives (no Python at run time). Values at the gearbox output, SI.
 
-    Input ports: "torque_command" (n) N*m, "plant_state" (nx). Both are sampled every period_s
-    (zero-order hold), and the law acts on the held values:
+    Input ports: "torque_command" (n) N*m, "plant_state" (nx). Every period_s the law is
+    evaluated on the command and the joint speeds and its results are held until the next
+    sample (zero-order hold):
     - the delivered torque is the command clamped to [lower, upper]: motoring (torque and speed
       of the same sign) is limited by the torque-speed line, braking by the peak torque,
       upper = clamp(peak (1 - w / w_0), 0, peak), lower = clamp(-peak (1 + w / w_0), -peak, 0)
@@ -73,7 +74,7 @@ class MotorModel(Diagram):
     - friction tau_c clamp(w / w_s, -1, 1) + b w (Coulomb, regularised over |w| < w_s =
       FRICTION_SMOOTHING_RAD_S, and viscous) opposes the motion.
     Output ports: "applied_torque" (n) N*m at the joints (delivered - friction); "motor_record"
-    (3 n): the held command, the delivered torque and the applied torque (N*m), constant between
+    (3 n): the sampled command, the delivered torque and the applied torque (N*m), held between
     samples (clip_flags classifies the clipping). The rotor's reflected inertia N^2 J_rotor is
     in the plant (<drake:rotor_inertia>, <drake:gear_ratio>), not here."""
 
@@ -84,8 +85,6 @@ class MotorModel(Diagram):
                                                               / motor.no_load_speed_rad_s)
         eye, zero = np.eye(n), np.zeros((n, n))
         b = DiagramBuilder()
-        command = b.AddNamedSystem("hold_command", ZeroOrderHold(period_s, n))
-        state = b.AddNamedSystem("hold_state", ZeroOrderHold(period_s, nx))
         select = np.zeros((n, nx))
         select[np.arange(n), v_index] = 1.0
         speed = b.AddNamedSystem("speed", MatrixGain(select))
@@ -106,27 +105,28 @@ class MotorModel(Diagram):
         friction = np.hstack([zero, zero, zero, motor.coulomb_friction_Nm * eye,
                               motor.viscous_friction_Nm_s * eye])
         law = b.AddNamedSystem("law", MatrixGain(np.vstack([delivered, delivered - friction])))
-        split = b.AddNamedSystem("split", Demultiplexer([n, n]))
-        record = b.AddNamedSystem("record", Multiplexer([n, 2 * n]))
-        b.ExportInput(command.get_input_port(), "torque_command")
-        b.ExportInput(state.get_input_port(), "plant_state")
-        b.Connect(state.get_output_port(), speed.get_input_port())
+        record = b.AddNamedSystem("record", Multiplexer([n, 2 * n]))   # c, delivered, applied
+        hold = b.AddNamedSystem("hold", ZeroOrderHold(period_s, 3 * n))
+        split = b.AddNamedSystem("split", Demultiplexer([n, n, n]))
+        b.ExportInput(beyond.get_input_port(0), "torque_command")
+        for port in (terms.get_input_port(0), record.get_input_port(0)):
+            b.ConnectInput("torque_command", port)
+        b.ExportInput(speed.get_input_port(), "plant_state")
         b.Connect(speed.get_output_port(), line.get_input_port())
         b.Connect(line.get_output_port(), limits.get_input_port())
-        b.Connect(command.get_output_port(), beyond.get_input_port(0))
         b.Connect(limits.get_output_port(), beyond.get_input_port(1))
         b.Connect(beyond.get_output_port(), excess.get_input_port())
         b.Connect(excess.get_output_port(), positive.get_input_port())
         b.Connect(speed.get_output_port(), slip.get_input_port())
         b.Connect(slip.get_output_port(), unit.get_input_port())
-        for i, source in enumerate((command, positive, unit, speed)):
+        for i, source in enumerate((positive, unit, speed), start=1):
             b.Connect(source.get_output_port(), terms.get_input_port(i))
         b.Connect(terms.get_output_port(), law.get_input_port())
-        b.Connect(law.get_output_port(), split.get_input_port())
-        b.Connect(command.get_output_port(), record.get_input_port(0))
         b.Connect(law.get_output_port(), record.get_input_port(1))
-        b.ExportOutput(split.get_output_port(1), "applied_torque")
-        b.ExportOutput(record.get_output_port(), "motor_record")
+        b.Connect(record.get_output_port(), hold.get_input_port())
+        b.Connect(hold.get_output_port(), split.get_input_port())
+        b.ExportOutput(split.get_output_port(2), "applied_torque")
+        b.ExportOutput(hold.get_output_port(), "motor_record")
         b.BuildInto(self)
 
 
