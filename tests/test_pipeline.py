@@ -14,7 +14,8 @@ import pytest
 from fivebar_drake.pipeline import (AnalysisRecord, SimulationRecord, run_analysis,
                                     run_simulation, summarize_run, write_analysis,
                                     write_simulation)
-from fivebar_drake.simulation.scenario import DRAKE_CONFIGS, config_fields, load_scenario
+from fivebar_drake.core.drake_configs import config_fields
+from fivebar_drake.simulation.scenario import DRAKE_CONFIGS, load_scenario
 
 TEST_DURATION_S = 4.5   # 0.5 s standing, 1 s ramp, 3 whole trot cycles
 WALL_CLOCK = ("real_time_factor", "wall_time_s")

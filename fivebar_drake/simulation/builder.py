@@ -6,11 +6,11 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 import numpy as np
-from pydrake.multibody.plant import (ApplyMultibodyPlantConfig, MultibodyPlant,
-                                     MultibodyPlantConfig)
+from pydrake.multibody.plant import ApplyMultibodyPlantConfig, MultibodyPlant
 from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import DiscreteTimeIntegrator, Multiplexer, VectorLogSink
 
+from fivebar_drake.core.drake_configs import config_with
 from fivebar_drake.core.footpath import stance_start
 from fivebar_drake.core.motor import MotorModel
 from fivebar_drake.core.validation import ParameterError, check_number, require
@@ -18,7 +18,7 @@ from fivebar_drake.robots.quadruped.closure import design_closure
 from fivebar_drake.robots.quadruped.control_law import ControlGains
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.plant import ClosureDesign, RobotLayout, add_robot
-from fivebar_drake.simulation.scenario import Scenario, config_fields
+from fivebar_drake.simulation.scenario import Scenario
 from fivebar_drake.simulation.systems import FootLegController, GaitSource, derive_gains
 
 
@@ -75,10 +75,9 @@ def check_plant_config(scenario: Scenario, time_step: float) -> None:
                 f"{field}.discrete_contact_approximation", config.discrete_contact_approximation,
                 f"the '{scenario.closure}' closure is a SAP constraint: use one of "
                 f"{list(SAP_APPROXIMATIONS)} (another solver would ignore it)")
-    trial = MultibodyPlantConfig(**config_fields(config))
-    trial.time_step = time_step
     try:
-        ApplyMultibodyPlantConfig(trial, MultibodyPlant(time_step))
+        ApplyMultibodyPlantConfig(config_with(config, time_step=time_step),
+                                  MultibodyPlant(time_step))
     except (RuntimeError, ValueError) as err:
         raise ParameterError(f"{field}: Drake refuses it: {err}", field) from None
 

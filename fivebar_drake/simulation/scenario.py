@@ -24,6 +24,7 @@ import yaml
 from pydrake.multibody.plant import MultibodyPlantConfig
 from pydrake.systems.analysis import SimulatorConfig
 
+from fivebar_drake.core.drake_configs import config_fields
 from fivebar_drake.core.files import read_input_text
 from fivebar_drake.core.footpath import PATHS, TROT_PHASES_RAD
 from fivebar_drake.core.validation import ParameterError, check_number, require
@@ -49,11 +50,6 @@ MAX_LOOP_GAP_M = 1e-3             # 1 % of a link: a looser loop is not the 5-ba
 MIN_LOOP_GAP_M = 1e-7             # the bushing's stiffness is loop force / gap: beyond ~1e8 N/m
 #                                   SAP's compliant constraint is no longer compliant
 MAX_PHASE_RAD = 2 * math.pi       # a gait phase is an angle of the cycle: one turn either way
-
-
-def config_fields(config) -> dict:
-    """A Drake config's fields as a plain dict."""
-    return {f.name: getattr(config, f.name) for f in type(config).__fields__}
 
 
 def default_simulator_config() -> SimulatorConfig:

@@ -111,9 +111,9 @@ class FootLegController(LeafSystem):
       forces of least weighted norm (weights w) that produce it, vertical forces >= 0 and
       horizontal ones inside the friction cone; each motor pair gives -J_F(q)^T F.
     - Swing legs catch the body (catch_gain > 0): under a hip that the tilt lowers, the swing
-      foot's target reaches down (leg_control.catch_offset); with touchdown_detection a
+      foot's target reaches down (control_law.catch_offset); with touchdown_detection a
       descending swing foot that meets the ground early joins the support
-      (leg_control.early_touchdown). The legs
+      (control_law.early_touchdown). The legs
       are planar and cannot step sideways: with a diagonal pair alone on the ground nothing
       else stops the body tipping about the diagonal.
     - The links' weight is compensated on every leg."""
@@ -149,7 +149,7 @@ class FootLegController(LeafSystem):
 
     def command(self, references, state) -> np.ndarray:
         """Torque command (8) in actuation order from the foot references (GaitSource) and the
-        plant state vector (nx,) (leg_control.leg_command). Raises UnreachableError naming the
+        plant state vector (nx,) (control_law.leg_command). Raises UnreachableError naming the
         target or pose where the legs cannot close."""
         out, goal, finite = leg_command(self.constants, np.asarray(references, dtype=float),
                                         np.asarray(state, dtype=float))

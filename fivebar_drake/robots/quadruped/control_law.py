@@ -49,9 +49,9 @@ class LawConstants(NamedTuple):
     the body frame, mass_kg, plane (3, 3) = R_body_plane. Leg: geom (LegGeometry.core),
     com_fraction, masses, izz (4,) of the links, gravity, reflected_inertia (N^2 J_rotor).
     Gains (ControlGains). Feet: foot_radius_m, friction mu; stand_offset_m: the body height
-    with the feet at leg-plane y = 0 (sdf.body_height(params, 0); it drops as y rises).
-    Catch reflex: catch_gain,
-    catch_rate_s, catch_limit_m (the step height); touchdown: early-touchdown detection on."""
+    with the feet at leg-plane y = 0 (sdf.body_height(params, 0); it drops as y rises). Catch
+    reflex: catch_gain, catch_rate_s, catch_limit_m (the step height); touchdown: early-touchdown
+    detection on."""
 
     q_index: np.ndarray
     v_index: np.ndarray

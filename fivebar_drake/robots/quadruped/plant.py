@@ -14,6 +14,7 @@ from pydrake.systems.framework import DiagramBuilder
 
 from fivebar_drake.mechanisms.fivebar import JOINTS
 from fivebar_drake.robots.quadruped.params import Params
+from fivebar_drake.core.drake_configs import config_with
 from fivebar_drake.mechanisms.base import Bushing
 from fivebar_drake.robots.quadruped.sdf import (LEGS, body_height, hip_positions,
                                                 quadruped_sdf, single_leg_sdf)
@@ -130,10 +131,7 @@ def add_robot(builder: DiagramBuilder, params: Params, design: ClosureDesign,
     """Add the finalized quadruped plant (plant_config, default default_plant_config, at the
     design's time step, loops closed as designed) and flat ground to builder; returns (plant,
     model instance, RobotLayout)."""
-    config = MultibodyPlantConfig(**{f.name: getattr(plant_config or default_plant_config(),
-                                                     f.name)
-                                     for f in MultibodyPlantConfig.__fields__})
-    config.time_step = design.time_step_s
+    config = config_with(plant_config or default_plant_config(), time_step=design.time_step_s)
     plant, _ = AddMultibodyPlant(config, builder)
     instance, legs = add_model(plant, params, "quadruped", design.closure, design.bushing)
     ground = ProximityProperties()
