@@ -1,8 +1,10 @@
 """Command line of fivebar_drake:
 
-  fivebar-drake analyze  [--gait {seed_ellipse,trot}] [--config FILE] [--out DIR]
-  fivebar-drake simulate [--scenario FILE] [--config FILE] [--gait {trot,seed_ellipse}]
-                         [--duration S] [--closure {bushing,bushing_rpy,ball}] [--out DIR]
+  fivebar-drake analyze  [--mechanism NAME] [--gait {seed_ellipse,trot}] [--config FILE]
+                         [--out DIR]
+  fivebar-drake simulate [--mechanism NAME] [--scenario FILE] [--config FILE]
+                         [--gait {trot,seed_ellipse}] [--duration S]
+                         [--closure {bushing,bushing_rpy,ball}] [--out DIR]
   fivebar-drake compare  RUN_DIR [RUN_DIR ...] [--out FILE]
   fivebar-drake models   [--scenario FILE] [--config FILE] [--out DIR]"""
 
@@ -16,6 +18,7 @@ import time
 import traceback
 from importlib.metadata import version
 
+from fivebar_drake import catalog
 from fivebar_drake.core.files import check_output_file, prepare_output_dir, say
 from fivebar_drake.core.footpath import PATHS
 from fivebar_drake.core.interrupts import Interrupted, Signals
@@ -40,15 +43,57 @@ def _err(text: str) -> None:
     say(f"fivebar-drake: {text}", sys.stderr)
 
 
+def _only_for_fivebar(args, *options) -> None:
+    """ParameterError for an option of the quadruped's 5-bar leg given with another mechanism."""
+    for option in options:
+        value = getattr(args, option.lstrip("-"))
+        if value is not None:
+            raise ParameterError(f"{option} = {value}: applies to --mechanism {catalog.FIVEBAR} "
+                                 f"only, not to {args.mechanism}", option, "the command line")
+
+
+def _study(args, signals, job: str) -> int:
+    """analyze or simulate a mechanism of catalog.STUDIES: its parameters first (bad input:
+    exit 2 before the folder is touched), then its files."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    study = catalog.study(args.mechanism)
+    if job == "simulate" and not catalog.can_simulate(args.mechanism):
+        raise ParameterError(f"--mechanism = {args.mechanism}: has no simulation; simulate "
+                             f"takes {[m for m in catalog.MECHANISMS if catalog.can_simulate(m)]}",
+                             "--mechanism", "the command line")
+    start = time.perf_counter()
+    params = study.load_params(args.config)
+    files = study.ANALYSIS_FILES if job == "analyze" else study.SIMULATION_FILES
+    default = f"out/{args.mechanism}" if job == "analyze" else f"out/simulation/{args.mechanism}"
+    out = prepare_output_dir(args.out or default, "--out", files)
+    say(f"{args.mechanism} parameters: {args.config or 'packaged default'}")
+    if job == "analyze":
+        lines, written = study.write_analysis(params, out)
+    else:
+        lines, written = study.write_simulation(params, out, args.duration, progress=True)
+    for line in lines:
+        say(line)
+    say(f"wrote {len(written)} files to {out.resolve()} in {time.perf_counter() - start:.1f} s:")
+    for path in written:
+        say(f"  {path}")
+    return 0
+
+
 def _analyze(args, signals) -> int:
+    if args.mechanism != catalog.FIVEBAR:
+        _only_for_fivebar(args, "--gait")
+        return _study(args, signals, "analyze")
     import matplotlib
 
     matplotlib.use("Agg")  # files only, never a window
     from fivebar_drake import pipeline
 
+    args.gait = args.gait or "seed_ellipse"
     start = time.perf_counter()
     params = load_params(args.config)             # bad input: exit 2 before the folder is touched
-    out = prepare_output_dir(args.out, "--out", pipeline.ANALYSIS_FILES)
+    out = prepare_output_dir(args.out or "out/analysis", "--out", pipeline.ANALYSIS_FILES)
     say(f"parameters: {args.config or 'packaged default'}")
     record = pipeline.run_analysis(params, gait=args.gait)
     written = pipeline.write_analysis(record, out)
@@ -68,6 +113,9 @@ def _analyze(args, signals) -> int:
 
 
 def _simulate(args, signals) -> int:
+    if args.mechanism != catalog.FIVEBAR:
+        _only_for_fivebar(args, "--scenario", "--gait", "--closure")
+        return _study(args, signals, "simulate")
     import matplotlib
 
     matplotlib.use("Agg")
@@ -76,7 +124,7 @@ def _simulate(args, signals) -> int:
 
     scenario, params = load_run(args.scenario, duration_s=args.duration, closure=args.closure,
                                 gait=args.gait, params_file=args.config)
-    out = prepare_output_dir(args.out, "--out", pipeline.SIMULATION_FILES)
+    out = prepare_output_dir(args.out or "out/simulation", "--out", pipeline.SIMULATION_FILES)
     record = pipeline.run_simulation(scenario, params, progress=True, stop=lambda: signals.name)
     summary, written = pipeline.write_simulation(record, out)   # summary.json last
     say(f"{summary['gait']} gait, {summary['closure']} closure: {summary['duration_s']:.2f} s "
@@ -152,14 +200,22 @@ def parser() -> argparse.ArgumentParser:
         p.set_defaults(run=run)
         return p
 
-    p = command("analyze", _analyze, "the seed's torque analysis over one cycle of a foot path")
-    p.add_argument("--gait", choices=PATHS, default="seed_ellipse",
-                   help="foot path to analyse (default: %(default)s, the seed's)")
-    p.add_argument("--config", **config)
-    p.add_argument("--out", default="out/analysis", metavar="DIR",
+    mechanism = dict(choices=catalog.MECHANISMS, default=catalog.FIVEBAR,
+                     help="the mechanism (default: %(default)s, the quadruped's 5-bar leg)")
+    p = command("analyze", _analyze, "the seed's torque analysis over one cycle of a foot path "
+                "(5-bar leg), or another mechanism's analysis")
+    p.add_argument("--mechanism", **mechanism)
+    p.add_argument("--gait", choices=PATHS,
+                   help="foot path to analyse, 5-bar leg only (default: seed_ellipse, the seed's)")
+    p.add_argument("--config", **{**config, "help": "parameter file (TOML, the layout of the "
+                                  "mechanism's file in fivebar_drake/data/: default.toml for the "
+                                  "5-bar leg, NAME.toml for another); default: the packaged one"})
+    p.add_argument("--out", metavar="DIR",
                    help="output folder; a previous analysis's files in it are replaced "
-                        "(default: %(default)s)")
-    s = command("simulate", _simulate, "Drake simulation of the trotting quadruped")
+                        "(default: out/analysis for the 5-bar leg, out/NAME for another)")
+    s = command("simulate", _simulate, "Drake simulation of the trotting quadruped, or of "
+                "another mechanism")
+    s.add_argument("--mechanism", **mechanism)
     s.add_argument("--scenario", metavar="FILE",
                    help="scenario file (YAML, fields of fivebar_drake.simulation.scenario.Scenario, see "
                         "README); default: the built-in scenario")
@@ -172,9 +228,10 @@ def parser() -> argparse.ArgumentParser:
                         f"{DEFAULTS.duration_s:g})")
     s.add_argument("--closure", choices=CLOSURES,
                    help=f"loop closure (overrides the scenario's; default: {DEFAULTS.closure})")
-    s.add_argument("--out", default="out/simulation", metavar="DIR",
+    s.add_argument("--out", metavar="DIR",
                    help="output folder; a previous run's files in it are removed before the "
-                        "run starts (default: %(default)s)")
+                        "run starts (default: out/simulation for the quadruped, "
+                        "out/simulation/NAME for another mechanism)")
     c = command("compare", _compare, "simulated runs side by side: what the foot path costs")
     c.add_argument("runs", nargs="+", metavar="RUN_DIR", help="output folders of `simulate` runs")
     c.add_argument("--out", default="out/gait_comparison.md", metavar="FILE",

@@ -1,0 +1,1 @@
+"""End-to-end studies of the seeds' other mechanisms, one package each (see catalog.py)."""
