@@ -2,8 +2,10 @@
 assembly use a mechanism through this interface only.
 
 Coordinates: q (..., motors) are the actuated joints (rad or m); points, such as the foot or
-tool point, are in the mechanism's own frame (m); tree coordinates x (..., n_tree) are the
-joint positions of the mechanism's Drake model, a tree cut open where a loop closes.
+tool point, are in the mechanism's own frame (m), with d coordinates (d = 2 for a planar
+mechanism such as the 5-bar leg, 3 or more for a spatial one: its docstring says which); tree
+coordinates x (..., n_tree) are the joint positions of the mechanism's Drake model, a tree cut
+open where a loop closes.
 """
 
 from __future__ import annotations
@@ -47,11 +49,11 @@ class Mechanism(Protocol):
         branch selects the forward-kinematics branch (None: the mechanism's default)."""
 
     def inverse(self, point, mode, strict: bool = True):
-        """Pose reaching the tool point(s) (..., 2) in assembly mode; strict: raise where out of
+        """Pose reaching the tool point(s) (..., d) in assembly mode; strict: raise where out of
         reach (else NaN)."""
 
     def tool_jacobian(self, pose) -> np.ndarray:
-        """d(tool point)/dq (..., 2, motors)."""
+        """d(tool point)/dq (..., d, motors)."""
 
     def mass_matrix(self, pose) -> np.ndarray:
         """Joint-space mass matrix of the links (..., motors, motors), physical inertias."""
