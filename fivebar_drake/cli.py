@@ -5,6 +5,7 @@
   fivebar-drake simulate [--mechanism NAME] [--scenario FILE] [--config FILE]
                          [--gait {trot,seed_ellipse}] [--duration S]
                          [--closure {bushing,bushing_rpy,ball}] [--out DIR]
+  fivebar-drake sweep    SPEC.yaml [--out DIR] [--workers N] [--scheduler ADDRESS]
   fivebar-drake compare  RUN_DIR [RUN_DIR ...] [--out FILE]
   fivebar-drake models   [--scenario FILE] [--config FILE] [--out DIR]"""
 
@@ -159,6 +160,34 @@ def _simulate(args, signals) -> int:
     return 0
 
 
+def _sweep(args, signals) -> int:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from pathlib import Path
+    from fivebar_drake.sweep.engine import sweep
+    from fivebar_drake.sweep.spec import load_spec
+
+    spec = load_spec(args.spec)
+    if args.workers is not None and (args.workers < 1 or args.scheduler):
+        raise ParameterError(f"--workers = {args.workers}: must be >= 1, and applies to the "
+                             "local cluster (not with --scheduler)", "--workers", "the command line")
+    out = Path(args.out or Path("out/sweep") / Path(args.spec).stem)
+    start = time.perf_counter()
+    result, summary, written = sweep(spec, out, args.workers, args.scheduler)
+    say(f"{summary['points']} design points ({spec.fidelity}), {result.computed} computed now, "
+        f"{result.failed} failed; outcomes: " + ", ".join(
+            f"{k} {v}" for k, v in sorted(summary["outcomes"].items())))
+    best = summary["fastest_passing"]
+    say("fastest design where every motor passes: " + ("none" if best is None else
+        f"point {best['point']} " + ", ".join(f"{k} = {best[k]}" for k in spec.names)
+        + f" ({best['speed_m_s']:.3f} m/s, worst SF {best['worst_safety_factor']:.2f})"))
+    say(f"wrote {len(written)} files to {out.resolve()} in {time.perf_counter() - start:.1f} s:")
+    for path in written:
+        say(f"  {path}")
+    return 0
+
+
 def _compare(args, signals) -> int:
     import matplotlib
 
@@ -232,6 +261,17 @@ def parser() -> argparse.ArgumentParser:
                    help="output folder; a previous run's files in it are removed before the "
                         "run starts (default: out/simulation for the quadruped, "
                         "out/simulation/NAME for another mechanism)")
+    w = command("sweep", _sweep, "a parameter sweep of the 5-bar quadruped (closed-form "
+                "analysis or simulation points) on a local Dask cluster or an existing one")
+    w.add_argument("spec", metavar="SPEC", help="sweep spec (YAML; see README: fidelity, "
+                   "sampling, vary, config, scenario)")
+    w.add_argument("--out", metavar="DIR", help="output folder: points.csv, plots, sweep.md; "
+                   "rerunning the same sweep into it computes only the missing points "
+                   "(default: out/sweep/SPEC's name)")
+    w.add_argument("--workers", type=int, metavar="N", help="process workers of the local "
+                   "cluster, one thread each (default: one per core)")
+    w.add_argument("--scheduler", metavar="ADDRESS", help="send the sweep to this Dask "
+                   "scheduler (tcp://HOST:PORT) instead of a local cluster")
     c = command("compare", _compare, "simulated runs side by side: what the foot path costs")
     c.add_argument("runs", nargs="+", metavar="RUN_DIR", help="output folders of `simulate` runs")
     c.add_argument("--out", default="out/gait_comparison.md", metavar="FILE",

@@ -5,7 +5,8 @@ its modules."""
 from fivebar_drake.mechanisms.fivebar.dynamics import (DynamicsModel, TorqueBreakdown, coriolis,
                                                         coriolis_at, mass_matrix, mass_matrix_at,
                                                         static_at, static_torques, torques)
-from fivebar_drake.mechanisms.fivebar.gait import GaitSamples, sample_gait
+from fivebar_drake.mechanisms.fivebar.gait import (GaitSamples, periodic_derivatives, sample_gait,
+                                                   track_modes)
 from fivebar_drake.mechanisms.fivebar.geometry import (LINK_NAMES, MOTORS, LegGeometry,
                                                         LinkInertia, physical_izz)
 from fivebar_drake.mechanisms.fivebar.jacobians import (LinkJacobians, bias_accelerations, bias_at,
@@ -26,6 +27,6 @@ __all__ = ["ALL_MODES", "DynamicsModel", "FiveBarLeg", "GaitSamples", "JOINTS", 
            "SingularityMeasures", "TorqueBreakdown", "UnreachableError", "bias_accelerations",
            "bias_at", "com_fractions", "coriolis", "coriolis_at", "foot_from", "foot_jacobian", "forward",
            "forward_points", "forward_pose", "inverse", "inverse_pose", "knee_modes", "link_jacobians", "link_jacobians_at",
-           "loop_gaps", "mass_matrix", "mass_matrix_at", "physical_izz", "point_jacobians", "pose_jacobians", "reachable",
+           "loop_gaps", "mass_matrix", "mass_matrix_at", "periodic_derivatives", "physical_izz", "point_jacobians", "pose_jacobians", "reachable",
            "sample_gait", "singularity_measures", "static_at", "static_torques", "torques",
-           "tree_positions", "workspace"]
+           "track_modes", "tree_positions", "workspace"]

@@ -14,28 +14,33 @@ from fivebar_drake.mechanisms.fivebar.kinematics import ALL_MODES, KNEES_OUT, Le
 
 
 def track_modes(leg: LegGeometry, foot, start_mode=KNEES_OUT) -> tuple[LegPose, np.ndarray]:
-    """IK along a path of foot targets (N, 2): the first sample in start_mode, then at each sample
-    the solution nearest the previous one in wrap-aware angular distance
-    sum_j min(|dq_j|, 2 pi - |dq_j|). Returns the poses and the chosen mode index (into
-    ALL_MODES) per sample."""
+    """IK along paths of foot targets (N, ..., 2), time first (the trailing axes are separate
+    paths of N samples each): the first sample in start_mode, then at each sample the solution
+    nearest the previous one in wrap-aware angular distance sum_j min(|dq_j|, 2 pi - |dq_j|).
+    Returns the poses (N, ...) and the chosen mode index (into ALL_MODES) per sample (N, ...).
+    UnreachableError where start_mode cannot reach a target."""
     foot = np.asarray(foot, dtype=float)
     order = [start_mode] + [m for m in ALL_MODES if m != start_mode]
     solutions = [inverse(leg, foot, mode, strict=(mode == start_mode)) for mode in order]
-    q_all = np.stack([s.q for s in solutions])                     # (modes, N, 2)
-    choice = np.zeros(len(foot), dtype=int)
+    q_all = np.stack([s.q for s in solutions])                 # (modes, N, ..., 2)
+    flat = q_all.reshape(len(order), len(foot), -1, 2)         # (modes, N, paths, 2)
+    paths = np.arange(flat.shape[2])
+    choice = np.zeros(flat.shape[1:3], dtype=int)
     for k in range(1, len(foot)):
-        dist = np.abs(wrap(q_all[:, k] - q_all[choice[k - 1], k - 1])).sum(-1)
-        choice[k] = int(np.nanargmin(dist))
-    rows = np.arange(len(foot))
-    picked = {name: np.stack([getattr(s, name) for s in solutions])[choice, rows]
+        dist = np.abs(wrap(flat[:, k] - flat[choice[k - 1], k - 1, paths])).sum(-1)
+        choice[k] = np.nanargmin(dist, axis=0)
+    choice = choice.reshape(foot.shape[:-1])
+    picked = {name: np.take_along_axis(np.stack([getattr(s, name) for s in solutions]),
+                                       choice[None, ..., None], 0)[0]
               for name in ("q", "c", "d", "e")}
     pose = LegPose(**picked, f=foot)
-    mode_index = np.array([ALL_MODES.index(order[c]) for c in choice])
+    mode_index = np.array([ALL_MODES.index(m) for m in order])[choice]
     return pose, mode_index
 
 
-def periodic_derivatives(q, dt: float):
-    """Central differences over one periodic cycle of samples q (N, ...) spaced dt (s):
+def periodic_derivatives(q, dt):
+    """Central differences over periodic cycles of samples q (N, ...), time first, spaced dt
+    (s; a number, or an array broadcasting against q[0]):
     q_dot = (q[i+1] - q[i-1]) / (2 dt), q_ddot = (q[i+1] - 2 q[i] + q[i-1]) / dt^2, with angle
     differences wrapped so a turn through +-pi is not a jump."""
     fwd = wrap(np.roll(q, -1, axis=0) - q)

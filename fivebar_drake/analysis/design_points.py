@@ -1,0 +1,139 @@
+"""Many designs at once: the full model's torque analysis (torques.analyze, model "full") over one
+gait cycle for a batch of parameter sets, vectorised over the designs that share a leg (a sweep's
+`analysis` fidelity).
+
+A design is the base parameters with some fields changed by dotted path ("gait.frequency_hz",
+"leg.ce_m", ...; with_changes). Designs with the same leg geometry, links, gravity and sample
+count are solved together: one IK with mode tracking over all their cycles (time first, one
+column per design), one pass of the mechanism's Jacobians and dynamics.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import numpy as np
+
+from fivebar_drake.core.checks import verdict
+from fivebar_drake.core.footpath import cycle_phase, path_arrays, path_constants
+from fivebar_drake.core.validation import ParameterError
+from fivebar_drake.mechanisms.fivebar import (MOTORS, UnreachableError, periodic_derivatives,
+                                              track_modes)
+from fivebar_drake.robots.quadruped.leg_loads import full_model
+from fivebar_drake.robots.quadruped.params import Params
+
+SECTIONS = ("leg", "links", "robot", "gait", "motor", "checks", "body")
+
+
+def with_changes(params: Params, changes: dict) -> Params:
+    """The parameters with fields changed by dotted path (section.field, or links.NAME.field),
+    validated as a parameter file is (ParameterError naming the field). Changing
+    motor.gear_ratio keeps the motor and changes the gearbox: the output's peak torque and
+    no-load speed scale by N / N_before unless they are changed too."""
+    sections = {}
+    for path, value in changes.items():
+        parts = path.split(".")
+        if parts[0] not in SECTIONS or len(parts) != (3 if parts[0] == "links" else 2):
+            raise ParameterError(f"{path}: not a parameter; use section.field with a section of "
+                                 f"{list(SECTIONS)} (links.NAME.field for a link)", path)
+        sections.setdefault(parts[0], {})[".".join(parts[1:])] = value
+    if "gear_ratio" in sections.get("motor", {}):
+        motor = sections["motor"]
+        scale = float(motor["gear_ratio"]) / params.motor.gear_ratio
+        motor.setdefault("peak_torque_Nm", params.motor.peak_torque_Nm * scale)
+        motor.setdefault("no_load_speed_rad_s", params.motor.no_load_speed_rad_s / scale)
+    new = {}
+    for section, fields in sections.items():
+        old = getattr(params, section)
+        if section == "links":
+            links = dict(old)
+            for key, value in fields.items():
+                name, field = key.split(".")
+                if name not in links:
+                    raise ParameterError(f"links.{name}: no such link; links are {list(links)}",
+                                         f"links.{name}")
+                links[name] = _replace(links[name], f"links.{name}", {field: value})
+            new[section] = links
+        else:
+            new[section] = _replace(old, section, fields)
+    return dataclasses.replace(params, **new)
+
+
+def _replace(obj, section: str, fields: dict):
+    known = {f.name: f for f in dataclasses.fields(obj)}
+    for name in fields:
+        if name not in known:
+            raise ParameterError(f"{section}.{name}: no such field; {section} has "
+                                 f"{sorted(known)}", f"{section}.{name}")
+    values = {k: float(v) if known[k].type == "float" and isinstance(v, int)
+              and not isinstance(v, bool) else v for k, v in fields.items()}
+    try:
+        return dataclasses.replace(obj, **values)
+    except TypeError as err:
+        raise ParameterError(f"{section}: {err}", section) from None
+
+
+def motor_figures(peak_torque_Nm, no_load_speed_rad_s, torque, speed) -> dict:
+    """Per-motor figures of torques (N*m) and motor speeds (rad/s) sampled over one cycle
+    (N, ...), time first, against motors of peak torque and no-load speed (broadcasting
+    against torque[0]): peak |torque|, RMS torque, safety factor peak_torque / peak, peak
+    |speed|, and the least ratio of the torque-speed line's torque to the demand."""
+    total, speed = np.abs(torque), np.abs(speed)
+    peak = total.max(0)
+    line = peak_torque_Nm * np.clip(1.0 - speed / no_load_speed_rad_s, 0.0, 1.0)
+    return {"peak_torque_Nm": peak, "rms_torque_Nm": np.sqrt(np.mean(torque**2, 0)),
+            "safety_factor": peak_torque_Nm / peak, "peak_speed_rad_s": speed.max(0),
+            "torque_speed_margin": np.min(line / np.maximum(total, 1e-12), 0)}
+
+
+def _group_key(params: Params):
+    return (params.leg, tuple(sorted(params.links.items())), params.robot.gravity_m_s2,
+            params.gait.samples)
+
+
+def evaluate_designs(designs: list[Params], path: str = "seed_ellipse") -> list[dict]:
+    """The full model's figures of each design over one cycle of the foot path: per motor
+    (MOTORS) peak_torque_Nm, rms_torque_Nm, safety_factor, verdict, peak_speed_rad_s, speed_ok,
+    torque_speed_margin; and stride_speed_m_s (2 a f, the foot's mean ground speed on the
+    stride). A design whose path leaves the workspace gets {"error": ...} instead."""
+    rows: list[dict | None] = [None] * len(designs)
+    groups: dict = {}
+    for i, params in enumerate(designs):
+        groups.setdefault(_group_key(params), []).append(i)
+    for members in groups.values():
+        for i, row in zip(members, _evaluate_group([designs[i] for i in members], path)):
+            rows[i] = row
+    return rows
+
+
+def _evaluate_group(designs: list[Params], path: str) -> list[dict]:
+    first = designs[0]
+    n = first.gait.samples
+    u = cycle_phase(first.gait, np.arange(n) * (first.gait.period_s / n))  # the same for all
+    feet = np.empty((n, len(designs), 2))                                   # (N, designs, 2)
+    for i, p in enumerate(designs):
+        feet[:, i, 0], feet[:, i, 1] = path_arrays(*path_constants(p.gait, path), u)[:2]
+    try:
+        pose, _ = track_modes(first.leg, feet)
+    except UnreachableError as err:    # some designs out of reach: each alone, to name them
+        if len(designs) > 1:
+            return [row for p in designs for row in _evaluate_group([p], path)]
+        return [{"error": f"the {path} path leaves the workspace: {err}"}]
+    dt = np.array([p.gait.period_s / p.gait.samples for p in designs])[:, None]
+    qd, qdd = periodic_derivatives(pose.q, dt)
+    load = np.array([p.robot.weight_share_kg * p.robot.gravity_m_s2 for p in designs])
+    model = dataclasses.replace(full_model(first), foot_load_N=load)
+    total = first.mechanism.torques(model, pose, qd, qdd).total          # (N, designs, 2)
+    peak = np.array([p.motor.peak_torque_Nm for p in designs])[:, None]
+    no_load = np.array([p.motor.no_load_speed_rad_s for p in designs])[:, None]
+    figures = motor_figures(peak, no_load, total, qd)
+    rows = []
+    for i, p in enumerate(designs):
+        row = {"stride_speed_m_s": 2.0 * p.gait.a_m * p.gait.frequency_hz}
+        for j, motor in enumerate(MOTORS):
+            one = {k: float(v[i, j]) for k, v in figures.items()}
+            one["verdict"] = verdict(p.checks, one["safety_factor"])
+            one["speed_ok"] = bool(one["peak_speed_rad_s"] <= p.motor.no_load_speed_rad_s)
+            row[motor] = one
+        rows.append(row)
+    return rows
+

@@ -1,0 +1,88 @@
+"""A sweep's plots: the verdict map over one or two varied parameters, and the Pareto front of
+the worst safety factor against speed."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from fivebar_drake.core.files import atomic_path
+
+SWEEP_PLOTS = ("verdict_map.png", "pareto.png")
+COLORS = {"pass": "tab:green", "warn": "tab:orange", "fail": "tab:red",
+          "insufficient": "tab:purple", "failed": "0.6"}
+SPEED_LABEL = {"analysis": "stride speed 2 a f (m/s)",
+               "simulation": "mean forward speed (m/s)"}
+
+
+def _value(text: str):
+    try:
+        return float(text)
+    except ValueError:
+        return text
+
+
+def _outcome(row: dict) -> str:
+    return "failed" if row["status"] == "failed" else row["worst_verdict"]
+
+
+def pareto_front(speed, sf) -> np.ndarray:
+    """Indices of the points no other point beats in both speed and safety factor (higher is
+    better in both), by increasing speed."""
+    order = np.lexsort((-sf, -speed))           # fastest first, the safer of equals first
+    front, best = [], -np.inf
+    for i in order:
+        if sf[i] > best:
+            front.append(i)
+            best = sf[i]
+    return np.array(front[::-1], dtype=int)
+
+
+def write_sweep_plots(rows: list[dict], axes: tuple[str, ...], fidelity: str, sf_pass: float,
+                      out: Path) -> list[Path]:
+    """verdict_map.png over the axes (one or two varied parameters; where several points share
+    a place, the worst outcome is drawn on top) and pareto.png; returns the paths."""
+    import matplotlib.pyplot as plt
+
+    written = []
+    fig, ax = plt.subplots(figsize=(7, 5))
+    rank = {"failed": 0, "pass": 1, "warn": 2, "insufficient": 3, "fail": 4}
+    for row in sorted(rows, key=lambda r: rank[_outcome(r)]):
+        x = _value(row[axes[0]])
+        y = _value(row[axes[1]]) if len(axes) > 1 else 0.0
+        outcome = _outcome(row)
+        ax.scatter([x], [y], s=160, marker="x" if outcome == "failed" else "s",
+                   color=COLORS[outcome])
+    for outcome, color in COLORS.items():
+        ax.scatter([], [], marker="s", color=color, label=outcome)
+    ax.set_xlabel(axes[0])
+    ax.set_ylabel(axes[1] if len(axes) > 1 else "")
+    ax.set_title("worst motor's verdict per design point")
+    ax.legend(loc="best", fontsize=8)
+    written.append(_save(fig, out / SWEEP_PLOTS[0]))
+    fig, ax = plt.subplots(figsize=(7, 5))
+    ok = [r for r in rows if r["status"] != "failed" and r["worst_safety_factor"] != ""]
+    if ok:
+        speed = np.array([float(r["speed_m_s"]) for r in ok])
+        sf = np.array([float(r["worst_safety_factor"]) for r in ok])
+        ax.scatter(speed, sf, color=[COLORS[_outcome(r)] for r in ok], s=25)
+        front = pareto_front(speed, sf)
+        ax.plot(speed[front], sf[front], "k-o", mfc="none", label="Pareto front")
+        ax.axhline(sf_pass, color="tab:green", ls="--", lw=1, label=f"SF = {sf_pass:g} (pass)")
+        ax.legend(loc="best", fontsize=8)
+    ax.set_xlabel(SPEED_LABEL[fidelity])
+    ax.set_ylabel("worst motor's safety factor")
+    ax.set_title("safety factor against speed")
+    written.append(_save(fig, out / SWEEP_PLOTS[1]))
+    return written
+
+
+def _save(fig, path: Path) -> Path:
+    import matplotlib.pyplot as plt
+
+    fig.tight_layout()
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, format="png", dpi=110)
+    plt.close(fig)
+    return path
