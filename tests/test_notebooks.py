@@ -7,7 +7,7 @@ import pytest
 from nbclient import NotebookClient
 
 NOTEBOOKS = sorted((Path(__file__).parent.parent / "notebooks").glob("*.ipynb"))
-SIMULATING = {"review_recording.ipynb"}     # runs a simulation of several seconds
+SIMULATING = {"review_recording.ipynb", "design_study.ipynb"}   # simulations of several seconds
 
 
 def test_there_are_notebooks():

@@ -1,10 +1,10 @@
-"""Many designs at once: the full model's torque analysis (torques.analyze, model "full") over one
-gait cycle for a batch of parameter sets, vectorised over the designs that share a leg (a sweep's
-`analysis` fidelity).
+"""Many designs at once: the full model's torque analysis (torques.analyze, model "full_trot" or
+"full") over one gait cycle for a batch of parameter sets, vectorised over the designs that share
+a leg (a sweep's `analysis` fidelity).
 
 A design is the base parameters with some fields changed by dotted path ("gait.frequency_hz",
-"leg.ce_m", ...; with_changes). Designs with the same leg geometry, links, gravity and sample
-count are solved together: one IK with mode tracking over all their cycles (time first, one
+"leg.ce_m", ...; with_changes). Designs with the same leg geometry, links, gravity, sample
+count and duty factor are solved together: one IK with mode tracking over all their cycles (time first, one
 column per design), one pass of the mechanism's Jacobians and dynamics.
 """
 
@@ -14,13 +14,15 @@ import dataclasses
 import numpy as np
 
 from fivebar_drake.core.checks import verdict
-from fivebar_drake.core.footpath import cycle_phase, path_arrays, path_constants
-from fivebar_drake.core.validation import ParameterError
+from fivebar_drake.core.footpath import (TROT_PHASES_RAD, cycle_phase, path_arrays, path_constants,
+                                         stance_loads)
+from fivebar_drake.core.validation import ParameterError, require
 from fivebar_drake.mechanisms.fivebar import (MOTORS, UnreachableError, periodic_derivatives,
                                               track_modes)
 from fivebar_drake.robots.quadruped.leg_loads import full_model
 from fivebar_drake.robots.quadruped.params import Params
 
+MODELS = ("full_trot", "full")   # leg_loads.trot_model, leg_loads.full_model
 SECTIONS = ("leg", "links", "robot", "gait", "motor", "checks", "body")
 
 
@@ -87,11 +89,15 @@ def motor_figures(peak_torque_Nm, no_load_speed_rad_s, torque, speed) -> dict:
 
 def _group_key(params: Params):
     return (params.leg, tuple(sorted(params.links.items())), params.robot.gravity_m_s2,
-            params.gait.samples)
+            params.gait.samples, params.gait.duty_factor)
 
 
-def evaluate_designs(designs: list[Params], path: str = "seed_ellipse") -> list[dict]:
-    """The full model's figures of each design over one cycle of the foot path: per motor
+def evaluate_designs(designs: list[Params], path: str = "seed_ellipse",
+                     model: str = "full_trot") -> list[dict]:
+    """The figures of each design over one cycle of the foot path under the model (MODELS:
+    "full_trot", the robot's weight shared by the feet the trot schedule has in stance, none in
+    swing; "full", the seed's weight share on the foot all cycle), each as torques.analyze
+    computes them: per motor
     (MOTORS) peak_torque_Nm, rms_torque_Nm, safety_factor, verdict, peak_speed_rad_s, speed_ok,
     torque_speed_margin; and stride_speed_m_s (2 a f, the foot's mean ground speed on the
     stride). A design whose path leaves the workspace gets {"error": ...} instead."""
@@ -99,13 +105,14 @@ def evaluate_designs(designs: list[Params], path: str = "seed_ellipse") -> list[
     groups: dict = {}
     for i, params in enumerate(designs):
         groups.setdefault(_group_key(params), []).append(i)
+    require(model in MODELS, "model", model, f"must be one of {list(MODELS)}")
     for members in groups.values():
-        for i, row in zip(members, _evaluate_group([designs[i] for i in members], path)):
+        for i, row in zip(members, _evaluate_group([designs[i] for i in members], path, model)):
             rows[i] = row
     return rows
 
 
-def _evaluate_group(designs: list[Params], path: str) -> list[dict]:
+def _evaluate_group(designs: list[Params], path: str, model: str) -> list[dict]:
     first = designs[0]
     n = first.gait.samples
     u = cycle_phase(first.gait, np.arange(n) * (first.gait.period_s / n))  # the same for all
@@ -116,13 +123,19 @@ def _evaluate_group(designs: list[Params], path: str) -> list[dict]:
         pose, _ = track_modes(first.leg, feet)
     except UnreachableError as err:    # some designs out of reach: each alone, to name them
         if len(designs) > 1:
-            return [row for p in designs for row in _evaluate_group([p], path)]
+            return [row for p in designs for row in _evaluate_group([p], path, model)]
         return [{"error": f"the {path} path leaves the workspace: {err}"}]
     dt = np.array([p.gait.period_s / p.gait.samples for p in designs])[:, None]
     qd, qdd = periodic_derivatives(pose.q, dt)
-    load = np.array([p.robot.weight_share_kg * p.robot.gravity_m_s2 for p in designs])
-    model = dataclasses.replace(full_model(first), foot_load_N=load)
-    total = first.mechanism.torques(model, pose, qd, qdd).total          # (N, designs, 2)
+    if model == "full":
+        load = np.array([p.robot.weight_share_kg * p.robot.gravity_m_s2 for p in designs])
+    else:                     # the schedule's share of the weight: the same phases for all
+        share = stance_loads(first.gait, path, np.arange(n) * (first.gait.period_s / n),
+                             TROT_PHASES_RAD, 1.0)[0]
+        load = share[:, None] * np.array([p.robot.total_mass_kg * p.robot.gravity_m_s2
+                                          for p in designs])
+    loads = dataclasses.replace(full_model(first), foot_load_N=load)
+    total = first.mechanism.torques(loads, pose, qd, qdd).total          # (N, designs, 2)
     peak = np.array([p.motor.peak_torque_Nm for p in designs])[:, None]
     no_load = np.array([p.motor.no_load_speed_rad_s for p in designs])[:, None]
     figures = motor_figures(peak, no_load, total, qd)

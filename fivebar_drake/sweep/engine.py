@@ -171,7 +171,7 @@ def _compute(client, spec, params, scenario, todo, table: Path, header, bar: Pro
 
     base = client.scatter(params, broadcast=True)
     if spec.fidelity == "analysis":     # tasks of ANALYSIS_CHUNK points, one point each else
-        task, size, first = analysis_rows, ANALYSIS_CHUNK, spec.gait
+        task, size, first = analysis_rows, ANALYSIS_CHUNK, (spec.gait, spec.model)
     else:
         task, size, first = simulation_rows, 1, scenario
     chunks = [todo[i:i + size] for i in range(0, len(todo), size)]

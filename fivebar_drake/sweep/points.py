@@ -4,8 +4,8 @@
 Columns: `point` (its index in the spec's order), one per varied parameter (its dotted path),
 `status` (ok; failed: no result, `error` says why; stopped: the simulation ended early, `error`
 says why, the figures are of what it recorded), `worst_motor`, `worst_verdict`,
-`worst_safety_factor`, `worst_demand_Nm` (analysis: the peak torque of the worst motor, full
-model; simulation: its demand p99), `speed_m_s` (analysis: the stride speed 2 a f; simulation:
+`worst_safety_factor`, `worst_demand_Nm` (analysis: the peak torque of the worst motor under
+the spec's load model; simulation: its demand p99), `speed_m_s` (analysis: the stride speed 2 a f; simulation:
 the mean forward speed), for analysis points `worst_torque_speed_margin` (the least ratio of
 the torque-speed line to the demand over both motors: below 1 the line is crossed) and
 `speed_ok` (the seed's speed check: no motor beyond its no-load speed; where it fails, the
@@ -54,9 +54,11 @@ def _worst(motors: dict, demand_key: str) -> dict:
             "worst_safety_factor": worst["safety_factor"], "worst_demand_Nm": worst[demand_key]}
 
 
-def analysis_rows(base: Params, path: str, points: list[tuple[int, dict]]) -> list[dict]:
-    """Rows of analysis points (index, {dotted path: value}): the full model over one cycle of
-    the foot path, all points of a leg geometry at once (design_points.evaluate_designs)."""
+def analysis_rows(base: Params, settings: tuple[str, str],
+                  points: list[tuple[int, dict]]) -> list[dict]:
+    """Rows of analysis points (index, {dotted path: value}): settings = (foot path, load
+    model); the model over one cycle of the path, all points of a leg geometry at once
+    (design_points.evaluate_designs)."""
     rows, designs, where = [], [], []
     for index, changes in points:
         row = {"point": index, **changes}
@@ -66,7 +68,7 @@ def analysis_rows(base: Params, path: str, points: list[tuple[int, dict]]) -> li
         except ParameterError as err:
             row.update(status="failed", error=str(err))
         rows.append(row)
-    for i, result in zip(where, evaluate_designs(designs, path)):
+    for i, result in zip(where, evaluate_designs(designs, *settings)):
         if "error" in result:
             rows[i].update(status="failed", error=result["error"])
             continue

@@ -8,6 +8,7 @@
     config: my_robot.toml       # base parameter file (default: the packaged one)
     scenario: trot.yaml         # base scenario of simulation points (default: the built-in one)
     gait: seed_ellipse          # foot path of analysis points (default: seed_ellipse)
+    model: full_trot            # load model of analysis points (default: full_trot; or full)
     duration_s: 4.5             # simulated time of simulation points (default: the scenario's)
     plot: [gait.frequency_hz, gait.a_m]   # the verdict map's axes (default: the first two)
 
@@ -33,6 +34,7 @@ from pathlib import Path
 import numpy as np
 import yaml
 
+from fivebar_drake.analysis.design_points import MODELS
 from fivebar_drake.core.footpath import PATHS
 from fivebar_drake.core.validation import ParameterError, check_number, require
 
@@ -76,6 +78,7 @@ class SweepSpec:
     config: str | None = None
     scenario: str | None = None
     gait: str = "seed_ellipse"
+    model: str = "full_trot"
     duration_s: float | None = None
     plot: tuple[str, ...] = ()
     source: str = field(default="", compare=False)
@@ -109,7 +112,7 @@ class SweepSpec:
 
 
 KEYS = {"fidelity", "sampling", "vary", "samples", "seed", "config", "scenario", "gait",
-        "duration_s", "plot"}
+        "model", "duration_s", "plot"}
 
 
 def load_spec(path: str | Path) -> SweepSpec:
@@ -159,6 +162,10 @@ def spec_from_dict(data, folder: Path, source: str = "") -> SweepSpec:
     check_number("seed", seed, 0, 2**32 - 1, integer=True)
     gait = data.get("gait", "seed_ellipse")
     require(gait in PATHS, "gait", gait, f"must be one of {list(PATHS)}")
+    model = data.get("model", MODELS[0])
+    require(model in MODELS, "model", model, f"must be one of {list(MODELS)}")
+    require(fidelity == "analysis" or "model" not in data, "model", model,
+            "applies to analysis points (a simulation has its own loads)")
     duration = data.get("duration_s")
     if duration is not None:
         require(fidelity == "simulation", "duration_s", duration, "applies to simulation points")
@@ -180,7 +187,7 @@ def spec_from_dict(data, folder: Path, source: str = "") -> SweepSpec:
         require(fidelity == "simulation" or not v.path.startswith("scenario."), v.path, v.path,
                 "scenario fields vary only in simulation sweeps")
     return SweepSpec(fidelity=fidelity, sampling=sampling, vary=varied, samples=samples,
-                     seed=seed, gait=gait, duration_s=duration, plot=plot, source=source,
+                     seed=seed, gait=gait, model=model, duration_s=duration, plot=plot, source=source,
                      **files)
 
 

@@ -3,6 +3,7 @@ table's independence of the number of workers and of the scheduler, resume after
 failed points recorded."""
 
 import csv
+import itertools
 import socket
 import subprocess
 import sys
@@ -45,9 +46,9 @@ def test_vectorised_designs_match_the_analysis_of_each():
     changes = [{"gait.frequency_hz": 0.7, "leg.ce_m": 0.15}, {"gait.a_m": 0.03},
                {"gait.b_m": 0.02, "motor.peak_torque_Nm": 4.0}, {"leg.ce_m": 0.15}]
     designs = [with_changes(base, c) for c in changes]
-    for path in ("seed_ellipse", "trot"):
-        for design, row in zip(designs, evaluate_designs(designs, path)):
-            ref = analyze(design, path).results["results"]["full"]
+    for path, model in itertools.product(("seed_ellipse", "trot"), ("full", "full_trot")):
+        for design, row in zip(designs, evaluate_designs(designs, path, model)):
+            ref = analyze(design, path).results["results"][model]
             for motor in "AB":
                 for key in ("peak_torque_Nm", "rms_torque_Nm", "safety_factor",
                             "peak_speed_rad_s", "torque_speed_margin"):
