@@ -25,6 +25,7 @@ demo: $(STAMP)
 		--out $(OUT)/simulation/seed_ellipse || [ $$? -eq 1 ]
 	$(BIN)/fivebar-drake compare $(OUT)/simulation/trot $(OUT)/simulation/seed_ellipse \
 		--out $(OUT)/gait_comparison.md
+	$(BIN)/fivebar-drake sweep fivebar_drake/data/sweep_example.yaml --out $(OUT)/sweep
 
 test: $(STAMP)
 	$(BIN)/pytest

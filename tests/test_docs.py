@@ -27,3 +27,11 @@ def test_every_field_and_code_is_documented():
         assert f"| `{f.name}` |" in README and f.metadata["doc"]
     for code in re.findall(r"^  (\d+) ", EXIT_CODES, re.M):
         assert re.search(rf"^\| ({code}|\d+, {code}|{code}, \d+) \|", README, re.M), code
+
+
+def test_readme_sweep_example_is_the_packaged_file():
+    block = re.search(r"<!-- sweep-example:[^>]*-->\n```yaml\n(.*?)```\n<!-- /sweep-example -->",
+                      README, re.S)
+    assert block, "README lacks the sweep-example block"
+    path = Path(__file__).parent.parent / "fivebar_drake" / "data" / "sweep_example.yaml"
+    assert block.group(1) == path.read_text()
