@@ -67,11 +67,9 @@ def _home(params: Params) -> dict:
     vertical = {m: v["max_vertical_N"] for m, v in home.items() if v is not None}
     ranked = sorted(vertical, key=vertical.get, reverse=True)
     return {"home_foot_m": list(foot), "peak_torque_Nm": params.motor.peak_torque_Nm,
-            "home_pose": home, "most_support_mode": ranked[0],
+            "home_pose": home, "support_ranking": ranked,
             "most_support_over_next": (vertical[ranked[0]] / vertical[ranked[1]]
-                                       if len(ranked) > 1 else None),
-            "most_support_over_knees_out": vertical[ranked[0]] / vertical[MODE_NAMES[0]]
-            if MODE_NAMES[0] in vertical else None}
+                                       if len(ranked) > 1 else None)}
 
 
 def _thermal_results(params: Params, th: Thermal, rms: np.ndarray) -> dict:

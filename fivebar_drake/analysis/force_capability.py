@@ -20,6 +20,13 @@ from fivebar_drake.mechanisms.fivebar import ALL_MODES, LegGeometry, foot_jacobi
 CAPABILITY_KEYS = ("max_vertical_N", "max_horizontal_N", "isotropic_N")
 
 
+def workspace_grid(leg: LegGeometry, nx: int = 241, ny: int = 161):
+    """Foot positions x (nx,), y (ny,) in m covering the leg's reach: x within +-R,
+    y from -R to 0.4 R, R = AC + CE + EF + the motors' spacing."""
+    reach = leg.ac_m + leg.ce_m + leg.ef_m + abs(leg.motor_b_m[0] - leg.motor_a_m[0])
+    return np.linspace(-reach, reach, nx), np.linspace(-reach, 0.4 * reach, ny)
+
+
 def mode_name(mode) -> str:
     """An assembly mode (knee C, knee D), +1 out, -1 in, as 'out_in' etc."""
     return "_".join("out" if m > 0 else "in" for m in mode)
