@@ -7,10 +7,10 @@ import matplotlib.pyplot as plt
 from matplotlib.colors import LogNorm
 import numpy as np
 
-from fivebar_drake.analysis.design_metrics import PHYSICAL
+from fivebar_drake.analysis.design_metrics import GEAR_MODEL, PHYSICAL
 from fivebar_drake.analysis.force_capability import (CAPABILITY_KEYS, capability_map, mode_name,
                                                      workspace_grid)
-from fivebar_drake.analysis.gear_ratio import EFFECTS
+from fivebar_drake.analysis.gear_ratio import EFFECTS, safety_factors
 from fivebar_drake.analysis.joint_loads import JOINT_NAMES
 from fivebar_drake.analysis.thermal import winding_temperature
 from fivebar_drake.analysis.torques import Analysis
@@ -39,8 +39,8 @@ def force_capability_maps(an: Analysis) -> plt.Figure:
             ax = axes[row, col]
             mesh = ax.pcolormesh(x * 1e3, y * 1e3, cmap.forces[key], norm=norm, cmap="magma",
                                  shading="auto")
-            ax.contour(x * 1e3, y * 1e3, cmap.forces[key], levels=sorted({weight, trot}),
-                       colors=["w", "c"][:len({weight, trot})], linewidths=1)
+            ax.contour(x * 1e3, y * 1e3, cmap.forces[key], levels=[weight, trot],
+                       colors=["w", "c"], linewidths=1)   # trot peak: half the robot's weight
             ax.plot(an.samples.foot[:, 0] * 1e3, an.samples.foot[:, 1] * 1e3, "g-", lw=1.5)
             ax.plot(p.gait.x_center_m * 1e3, p.gait.y_home_m * 1e3, "g+", ms=10)
             ax.set(aspect="equal", title=f"{mode_name(cmap.mode)}: {CAPABILITY_TITLES[key]}")
@@ -50,9 +50,9 @@ def force_capability_maps(an: Analysis) -> plt.Figure:
     for ax in axes[:, 0]:
         ax.set_ylabel("y (mm)")
     fig.colorbar(mesh, ax=axes, shrink=0.6, label="foot force (N), torque box through J_F^-T")
-    fig.suptitle(f"Static foot-force capability per assembly mode (motors ±{p.motor.peak_torque_Nm:g}"
-                 f" N·m); contours: weight share {weight:.1f} N (white), trot peak {trot:.1f} N "
-                 "(cyan); green: gait path and home point")
+    fig.suptitle("Static foot-force capability per assembly mode (motors "
+                 f"±{p.motor.peak_torque_Nm:g} N·m); contours: weight share {weight:.1f} N "
+                 f"(white), trot peak {trot:.1f} N (cyan); green: gait path and home point")
     return fig
 
 
@@ -152,9 +152,11 @@ def joint_loads(an: Analysis) -> plt.Figure:
 
 def gear_ratio(an: Analysis) -> plt.Figure:
     g, p = an.metrics.gear, an.params
+    tb = an.torques[GEAR_MODEL]
     fig, ax = plt.subplots(figsize=(8, 5))
-    for name in EFFECTS:
-        ax.plot(g.ratios, np.min(g.safety[name], axis=1), label=f"{name} (worst motor)",
+    for name, flags in EFFECTS.items():
+        sf = safety_factors(p.motor, tb.total, an.samples.qd, an.samples.qdd, g.ratios, *flags)
+        ax.plot(g.ratios, np.min(sf, axis=1), label=f"{name} (worst motor)",
                 **EFFECT_STYLE[name])
     ax.axvline(p.motor.gear_ratio, color="k", ls=":",
                label=f"current {p.motor.gear_ratio:g}:1, SF {g.current_safety:.2f}")

@@ -80,7 +80,8 @@ def design_lines(results: dict, params: Params) -> list[str]:
               f"steady-state continuous torque: {th['steady_state_continuous_torque_Nm']:.3f} N m);"
               f" winding limit {th['winding_limit_C']:g} C from {th['ambient_C']:g} C.", "",
               "| motor | model | RMS torque (N m) | RMS / continuous | copper loss (W) | "
-              "steady winding (C) | margin (K) | time to limit |", "|---|---|---|---|---|---|---|---|"]
+              "steady winding (C) | margin (K) | time to limit |",
+              "|---|---|---|---|---|---|---|---|"]
     for motor in MOTORS:
         for name in PHYSICAL:
             v = th["models"][name][motor]

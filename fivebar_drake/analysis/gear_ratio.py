@@ -14,7 +14,7 @@ from fivebar_drake.core.motor import Motor, torque_speed_line
 
 
 RATIO_RANGE = (1.0, 100.0)   # gear ratios searched (a direct drive to a two-stage planetary)
-GRID_POINTS = 400            # log-spaced ratios of the grid; the best one is then refined
+GRID_POINTS = 200            # log-spaced ratios of the grid; the best one is then refined
 # the readings of the safety factor shown side by side: (torque-speed line, reflected inertia)
 EFFECTS = {"peak only": (False, False), "torque-speed line": (True, False),
            "reflected inertia": (False, True), "both": (True, True)}
@@ -38,12 +38,12 @@ def safety_factors(motor: Motor, load_Nm, qd, qdd, ratios, speed_line: bool = Tr
 
 @dataclass(frozen=True)
 class GearTrade:
-    """The gear-ratio search: ratios (r,), safety factor per EFFECTS name (r, motors), the best
-    ratio (worst motor's safety factor largest, both effects) and its safety factor, and the
-    safety factor at the motor's own ratio (both effects)."""
+    """The gear-ratio search, both effects: ratios (r,) and safety factors (r, motors), the best
+    ratio (the worst motor's safety factor largest) and its safety factor, and the safety
+    factor at the motor's own ratio."""
 
     ratios: np.ndarray
-    safety: dict[str, np.ndarray]
+    safety: np.ndarray
     best_ratio: float
     best_safety: float
     current_safety: float
@@ -54,13 +54,12 @@ def gear_trade(motor: Motor, load_Nm, qd, qdd) -> GearTrade:
     grid neighbours of the best point) for the ratio maximising the worst motor's safety factor
     with both effects (safety_factors)."""
     ratios = np.geomspace(*RATIO_RANGE, GRID_POINTS)
-    safety = {name: safety_factors(motor, load_Nm, qd, qdd, ratios, *flags)
-              for name, flags in EFFECTS.items()}
+    safety = safety_factors(motor, load_Nm, qd, qdd, ratios)
 
     def worst(r):
         return float(np.min(safety_factors(motor, load_Nm, qd, qdd, [r])))
 
-    k = int(np.argmax(np.min(safety["both"], axis=1)))
+    k = int(np.argmax(np.min(safety, axis=1)))
     lo, hi = ratios[max(k - 1, 0)], ratios[min(k + 1, GRID_POINTS - 1)]
     found = minimize_scalar(lambda r: -worst(r), bounds=(lo, hi), method="bounded",
                             options={"xatol": 1e-9 * hi})
