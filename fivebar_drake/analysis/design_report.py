@@ -53,7 +53,8 @@ def design_lines(results: dict, params: Params) -> list[str]:
                                        if v else "unreachable | | ") + " |")
     ranked, used = fc["support_ranking"], results["path"]["assembly_modes_used"]
     support = {mode: fc["home_pose"][mode]["max_vertical_N"] for mode in ranked}
-    lines += ["", f"Most vertical support: **{ranked[0]}** ({support[ranked[0]]:.1f} N)"
+    lines += ["", (f"Most vertical support: **{ranked[0]}** ({support[ranked[0]]:.1f} N)"
+                   if ranked else "No assembly mode reaches the home position")
               + (f", {fc['most_support_over_next']:.2f}x the next, {ranked[1]} "
                  f"({support[ranked[1]]:.1f} N)" if len(ranked) > 1 else "")
               + f". The gait runs in {', '.join(MODE_NAMES[i] for i in used)}.",

@@ -53,14 +53,16 @@ def force_capability(jf, peak_torque_Nm: float) -> dict[str, np.ndarray]:
 
 
 def support_available(jf, peak_torque_Nm: float, spent_Nm) -> np.ndarray:
-    """Largest upward ground force on the foot (N, >= 0) the motors can add to torques
-    spent_Nm (..., 2) already spent (motion and link weights) without leaving |tau_i| <= peak:
-    per unit load the torques are g = -J_F^T [0, 1], so each motor allows
-    (peak - sign(g_i) spent_i) / |g_i|; the smaller of the two, 0 if already beyond."""
+    """Largest upward ground force on the foot (N, >= 0) the motors can take on top of torques
+    spent_Nm (..., 2) already spent (motion and link weights) within |tau_i| <= peak: per unit
+    load the torques are g = -J_F^T [0, 1], so motor i allows the loads between
+    (-peak - sign(g_i) spent_i) / |g_i| and (peak - sign(g_i) spent_i) / |g_i|; the largest load
+    of both intervals and F >= 0, 0 where they have none in common."""
     g = -jf[..., 1, :]
     with np.errstate(divide="ignore"):
-        room = (peak_torque_Nm - np.sign(g) * spent_Nm) / np.abs(g)
-    return np.maximum(np.min(room, axis=-1), 0.0)
+        hi = np.min((peak_torque_Nm - np.sign(g) * spent_Nm) / np.abs(g), axis=-1)
+        lo = np.max((-peak_torque_Nm - np.sign(g) * spent_Nm) / np.abs(g), axis=-1)
+    return np.where(hi >= np.maximum(lo, 0.0), hi, 0.0)
 
 
 @dataclass(frozen=True)
