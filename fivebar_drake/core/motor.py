@@ -4,6 +4,7 @@ C++ primitives (MotorModel) and the classification of clipped commands."""
 from __future__ import annotations
 
 from dataclasses import dataclass
+import math
 import numpy as np
 from pydrake.systems.framework import Diagram, DiagramBuilder
 from pydrake.systems.primitives import (AffineSystem, Demultiplexer, Gain, MatrixGain, Multiplexer,
@@ -90,7 +91,7 @@ class Motor:
     def thermal_continuous_torque_Nm(self) -> float:
         """Output torque whose copper loss (tau / (N k_t))^2 R holds the winding at its limit in
         steady state: N k_t sqrt((T_limit - T_ambient) / (R R_th))."""
-        return self.gear_ratio * self.torque_constant_Nm_A * np.sqrt(
+        return self.gear_ratio * self.torque_constant_Nm_A * math.sqrt(
             (self.winding_limit_C - self.ambient_C)
             / (self.winding_resistance_ohm * self.thermal_resistance_K_W))
 
