@@ -15,7 +15,9 @@ def test_analyze_end_to_end(tmp_path, capsys):
     out = capsys.readouterr().out
     assert str(tmp_path.resolve()) in out
     for name in ("report.md", "report.json", "joint_angles.png", "joint_rates.png",
-                 "torque_components.png", "total_torque.png", "workspace.png"):
+                 "torque_components.png", "total_torque.png", "workspace.png",
+                 "force_capability.png", "force_margin.png", "torque_speed.png", "thermal.png",
+                 "joint_loads.png", "gear_ratio.png"):
         path = tmp_path / name
         assert path.stat().st_size > 1000, name
     assert (tmp_path / "joint_angles.png").read_bytes()[:4] == b"\x89PNG"
@@ -35,8 +37,18 @@ def test_analyze_end_to_end(tmp_path, capsys):
             expect = "pass" if r["safety_factor"] >= 2 else "warn" if r["safety_factor"] >= 1.5 else "fail"
             assert r["verdict"] == expect
     assert data["parameters"]["gait"]["samples"] == 60
+    home = data["force_capability"]["home_pose"]
+    assert sorted(home) == ["in_in", "in_out", "out_in", "out_out"]
+    for forces in home.values():
+        assert sorted(forces) == ["isotropic_N", "max_horizontal_N", "max_vertical_N"]
+        # every direction includes the vertical and the horizontal one
+        assert 0 < forces["isotropic_N"] <= min(forces["max_vertical_N"],
+                                                forces["max_horizontal_N"])
     md = (tmp_path / "report.md").read_text()
     assert "TBD" not in md and "Table 5" in md and "| A | full |" in md
+    for section in ("Force capability", "Torque-speed envelope", "Thermal check", "Hinge loads",
+                    "Gear-ratio trade"):
+        assert f"## {section}" in md
 
 
 def test_module_entry_point_and_bad_config(tmp_path):

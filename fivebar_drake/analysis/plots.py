@@ -1,4 +1,5 @@
-"""The seed's plots (seed 000 section 9.3) and a workspace map, as PNG files."""
+"""The seed's plots (seed 000 section 9.3), a workspace map and the design metrics' plots
+(design_plots.py), as PNG files."""
 
 from __future__ import annotations
 
@@ -6,6 +7,8 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 import numpy as np
 
+from fivebar_drake.analysis import design_plots
+from fivebar_drake.analysis.force_capability import workspace_grid
 from fivebar_drake.analysis.report import FIGURE_NAMES
 from fivebar_drake.analysis.torques import Analysis
 from fivebar_drake.core.files import atomic_path
@@ -99,8 +102,7 @@ def total_torque(an: Analysis) -> plt.Figure:
 
 def workspace_map(an: Analysis) -> plt.Figure:
     leg = an.params.leg
-    reach = leg.ac_m + leg.ce_m + leg.ef_m + abs(leg.motor_b_m[0] - leg.motor_a_m[0])
-    ws = workspace(leg, np.linspace(-reach, reach, 241), np.linspace(-reach, 0.4 * reach, 161))
+    ws = workspace(leg, *workspace_grid(leg))
     fig, ax = plt.subplots(figsize=(8, 6))
     mesh = ax.pcolormesh(ws.x * 1e3, ws.y * 1e3, np.log10(ws.measures.cond_jf), cmap="viridis",
                          shading="auto", vmax=2.0)
@@ -126,4 +128,4 @@ def write_plots(an: Analysis, out_dir: Path) -> list[Path]:
 
 # the report names the figures (report.FIGURE_NAMES, without importing matplotlib); in its order
 FIGURES = dict(zip(FIGURE_NAMES, (joint_angles, joint_rates, torque_components, total_torque,
-                                  workspace_map)))
+                                  workspace_map))) | design_plots.FIGURES

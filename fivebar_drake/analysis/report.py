@@ -6,6 +6,7 @@ import json
 import math
 from pathlib import Path
 
+from fivebar_drake.analysis.design_report import design_assumptions, design_lines
 from fivebar_drake.analysis.torques import Analysis
 from fivebar_drake.core.files import write_atomic
 from fivebar_drake.core.footpath import stance_speed
@@ -15,7 +16,9 @@ from fivebar_drake.robots.quadruped.config import sampling_error
 
 SIDE_BY_SIDE = ("seed", "full")
 REPORT_FILES = ("report.md", "report.json")
-FIGURE_NAMES = ("joint_angles", "joint_rates", "torque_components", "total_torque", "workspace")
+FIGURE_NAMES = ("joint_angles", "joint_rates", "torque_components", "total_torque", "workspace",
+                "force_capability", "force_margin", "torque_speed", "thermal", "joint_loads",
+                "gear_ratio")
 ANALYSIS_FILES = REPORT_FILES + tuple(f"{name}.png" for name in FIGURE_NAMES)  # what analyze writes
 
 
@@ -40,6 +43,7 @@ def assumptions(analysis: Analysis) -> list[str]:
         "Safety factor = motor torque / peak dynamic torque; verdict: SF >= "
         f"{p.checks.sf_pass:g} pass, {p.checks.sf_warn:g} <= SF < {p.checks.sf_pass:g} warn, "
         "else fail.",
+        *design_assumptions(p),
     ]
 
 
@@ -136,7 +140,9 @@ def markdown(analysis: Analysis, sampled: dict | None = None) -> str:
               f"{path['assembly_modes_used']}",
               f"- smallest transmission angle from in-line: {angles}",
               f"- largest condition number of J_F: {path['max_cond_jf']:.2f}; smallest |det J_F|: "
-              f"{path['min_abs_det_jf_m2']:.3e} m^2", "", "## Assumptions", ""]
+              f"{path['min_abs_det_jf_m2']:.3e} m^2"]
+    lines += design_lines(analysis.results, p)
+    lines += ["", "## Assumptions", ""]
     lines += [f"- {a}" for a in assumptions(analysis)]
     lines += ["", "## Plots", ""]
     lines += [f"![{name}]({name}.png)" for name in FIGURE_NAMES]

@@ -7,6 +7,7 @@ import dataclasses
 from dataclasses import dataclass
 import numpy as np
 
+from fivebar_drake.analysis.design_metrics import DesignMetrics, design_metrics, sample_at
 from fivebar_drake.core.checks import verdict
 from fivebar_drake.mechanisms.fivebar import (DynamicsModel, GaitSamples, MOTORS,
                                               SingularityMeasures, TorqueBreakdown, sample_gait,
@@ -17,20 +18,16 @@ from fivebar_drake.robots.quadruped.params import Params
 
 @dataclass(frozen=True)
 class Analysis:
-    """Everything the report shows: the sampled gait, the torques of each model (by name) and
-    the JSON-ready results."""
+    """Everything the report shows: the sampled gait, the torques of each model (by name), the
+    design metrics and the JSON-ready results."""
 
     params: Params
     samples: GaitSamples
     models: dict[str, DynamicsModel]
     torques: dict[str, TorqueBreakdown]
     measures: SingularityMeasures
+    metrics: DesignMetrics
     results: dict
-
-
-def _at(samples: GaitSamples, k: int) -> dict:
-    return {"sample": int(k), "time_s": float(samples.t[k]),
-            "foot_m": [float(v) for v in samples.foot[k]]}
 
 
 def motor_results(params: Params, samples: GaitSamples, tb: TorqueBreakdown, j: int) -> dict:
@@ -41,24 +38,26 @@ def motor_results(params: Params, samples: GaitSamples, tb: TorqueBreakdown, j: 
     peak = float(total[k_peak])
     sf = motor.peak_torque_Nm / peak
     # Torque available on the linear torque-speed line at each sample's speed.
-    available = motor.torque_limit(speed)
+    margin = motor.torque_limit(speed) / np.maximum(total, 1e-12)
+    k_line = int(np.argmin(margin))
     return {
         "peak_torque_Nm": peak,
         "peak_time_s": float(samples.t[k_peak]),
-        "peak_at": _at(samples, k_peak),
+        "peak_at": sample_at(samples, k_peak),
         "static_torque_Nm": float(static[k_static]),
-        "static_peak_at": _at(samples, k_static),
+        "static_peak_at": sample_at(samples, k_static),
         "dynamic_to_static_ratio": peak / float(static[k_static]),
         "rms_torque_Nm": float(np.sqrt(np.mean(tb.total[:, j] ** 2))),
         "peak_inertial_Nm": float(np.max(np.abs(tb.inertial[:, j] + tb.coriolis[:, j]))),
         "safety_factor": sf,
         "verdict": verdict(params.checks, sf),
         "peak_speed_rad_s": float(speed[k_speed]),
-        "peak_speed_at": _at(samples, k_speed),
+        "peak_speed_at": sample_at(samples, k_speed),
         "speed_limit_rad_s": motor.no_load_speed_rad_s,
         "speed_ok": bool(speed[k_speed] <= motor.no_load_speed_rad_s),
         "peak_acceleration_rad_s2": float(np.max(np.abs(samples.qdd[:, j]))),
-        "torque_speed_margin": float(np.min(available / np.maximum(total, 1e-12))),
+        "torque_speed_margin": float(margin[k_line]),
+        "torque_speed_margin_at": sample_at(samples, k_line),
     }
 
 
@@ -71,6 +70,7 @@ def analyze(params: Params, path: str = "seed_ellipse") -> Analysis:
     tbs = {name: params.mechanism.torques(m, samples.pose, samples.qd, samples.qdd)
            for name, m in models.items()}
     measures = singularity_measures(params.leg, samples.pose)
+    metrics = design_metrics(params, samples, models, tbs)
     results = {
         "results": {name: {motor: motor_results(params, samples, tb, j)
                            for j, motor in enumerate(MOTORS)} for name, tb in tbs.items()},
@@ -87,7 +87,8 @@ def analyze(params: Params, path: str = "seed_ellipse") -> Analysis:
             "max_cond_jf": float(np.max(measures.cond_jf)),
             "min_abs_det_jf_m2": float(np.min(np.abs(measures.det_jf))),
         },
+        **metrics.results,
         "parameters": dataclasses.asdict(params),
     }
     return Analysis(params=params, samples=samples, models=models, torques=tbs,
-                    measures=measures, results=results)
+                    measures=measures, metrics=metrics, results=results)

@@ -4,6 +4,7 @@ C++ primitives (MotorModel) and the classification of clipped commands."""
 from __future__ import annotations
 
 from dataclasses import dataclass
+import math
 import numpy as np
 from pydrake.systems.framework import Diagram, DiagramBuilder
 from pydrake.systems.primitives import (AffineSystem, Demultiplexer, Gain, MatrixGain, Multiplexer,
@@ -12,6 +13,16 @@ from pydrake.systems.primitives import (AffineSystem, Demultiplexer, Gain, Matri
 from fivebar_drake.core.compiled import jit
 from fivebar_drake.core.validation import (MAX_GEAR_RATIO, MAX_ROTOR_INERTIA_KG_M2,
                                            MAX_SPEED_RAD_S, MAX_TORQUE_NM, check_number, require)
+
+
+# Bounds of the thermal parameters, as loose as the others (validation.py): they catch a slip
+# (milliohms as ohms, minutes as seconds, Kelvin as Celsius), not a design.
+MAX_TORQUE_CONSTANT_NM_A = 10.0     # motor side; a large servo is ~1 N m/A
+MAX_RESISTANCE_OHM = 1000.0         # a small hobby motor's winding is ~10 ohm
+MAX_THERMAL_RESISTANCE_K_W = 1000.0  # a bare 20 mm motor is ~20 K/W
+MAX_THERMAL_TIME_CONSTANT_S = 1e5   # a large motor's housing: about an hour
+MIN_AMBIENT_C, MAX_AMBIENT_C = -60.0, 100.0
+MAX_WINDING_LIMIT_C = 300.0         # above the class C insulation rating (220 C)
 
 
 @jit
@@ -23,7 +34,10 @@ def torque_speed_line(peak_Nm, no_load_rad_s, speed_rad_s):
 
 @dataclass(frozen=True)
 class Motor:
-    """Geared hip motor, values at the gearbox output: torque N*m, speed rad/s."""
+    """Geared hip motor. Torque (N*m), speed (rad/s) and the continuous torque rating at the
+    gearbox output; rotor inertia (kg*m^2) and torque constant (N*m/A) on the motor side; the
+    winding: resistance (ohm), thermal resistance (K/W) and time constant (s) to ambient,
+    temperature limit and ambient (deg C)."""
 
     peak_torque_Nm: float
     gear_ratio: float
@@ -31,6 +45,13 @@ class Motor:
     rotor_inertia_kg_m2: float
     coulomb_friction_Nm: float
     viscous_friction_Nm_s: float
+    continuous_torque_Nm: float
+    torque_constant_Nm_A: float
+    winding_resistance_ohm: float
+    thermal_resistance_K_W: float
+    thermal_time_constant_s: float
+    winding_limit_C: float
+    ambient_C: float
 
     def __post_init__(self):
         for name, high in (("peak_torque_Nm", MAX_TORQUE_NM), ("gear_ratio", MAX_GEAR_RATIO),
@@ -45,6 +66,16 @@ class Motor:
                 self.coulomb_friction_Nm, f"with viscous_friction_Nm_s the friction at the no-load "
                 f"speed is {at_speed:g} N m, not below peak_torque_Nm = {self.peak_torque_Nm:g}: "
                 "the motor could not turn")
+        check_number("motor.continuous_torque_Nm", self.continuous_torque_Nm, 0.0,
+                     self.peak_torque_Nm, low_open=True, why="at most peak_torque_Nm")
+        for name, high in (("torque_constant_Nm_A", MAX_TORQUE_CONSTANT_NM_A),
+                           ("winding_resistance_ohm", MAX_RESISTANCE_OHM),
+                           ("thermal_resistance_K_W", MAX_THERMAL_RESISTANCE_K_W),
+                           ("thermal_time_constant_s", MAX_THERMAL_TIME_CONSTANT_S)):
+            check_number(f"motor.{name}", getattr(self, name), 0.0, high, low_open=True)
+        check_number("motor.ambient_C", self.ambient_C, MIN_AMBIENT_C, MAX_AMBIENT_C)
+        check_number("motor.winding_limit_C", self.winding_limit_C, self.ambient_C,
+                     MAX_WINDING_LIMIT_C, low_open=True, why="above motor.ambient_C")
 
     def torque_limit(self, speed_rad_s):
         """Largest motoring torque (N*m) at joint speeds (rad/s, array): torque_speed_line."""
@@ -55,6 +86,14 @@ class Motor:
     def reflected_inertia_kg_m2(self) -> float:
         """Rotor inertia seen at the output, N^2 J_rotor."""
         return self.gear_ratio**2 * self.rotor_inertia_kg_m2
+
+    @property
+    def thermal_continuous_torque_Nm(self) -> float:
+        """Output torque whose copper loss (tau / (N k_t))^2 R holds the winding at its limit in
+        steady state: N k_t sqrt((T_limit - T_ambient) / (R R_th))."""
+        return self.gear_ratio * self.torque_constant_Nm_A * math.sqrt(
+            (self.winding_limit_C - self.ambient_C)
+            / (self.winding_resistance_ohm * self.thermal_resistance_K_W))
 
 FRICTION_SMOOTHING_RAD_S = 0.05   # Coulomb friction reaches its full value at this joint speed
 PEAK_TOLERANCE = 1e-12            # relative: a delivered torque this close to the peak is at it

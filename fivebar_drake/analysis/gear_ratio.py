@@ -1,0 +1,68 @@
+"""Gear-ratio trade for one motor (Stanford Doggo's method): keep the motor (its motor-side peak
+torque tau_m, no-load speed w_m0, rotor inertia J_r) and change the gear ratio N. At the output
+the peak torque is tau_m N, the no-load speed w_m0 / N and the rotor adds N^2 J_r q'' to each
+joint's torque. The safety factor at N is the least ratio, over the cycle and the motors, of the
+torque the torque-speed line gives at the joint speed to the torque needed (gearbox lossless)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+import numpy as np
+from scipy.optimize import minimize_scalar
+
+from fivebar_drake.core.motor import Motor, torque_speed_line
+
+
+RATIO_RANGE = (1.0, 100.0)   # gear ratios searched (a direct drive to a two-stage planetary)
+GRID_POINTS = 200            # log-spaced ratios of the grid; the best one is then refined
+# the readings of the safety factor shown side by side: (torque-speed line, reflected inertia)
+EFFECTS = {"peak only": (False, False), "torque-speed line": (True, False),
+           "reflected inertia": (False, True), "both": (True, True)}
+
+
+def safety_factors(motor: Motor, load_Nm, qd, qdd, ratios, speed_line: bool = True,
+                   rotor: bool = True) -> np.ndarray:
+    """Safety factor (r, m) of each motor m at gear ratios (r,), for the joint torques load_Nm
+    (n, m) N*m of the linkage at joint rates qd (rad/s) and accelerations qdd (rad/s^2), (n, m):
+    min over samples of the available torque (the torque-speed line at |qd| if speed_line,
+    else the peak) over |load + N^2 J_r qdd| (the rotor term if rotor)."""
+    n = np.asarray(ratios, dtype=float)[:, None, None]
+    tau_m = motor.peak_torque_Nm / motor.gear_ratio
+    w_m0 = motor.no_load_speed_rad_s * motor.gear_ratio
+    peak = tau_m * n
+    available = torque_speed_line(peak, w_m0 / n, np.asarray(qd)) if speed_line else peak
+    need = np.abs(np.asarray(load_Nm) + (n**2 * motor.rotor_inertia_kg_m2 * np.asarray(qdd)
+                                          if rotor else 0.0))
+    return np.min(available / np.maximum(need, 1e-12), axis=1)
+
+
+@dataclass(frozen=True)
+class GearTrade:
+    """The gear-ratio search, both effects: ratios (r,) and safety factors (r, motors), the best
+    ratio (the worst motor's safety factor largest) and its safety factor, and the safety
+    factor at the motor's own ratio."""
+
+    ratios: np.ndarray
+    safety: np.ndarray
+    best_ratio: float
+    best_safety: float
+    current_safety: float
+
+
+def gear_trade(motor: Motor, load_Nm, qd, qdd) -> GearTrade:
+    """Search RATIO_RANGE (a log grid of GRID_POINTS, then a bounded scalar search between the
+    grid neighbours of the best point) for the ratio maximising the worst motor's safety factor
+    with both effects (safety_factors)."""
+    ratios = np.geomspace(*RATIO_RANGE, GRID_POINTS)
+    safety = safety_factors(motor, load_Nm, qd, qdd, ratios)
+
+    def worst(r):
+        return float(np.min(safety_factors(motor, load_Nm, qd, qdd, [r])))
+
+    k = int(np.argmax(np.min(safety, axis=1)))
+    lo, hi = ratios[max(k - 1, 0)], ratios[min(k + 1, GRID_POINTS - 1)]
+    found = minimize_scalar(lambda r: -worst(r), bounds=(lo, hi), method="bounded",
+                            options={"xatol": 1e-9 * hi})
+    best = float(found.x) if -found.fun >= worst(ratios[k]) else float(ratios[k])
+    return GearTrade(ratios=ratios, safety=safety, best_ratio=best, best_safety=worst(best),
+                     current_safety=worst(motor.gear_ratio))
