@@ -66,7 +66,7 @@ def _replace(obj, section: str, fields: dict):
         if name not in known:
             raise ParameterError(f"{section}.{name}: no such field; {section} has "
                                  f"{sorted(known)}", f"{section}.{name}")
-    values = {k: float(v) if known[k].type == "float" and isinstance(v, int)
+    values = {k: float(v) if known[k].type in ("float", "float | None") and isinstance(v, int)
               and not isinstance(v, bool) else v for k, v in fields.items()}
     try:
         return dataclasses.replace(obj, **values)

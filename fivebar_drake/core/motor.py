@@ -32,12 +32,19 @@ def torque_speed_line(peak_Nm, no_load_rad_s, speed_rad_s):
     return peak_Nm * np.minimum(np.maximum(1.0 - np.abs(speed_rad_s) / no_load_rad_s, 0.0), 1.0)
 
 
+THERMAL_FIELDS = ("continuous_torque_Nm", "torque_constant_Nm_A", "winding_resistance_ohm",
+                  "thermal_resistance_K_W", "thermal_time_constant_s", "winding_limit_C",
+                  "ambient_C")
+
+
 @dataclass(frozen=True)
 class Motor:
     """Geared hip motor. Torque (N*m), speed (rad/s) and the continuous torque rating at the
     gearbox output; rotor inertia (kg*m^2) and torque constant (N*m/A) on the motor side; the
     winding: resistance (ohm), thermal resistance (K/W) and time constant (s) to ambient,
-    temperature limit and ambient (deg C)."""
+    temperature limit and ambient (deg C). The thermal fields (THERMAL_FIELDS) are given all
+    together or not at all (None: a motor without a thermal model, e.g. a drive of another
+    mechanism)."""
 
     peak_torque_Nm: float
     gear_ratio: float
@@ -45,13 +52,13 @@ class Motor:
     rotor_inertia_kg_m2: float
     coulomb_friction_Nm: float
     viscous_friction_Nm_s: float
-    continuous_torque_Nm: float
-    torque_constant_Nm_A: float
-    winding_resistance_ohm: float
-    thermal_resistance_K_W: float
-    thermal_time_constant_s: float
-    winding_limit_C: float
-    ambient_C: float
+    continuous_torque_Nm: float | None = None
+    torque_constant_Nm_A: float | None = None
+    winding_resistance_ohm: float | None = None
+    thermal_resistance_K_W: float | None = None
+    thermal_time_constant_s: float | None = None
+    winding_limit_C: float | None = None
+    ambient_C: float | None = None
 
     def __post_init__(self):
         for name, high in (("peak_torque_Nm", MAX_TORQUE_NM), ("gear_ratio", MAX_GEAR_RATIO),
@@ -66,6 +73,17 @@ class Motor:
                 self.coulomb_friction_Nm, f"with viscous_friction_Nm_s the friction at the no-load "
                 f"speed is {at_speed:g} N m, not below peak_torque_Nm = {self.peak_torque_Nm:g}: "
                 "the motor could not turn")
+        given = [name for name in THERMAL_FIELDS if getattr(self, name) is not None]
+        require(len(given) in (0, len(THERMAL_FIELDS)), "motor", given,
+                f"the thermal model needs all of {list(THERMAL_FIELDS)} or none")
+        if self.has_thermal_model:
+            self._check_thermal()
+
+    @property
+    def has_thermal_model(self) -> bool:
+        return self.continuous_torque_Nm is not None
+
+    def _check_thermal(self) -> None:
         check_number("motor.continuous_torque_Nm", self.continuous_torque_Nm, 0.0,
                      self.peak_torque_Nm, low_open=True, why="at most peak_torque_Nm")
         for name, high in (("torque_constant_Nm_A", MAX_TORQUE_CONSTANT_NM_A),

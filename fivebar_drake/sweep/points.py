@@ -9,15 +9,20 @@ the spec's load model; simulation: its demand p99), `speed_m_s` (analysis: the s
 the mean forward speed), for analysis points `worst_torque_speed_margin` (the least ratio of
 the torque-speed line to the demand over both motors: below 1 the line is crossed) and
 `speed_ok` (the seed's speed check: no motor beyond its no-load speed; where it fails, the
-worst verdict is "fail" whatever the safety factor), then per motor (analysis: A, B; simulation: FL_A ... RR_B) its figures,
+worst verdict is "fail" whatever the safety factor), `worst_thermal_margin_K` (the least margin
+of a winding's steady temperature below its limit at the cycle's RMS torque,
+analysis.thermal.thermal_margin; negative: it overheats), then per motor (analysis: A, B; simulation: FL_A ... RR_B) its figures,
 the run's figures, `error`.
 """
 
 from __future__ import annotations
 
 import dataclasses
+import math
 
 from fivebar_drake.analysis.design_points import evaluate_designs, with_changes
+from fivebar_drake.analysis.thermal import thermal_margin
+from fivebar_drake.core.motor import Motor
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.pipeline import run_simulation, summarize_run
@@ -27,14 +32,15 @@ from fivebar_drake.simulation.scenario import Scenario
 SCENARIO = "scenario."
 LEGS = ("FL", "FR", "RL", "RR")
 ANALYSIS_MOTOR = ("peak_torque_Nm", "rms_torque_Nm", "safety_factor", "verdict",
-                  "peak_speed_rad_s", "speed_ok", "torque_speed_margin")
+                  "peak_speed_rad_s", "speed_ok", "torque_speed_margin", "thermal_margin_K",
+                  "time_to_winding_limit_s")
 SIMULATION_MOTOR = ("demand_peak_Nm", "demand_p99_Nm", "rms_torque_Nm", "safety_factor",
-                    "verdict")
+                    "verdict", "thermal_margin_K", "time_to_winding_limit_s")
 SIMULATION_RUN = ("completed", "duration_s", "cycles_in_window", "max_tilt_deg",
                   "max_loop_gap_m")      # not the wall time: a row must not depend on the machine
 HEAD = ("point",)
 WORST = ("status", "worst_motor", "worst_verdict", "worst_safety_factor", "worst_demand_Nm",
-         "speed_m_s")
+         "speed_m_s", "worst_thermal_margin_K")
 
 
 def columns(fidelity: str, varied: list[str]) -> list[str]:
@@ -48,10 +54,19 @@ def columns(fidelity: str, varied: list[str]) -> list[str]:
     return [*HEAD, *varied, *WORST, *motors, *run, "error"]
 
 
-def _worst(motors: dict, demand_key: str) -> dict:
+def _worst(motors: dict, demand_key: str, motor: Motor) -> dict:
+    """The worst motor's figures (lowest safety factor); each motor gains its thermal figures
+    at its RMS torque, and the least thermal margin is reported."""
+    for figures in motors.values():
+        if motor.has_thermal_model and math.isfinite(figures["rms_torque_Nm"]):
+            heat = thermal_margin(motor, figures["rms_torque_Nm"])
+            figures["thermal_margin_K"] = float(heat.margin_K)
+            figures["time_to_winding_limit_s"] = float(heat.time_to_limit_s)
     name, worst = min(motors.items(), key=lambda kv: kv[1]["safety_factor"])
+    margins = [m["thermal_margin_K"] for m in motors.values() if "thermal_margin_K" in m]
     return {"worst_motor": name, "worst_verdict": worst["verdict"],
-            "worst_safety_factor": worst["safety_factor"], "worst_demand_Nm": worst[demand_key]}
+            "worst_safety_factor": worst["safety_factor"], "worst_demand_Nm": worst[demand_key],
+            "worst_thermal_margin_K": min(margins) if margins else ""}
 
 
 def analysis_rows(base: Params, settings: tuple[str, str],
@@ -68,19 +83,20 @@ def analysis_rows(base: Params, settings: tuple[str, str],
         except ParameterError as err:
             row.update(status="failed", error=str(err))
         rows.append(row)
-    for i, result in zip(where, evaluate_designs(designs, *settings)):
+    for i, design, result in zip(where, designs, evaluate_designs(designs, *settings)):
         if "error" in result:
             rows[i].update(status="failed", error=result["error"])
             continue
         motors = {m: result[m] for m in MOTORS}
         speed_ok = all(m["speed_ok"] for m in motors.values())
         rows[i].update(status="ok", speed_m_s=result["stride_speed_m_s"],
-                       **_worst(motors, "peak_torque_Nm"), speed_ok=speed_ok, error="",
+                       **_worst(motors, "peak_torque_Nm", design.motor), speed_ok=speed_ok,
+                       error="",
                        worst_torque_speed_margin=min(m["torque_speed_margin"]
                                                      for m in motors.values()))
         if not speed_ok:
             rows[i]["worst_verdict"] = "fail"
-        rows[i].update({f"{m}_{k}": motors[m][k] for m in MOTORS for k in ANALYSIS_MOTOR})
+        rows[i].update({f"{m}_{k}": motors[m].get(k, "") for m in MOTORS for k in ANALYSIS_MOTOR})
     return rows
 
 
@@ -109,9 +125,10 @@ def simulation_row(base: Params, scenario: Scenario, index: int, changes: dict) 
     motors = {f"{leg}_{m}": v for leg, ms in summary["legs"].items() for m, v in ms.items()}
     row.update(status="stopped" if record.error else "ok", error=record.error or "",
                speed_m_s=summary["mean_forward_speed_m_s"],
-               **_worst(motors, "demand_p99_Nm"))
+               **_worst(motors, "demand_p99_Nm", params.motor))
     if summary["verdict"] == "insufficient":
         row["worst_verdict"] = "insufficient"
-    row.update({f"{name}_{k}": v[k] for name, v in motors.items() for k in SIMULATION_MOTOR})
+    row.update({f"{name}_{k}": v.get(k, "") for name, v in motors.items()
+                for k in SIMULATION_MOTOR})
     row.update({k: summary[k] for k in SIMULATION_RUN})
     return row

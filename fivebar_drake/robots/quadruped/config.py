@@ -40,7 +40,8 @@ def _build(cls, table, section: str):
         raise ParameterError(f"[{section}] is missing key(s) {missing}", f"{section}.{missing[0]}")
     values = {}
     for key, value in table.items():
-        if names[key].type == "float" and isinstance(value, int) and not isinstance(value, bool):
+        if names[key].type in ("float", "float | None") and isinstance(value, int) \
+                and not isinstance(value, bool):
             value = float(value)       # TOML's 1 for 1.0; every other type is checked by cls
         elif isinstance(value, list):
             value = tuple(value)       # a point [x, y]
