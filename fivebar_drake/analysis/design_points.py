@@ -29,8 +29,8 @@ SECTIONS = ("leg", "links", "robot", "gait", "motor", "checks", "body")
 def with_changes(params: Params, changes: dict) -> Params:
     """The parameters with fields changed by dotted path (section.field, or links.NAME.field),
     validated as a parameter file is (ParameterError naming the field). Changing
-    motor.gear_ratio keeps the motor and changes the gearbox: the output's peak torque and
-    no-load speed scale by N / N_before unless they are changed too."""
+    motor.gear_ratio keeps the motor and changes the gearbox: the output's peak torque, continuous
+    torque and no-load speed scale by N / N_before unless they are changed too."""
     sections = {}
     for path, value in changes.items():
         parts = path.split(".")
@@ -43,6 +43,8 @@ def with_changes(params: Params, changes: dict) -> Params:
         scale = float(motor["gear_ratio"]) / params.motor.gear_ratio
         motor.setdefault("peak_torque_Nm", params.motor.peak_torque_Nm * scale)
         motor.setdefault("no_load_speed_rad_s", params.motor.no_load_speed_rad_s / scale)
+        if params.motor.has_thermal_model:
+            motor.setdefault("continuous_torque_Nm", params.motor.continuous_torque_Nm * scale)
     new = {}
     for section, fields in sections.items():
         old = getattr(params, section)

@@ -61,6 +61,8 @@ def test_gear_ratio_keeps_the_motor():
     geared = with_changes(base, {"motor.gear_ratio": 2 * base.motor.gear_ratio})
     assert geared.motor.peak_torque_Nm == pytest.approx(2 * base.motor.peak_torque_Nm)
     assert geared.motor.no_load_speed_rad_s == pytest.approx(base.motor.no_load_speed_rad_s / 2)
+    assert geared.motor.continuous_torque_Nm == pytest.approx(
+        2 * base.motor.continuous_torque_Nm)
     # the reflected inertia N^2 J grows with the square
     assert geared.motor.reflected_inertia_kg_m2 == pytest.approx(
         4 * base.motor.reflected_inertia_kg_m2)
