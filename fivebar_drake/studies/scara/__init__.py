@@ -4,5 +4,7 @@
 
 from fivebar_drake.mechanisms.scara import load_params
 from fivebar_drake.studies.scara.report import ANALYSIS_FILES, write_analysis
+from fivebar_drake.studies.scara.simulate import SIMULATION_FILES, write_simulation
 
-__all__ = ["ANALYSIS_FILES", "load_params", "write_analysis"]
+__all__ = ["ANALYSIS_FILES", "SIMULATION_FILES", "load_params", "write_analysis",
+           "write_simulation"]

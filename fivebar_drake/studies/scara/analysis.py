@@ -31,12 +31,14 @@ class Motion:
     qdd: np.ndarray
 
 
-def seed_motion(params: ScaraParams, elbow: int | None = None) -> Motion:
+def seed_motion(params: ScaraParams, duration_s: float | None = None) -> Motion:
+    """The seed's trajectory at trajectory.samples_per_s over duration_s (default: the
+    trajectory's; beyond its end the tool rests at A), with the configured elbow."""
     tr = params.trajectory
-    t = np.linspace(0.0, tr.duration_s, int(round(tr.duration_s * tr.samples_per_s)) + 1)
+    duration = tr.duration_s if duration_s is None else duration_s
+    t = np.linspace(0.0, duration, int(round(duration * tr.samples_per_s)) + 1)
     p, v, a = seed_path(tr, t)
-    q, qd, qdd = Scara(params.kinematics).joint_motion(
-        p, v, a, params.kinematics.elbow if elbow is None else elbow)
+    q, qd, qdd = Scara(params.kinematics).joint_motion(p, v, a, params.kinematics.elbow)
     return Motion(t, p, v, a, q, qd, qdd)
 
 
