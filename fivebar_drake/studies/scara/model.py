@@ -1,9 +1,5 @@
-"""The SCARA arm as a Drake MultibodyPlant, from a generated SDF, and Drake's rigid-body terms
-along a motion (the independent check of the Lagrange model).
-
-Link frames sit on the joint axes, aligned with frame 0 at q = 0: link1 at (0, 0, d1), link2 at
-(a1, 0, d1 + d2), link3 (screw, gripper and payload, a mass on the axis) at (a1 + a2, 0,
-d1 + d2) with the tool point E at its origin; joint 3 slides along q3_direction * z."""
+"""The SCARA arm as a Drake MultibodyPlant, from a generated SDF (ScaraArm.sdf_elements), and
+Drake's rigid-body terms along a motion (the independent check of the Lagrange model)."""
 
 from __future__ import annotations
 
@@ -14,34 +10,16 @@ from pydrake.multibody.parsing import Parser
 from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
 from pydrake.multibody.tree import MultibodyForces
 
-from fivebar_drake.core.sdf import fmt, inertial
-from fivebar_drake.mechanisms.scara import Inertia, ScaraParams, seed_inertia
+from fivebar_drake.mechanisms.scara import Inertia, ScaraArm, ScaraParams
 
 JOINTS = ("q1", "q2", "q3")
 
 
 def sdf_text(params: ScaraParams, inertia: Inertia) -> str:
-    """SDF of the arm. ASSUMPTION: Ixx = Iyy = Izz of each link (the seed gives Izz only; the
-    horizontal moments never enter the motion, every joint axis being vertical)."""
-    k = params.kinematics
-    z2 = k.d1_m + k.d2_m
-    links = (("link1", (0.0, 0.0, k.d1_m), inertia.m1, inertia.c1, inertia.izz1),
-             ("link2", (k.a1_m, 0.0, z2), inertia.m2, inertia.c2, inertia.izz2),
-             ("link3", (k.a1_m + k.a2_m, 0.0, z2), inertia.m3, 0.0, inertia.izz3))
-    body = "".join(f'<link name="{name}"><pose>{fmt(*xyz, 0, 0, 0)}</pose>'
-                   f"{inertial(m, com, izz, izz, izz)}</link>"
-                   for name, xyz, m, com, izz in links)
-    limits = [np.radians(k.q1_limits_deg), np.radians(k.q2_limits_deg), k.q3_limits_m]
-    joints = ""
-    for (name, kind, axis), parent, child, (lo, hi) in zip(
-            (("q1", "revolute", "0 0 1"), ("q2", "revolute", "0 0 1"),
-             ("q3", "prismatic", f"0 0 {k.q3_direction}")),
-            ("base", "link1", "link2"), ("link1", "link2", "link3"), limits):
-        joints += (f'<joint name="{name}" type="{kind}"><parent>{parent}</parent>'
-                   f"<child>{child}</child><axis><xyz>{axis}</xyz><limit><lower>{lo:.12g}"
-                   f"</lower><upper>{hi:.12g}</upper></limit></axis></joint>")
-    return (f'<?xml version="1.0"?><sdf version="1.9"><model name="scara">'
-            f'<link name="base"/>{body}{joints}</model></sdf>')
+    """SDF of the arm: a base link and ScaraArm.sdf_elements placed in it."""
+    arm = ScaraArm(params.kinematics, inertia)
+    return (f'<?xml version="1.0"?><sdf version="1.9"><model name="scara"><link name="base"/>'
+            f'{arm.sdf_elements("", "base", "base")}</model></sdf>')
 
 
 @dataclass(frozen=True)
@@ -95,7 +73,3 @@ def drake_terms(params: ScaraParams, inertia: Inertia, q, qd, qdd) -> dict[str, 
         out["gravity"][k] = -plant.CalcGravityGeneralizedForces(context)[iv]
     return out
 
-
-def packaged_inertia(params: ScaraParams, payload_kg: float) -> Inertia:
-    """The seed's inertia data as written, with a payload at the tool."""
-    return seed_inertia(params.links, payload_kg)
