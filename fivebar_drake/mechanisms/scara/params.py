@@ -5,12 +5,8 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import tomllib
 from dataclasses import dataclass
-from importlib import resources
-from pathlib import Path
 
-from fivebar_drake.core.files import read_input_text
 from fivebar_drake.core.validation import (MAX_GRAVITY_M_S2, MAX_LENGTH_M, MAX_MASS_KG,
                                            MAX_SAMPLES, MAX_SPEED_RAD_S, MAX_TORQUE_NM,
                                            ParameterError, check_number, require)
@@ -289,21 +285,3 @@ def params_from_dict(data: dict, source: str = "") -> ScaraParams:
               for k, v in data["seed_claims"].items()}
     built = {name: _section(cls, data[name], name) for name, cls in SECTIONS.items()}
     return ScaraParams(seed_claims=claims, source=source or "packaged scara.toml", **built)
-
-
-def load_params(path: str | Path | None = None) -> ScaraParams:
-    """The validated parameters of a TOML file (None: the packaged data/scara.toml);
-    ParameterError naming the file and the field."""
-    if path is None:
-        text = resources.files("fivebar_drake").joinpath("data/scara.toml").read_text("utf-8")
-        source = "fivebar_drake/data/scara.toml"
-    else:
-        text, source = read_input_text(path, "parameter file"), str(path)
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as err:
-        raise ParameterError(f"not valid TOML: {err}", source=source) from None
-    try:
-        return params_from_dict(data, source)
-    except ParameterError as err:
-        raise err.located(source) from None
