@@ -50,9 +50,15 @@ def claim(id_, text, seed, computed, unit, reading) -> dict:
             "deviation": float(computed / seed - 1.0)}
 
 
+def _sizing_parts(dyn: Dynamics, joint: int, q2, qd, qdd) -> dict[str, float]:
+    """A joint's force and its parts at (q1 = 0, q2, q3 = 0) with joint 1, 2 speeds qd and
+    accelerations qdd (joint 3 at rest)."""
+    parts = dyn.torques(np.array([0.0, q2, 0.0]), np.array([*qd, 0.0]), np.array([*qdd, 0.0]))
+    return {k: float(v[joint]) for k, v in parts.items()}
+
+
 def _sizing_torque(dyn: Dynamics, joint: int, q2, qd, qdd) -> float:
-    q = np.array([0.0, q2, 0.0])
-    return float(dyn.torques(q, np.array([*qd, 0.0]), np.array([*qdd, 0.0]))["total"][joint])
+    return _sizing_parts(dyn, joint, q2, qd, qdd)["total"]
 
 
 def _worst(dyn: Dynamics, joint: int, limits, qd, qdd) -> tuple[float, float]:
@@ -84,10 +90,12 @@ def torque_readings(params: ScaraParams) -> list[tuple[str, float, float]]:
     for joint, written_qd1 in ((0, speeds[0]), (1, speeds[-1])):
         qd = np.array([written_qd1, sp.qd2_rad_s])
         name = f"tau{joint + 1}"
+        parts = _sizing_parts(dyn, joint, q2_written, qd, qdd)
         out.append((name, f"as written: eq. 2.{79 + 4 * joint} with qd1 = {written_qd1} rad/s, "
                     f"qd2 = {sp.qd2_rad_s} rad/s, qdd = {qdd.tolist()} rad/s^2, q2 = eps2 t^2 = "
-                    f"{q2_written:.3f} rad, all of the same sign",
-                    _sizing_torque(dyn, joint, q2_written, qd, qdd)))
+                    f"{q2_written:.3f} rad, all of the same sign (inertial "
+                    f"{parts['inertial']:.1f}, Coriolis/centrifugal {parts['coriolis']:.1f}, "
+                    f"total {parts['total']:.1f} N*m)", parts["total"]))
         for other in speeds:
             if other != written_qd1:
                 out.append((name, f"as written but qd1 = {other} rad/s (the seed's other value)",
@@ -214,6 +222,36 @@ def seed_claims(params: ScaraParams, motion: Motion, lagrange_tau3: float) -> li
             claim("eta_p", "screw efficiency 0.9 tan(gamma) / tan(gamma + phi)", sc["eta_p"],
                   s["eta_p"], "-", "gamma, phi computed")]
     return out
+
+
+def seed_notes(params: ScaraParams) -> list[str]:
+    """Where the seed's text contradicts itself or its own numbers, with the numbers."""
+    tr, k, sp = params.trajectory, params.kinematics, params.sizing
+    za, zb = tr.a_m[2] * 1e3, tr.b_m[2] * 1e3
+    T = tr.line_s
+    a2, a3 = 3 * (za - zb) / T**2, -2 * (za - zb) / T**3            # the seed's eq. 2.48
+    end_down = za + a2 * T**2 + a3 * T**3
+    end_up = zb - a2 * T**2 - a3 * T**3                               # eq. 2.53
+    z_written = sorted(k.d1_m + k.d2_m + np.array(k.q3_limits_m))
+    return [
+        f"Eq. 2.48-2.49 take a2 = 3 (z0 - zc) / t^2 = {a2:g}, a3 = {a3:g}: z(t) = {za:g} + "
+        f"{a2:g} t^2 {a3:+g} t^3 ends at {end_down:g} mm, not at B's {zb:g} mm (the sign of "
+        f"z_c - z_0 is swapped); eq. 2.53 likewise ends at {end_up:g} mm, not {za:g}. The code "
+        "uses the cubic law from A to B and back (eq. 2.46).",
+        f"Eq. 2.20/2.21 (z_E = q3 + 0.45, q3 in [0, 0.4] m) put the tool at z in "
+        f"[{z_written[0]:g}, {z_written[1]:g}] m, out of reach of the trajectory's z = "
+        f"{zb / 1e3:g} .. {za / 1e3:g} m; the code reads q3 as moving the tool down "
+        f"(q3_direction = {k.q3_direction}).",
+        "Eq. 2.74 gives G = (0, 0, -m3 g) but eq. 2.77 adds +m3 g: the sign follows the "
+        "direction of q3; here G3 = q3_direction m3 g (tool weight along -z).",
+        f"The sizing of joint 1 uses qd1 = {sp.qd1_rad_s[0]} rad/s, that of joint 2 qd1 = "
+        f"{sp.qd1_rad_s[-1]} rad/s (450 deg/s = 7.854 rad/s); both are computed.",
+        f"'q2 = eps2max t^2 = {sp.qdd2_rad_s2 * sp.t_q2_s**2:.2f} rad' at t = {sp.t_q2_s} s: "
+        f"from rest at constant acceleration q2 = eps t^2 / 2 = "
+        f"{0.5 * sp.qdd2_rad_s2 * sp.t_q2_s**2:.2f} rad; both are computed.",
+        "The seed gives no pose, speed signs or time for its tau1max = 206 N*m and tau2max = "
+        "115 N*m: every reading its text allows is computed (seed_claims tau1_max, tau2_max).",
+    ]
 
 
 def drake_check(params: ScaraParams, motion: Motion, payload_kg: float, every: int = 10) -> dict:

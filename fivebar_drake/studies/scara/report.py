@@ -13,7 +13,7 @@ from fivebar_drake.core.files import atomic_path, write_atomic
 from fivebar_drake.mechanisms.scara import Dynamics, Scara, ScaraParams, seed_inertia
 from fivebar_drake.mechanisms.scara import sizing as sz
 from fivebar_drake.studies.scara.analysis import (REPRODUCED_WITHIN, Motion, drake_check,
-                                                  seed_claims, seed_motion)
+                                                  seed_claims, seed_motion, seed_notes)
 
 FIGURES = ("workspace", "joint_motion", "joint_forces")
 ANALYSIS_FILES = ("report.json", *(f"{name}.png" for name in FIGURES), "report.md")
@@ -88,6 +88,7 @@ def analysis_data(params: ScaraParams) -> tuple[dict, Motion]:
         "demand": [_demand_rows(params, motion, w) for w in (0.0, links.payload_kg)],
         "drake_check": [drake_check(params, motion, w) for w in (0.0, links.payload_kg)],
         "seed_claims": seed_claims(params, motion, tau3),
+        "seed_notes": seed_notes(params),
         "assumptions": assumptions(params),
     }
     return data, motion
@@ -139,6 +140,8 @@ def markdown(data: dict) -> str:
                    f"({c['deviation']:+.1%})")
         lines.append(f"| {c['id']} | {_f(c['seed_value'])} | {_f(c['computed_value'])} | "
                      f"{c['unit']} | {c['reading']} | {verdict} |")
+    lines += ["", "## Where the seed's text is inconsistent", ""]
+    lines += [f"- {n}" for n in data["seed_notes"]]
     lines += ["", "## Assumptions", ""] + [f"- {a}" for a in data["assumptions"]]
     lines += ["", "## Plots", ""] + [f"![{n}]({n}.png)" for n in FIGURES]
     return "\n".join(lines) + "\n"
