@@ -131,3 +131,10 @@ def test_simulate_tracks_the_path_with_the_sized_motors(tmp_path, params):
     from rerun.chunk import RrdReader
     chunks = RrdReader(str(tmp_path / "run.rrd")).stream().filter(content="world/arm").to_chunks()
     assert chunks
+
+
+def test_simulate_refuses_a_duration_too_short(tmp_path, capsys):
+    assert main(["simulate", "--mechanism", "scara", "--duration", "0",
+                 "--out", str(tmp_path)]) == 2
+    assert "command line: --duration = 0.0" in capsys.readouterr().err
+    assert not (tmp_path / "summary.json").exists()

@@ -18,7 +18,9 @@ from pydrake.trajectories import PiecewisePolynomial
 
 from fivebar_drake.core.files import say
 from fivebar_drake.core.motor import Motor, MotorModel, clip_flags
+from fivebar_drake.core.validation import ParameterError, check_number
 from fivebar_drake.mechanisms.scara import Scara, ScaraParams, seed_inertia
+from fivebar_drake.mechanisms.scara.params import MAX_DURATION_S
 from fivebar_drake.mechanisms.scara import sizing as sz
 from fivebar_drake.studies.scara.analysis import Motion, screw, seed_motion
 from fivebar_drake.studies.scara.model import add_arm
@@ -62,6 +64,11 @@ def run(params: ScaraParams, duration_s: float | None = None, progress: bool = F
     trajectory's duration)."""
     sim = params.simulation
     duration = params.trajectory.duration_s if duration_s is None else duration_s
+    try:
+        check_number("--duration", duration, 10 * sim.time_step_s, MAX_DURATION_S,
+                     why="at least 10 plant steps")
+    except ParameterError as err:
+        raise err.located("command line") from None
     desired = seed_motion(params, duration)
     inertia = seed_inertia(params.links, sim.payload_kg)
     builder = DiagramBuilder()
