@@ -8,6 +8,6 @@ from fivebar_drake.mechanisms.scara.config import check_trajectory, load_params
 from fivebar_drake.mechanisms.scara.params import ScaraParams, params_from_dict
 from fivebar_drake.mechanisms.scara.trajectory import cubic_coefficients, cubic_law, seed_path
 
-__all__ = ["ScaraArm", "Dynamics", "Inertia", "seed_inertia", "ELBOWS", "OutOfReach", "Scara", "ScaraPose",
-           "ScaraParams", "check_trajectory", "load_params", "params_from_dict", "cubic_coefficients", "cubic_law",
-           "seed_path"]
+__all__ = ["ScaraArm", "Dynamics", "Inertia", "seed_inertia", "ELBOWS", "OutOfReach", "Scara",
+           "ScaraPose", "ScaraParams", "check_trajectory", "load_params", "params_from_dict",
+           "cubic_coefficients", "cubic_law", "seed_path"]

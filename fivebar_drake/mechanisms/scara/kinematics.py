@@ -72,9 +72,9 @@ class Scara:
         bad = (np.abs(cos2) > 1.0) | ~self.within_limits(q)
         if np.any(bad):
             if strict:
-                k = np.argwhere(np.atleast_1d(bad))[0]
-                raise OutOfReach(f"tool point {np.atleast_2d(p)[k[0]] if p.ndim > 1 else p} "
-                                 f"is out of reach with elbow {elbow:+d} under the joint limits")
+                first = p.reshape(-1, 3)[np.flatnonzero(np.ravel(bad))[0]]
+                raise OutOfReach(f"tool point {first.round(6).tolist()} m is out of reach with "
+                                 f"elbow {elbow:+d} under the joint limits")
             q = np.where(bad[..., None], np.nan, q)
         return ScaraPose(q, p)
 

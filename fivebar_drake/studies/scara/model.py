@@ -52,8 +52,8 @@ def add_arm(builder, params: ScaraParams, inertia: Inertia, time_step_s: float =
 
 def drake_terms(params: ScaraParams, inertia: Inertia, q, qd, qdd) -> dict[str, np.ndarray]:
     """Drake's terms at each sample of q, qd, qdd (n, 3), in the joint order (q1, q2, q3):
-    inverse-dynamics forces with gravity (n, 3), mass matrices (n, 3, 3), bias C qd (n, 3) and the gravity
-    forces as G = -tau_g (n, 3)."""
+    inverse-dynamics forces with gravity (n, 3), mass matrices (n, 3, 3), bias C qd (n, 3)
+    and the gravity forces as G = -tau_g (n, 3)."""
     arm = add_arm(None, params, inertia)
     plant, iq, iv = arm.plant, arm.q_index, arm.v_index
     context, forces = plant.CreateDefaultContext(), MultibodyForces(plant)
