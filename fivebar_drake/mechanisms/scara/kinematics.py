@@ -139,17 +139,27 @@ class Scara:
         eta = q[..., 0] + q[..., 1] - np.pi / 2
         return np.stack([np.zeros_like(eta), np.zeros_like(eta), eta], axis=-1)
 
-    def reachable_xy(self, xy) -> np.ndarray:
+    def reachable_xy(self, xy, tol_rad: float = 1e-9) -> np.ndarray:
         """Whether plane points (..., 2) are reachable with either elbow under the q1, q2
-        limits (boolean)."""
+        limits (boolean; tol_rad absorbs the rounding of points on a limit)."""
         xy = np.asarray(xy, dtype=float)
         p = np.concatenate([xy, np.full(xy.shape[:-1] + (1,), self.z0)], axis=-1)
-        lower, upper = self.lower[:2], self.upper[:2]
+        lower, upper = self.lower[:2] - tol_rad, self.upper[:2] + tol_rad
         ok = np.zeros(xy.shape[:-1], dtype=bool)
         for elbow in ELBOWS:
             q = self.inverse(p, elbow, strict=False).q[..., :2]
             ok |= np.all((q >= lower) & (q <= upper), axis=-1)
         return ok
+
+    def seed_grid(self) -> np.ndarray:
+        """Tool points (n, 2) of the seed's Matlab grid (Fig. 2.4): q1, q2 from their lower
+        limits in steps of seed_grid_step_deg."""
+        step = np.radians(self.k.seed_grid_step_deg)
+        q1 = np.arange(self.lower[0], self.upper[0] + 1e-12, step)
+        q2 = np.arange(self.lower[1], self.upper[1] + 1e-12, step)
+        g1, g2 = np.meshgrid(q1, q2)
+        q = np.stack([g1.ravel(), g2.ravel(), np.zeros(g1.size)], axis=-1)
+        return self.forward(q).f[:, :2]
 
     def boundary_candidates(self, n: int = 2000) -> list[np.ndarray]:
         """The curves the workspace boundary lies on (each (n, 2), exact points): the images

@@ -43,7 +43,8 @@ def _point(field, point):
 @dataclass(frozen=True)
 class Kinematics:
     """DH geometry (m) and joint limits: q1, q2 in deg, q3 in m; q3_direction +1 (tool up with
-    q3, eq. 2.20 as written) or -1 (tool down); elbow +1 or -1 (sign of q2)."""
+    q3, eq. 2.20 as written) or -1 (tool down); elbow +1 or -1 (sign of q2); the step (deg) of
+    the seed's workspace grid."""
 
     a1_m: float
     a2_m: float
@@ -54,6 +55,7 @@ class Kinematics:
     q3_limits_m: tuple
     q3_direction: int
     elbow: int
+    seed_grid_step_deg: float
 
     def __post_init__(self):
         for name in ("a1_m", "a2_m"):
@@ -63,6 +65,7 @@ class Kinematics:
         _range("kinematics.q1_limits_deg", self.q1_limits_deg, -180.0, 180.0, "deg")
         _range("kinematics.q2_limits_deg", self.q2_limits_deg, -180.0, 180.0, "deg")
         _range("kinematics.q3_limits_m", self.q3_limits_m, -MAX_LENGTH_M, MAX_LENGTH_M, "m")
+        _positive("kinematics.seed_grid_step_deg", self.seed_grid_step_deg, 90.0)
         for name in ("q3_direction", "elbow"):
             require(getattr(self, name) in (1, -1) and not isinstance(getattr(self, name), bool),
                     f"kinematics.{name}", getattr(self, name), "must be 1 or -1")

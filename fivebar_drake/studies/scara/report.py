@@ -157,6 +157,8 @@ def _save(fig, path: Path) -> Path:
 def plot_workspace(params: ScaraParams, motion: Motion) -> plt.Figure:
     scara = Scara(params.kinematics)
     fig, (top, side) = plt.subplots(1, 2, figsize=(12, 5.5), width_ratios=[1.4, 1])
+    grid = scara.seed_grid()
+    top.plot(grid[:, 0], grid[:, 1], ".", color="0.7", ms=2, label="the seed's grid (Fig. 2.4)")
     for k, piece in enumerate(scara.workspace_boundary()):
         top.plot(piece[:, 0], piece[:, 1], "k-", lw=1.2, label="boundary" if k == 0 else None)
     top.plot(motion.p[:, 0], motion.p[:, 1], "r-", lw=2, label="trajectory")

@@ -106,6 +106,12 @@ def test_workspace_membership_against_joint_space_sampling(scara, rng):
     assert not scara.reachable_xy([[-0.849, 0.0]]).any()
 
 
+def test_seed_grid_lies_in_the_workspace(scara):
+    grid = scara.seed_grid()
+    assert len(grid) == 37 * 33          # -165..165 and -147..147 deg in 9 deg steps
+    assert scara.reachable_xy(grid).all()
+
+
 def test_workspace_boundary(scara, rng):
     inner, outer = scara.radial_extent()
     assert outer == pytest.approx(0.85)
