@@ -31,14 +31,17 @@ class Motion:
     qdd: np.ndarray
 
 
-def seed_motion(params: ScaraParams, duration_s: float | None = None) -> Motion:
+def seed_motion(params: ScaraParams, duration_s: float | None = None,
+                elbow: int | None = None) -> Motion:
     """The seed's trajectory at trajectory.samples_per_s over duration_s (default: the
-    trajectory's; beyond its end the tool rests at A), with the configured elbow."""
+    trajectory's; beyond its end the tool rests at A), with an elbow (default: the configured
+    one)."""
     tr = params.trajectory
     duration = tr.duration_s if duration_s is None else duration_s
     t = np.linspace(0.0, duration, int(round(duration * tr.samples_per_s)) + 1)
     p, v, a = seed_path(tr, t)
-    q, qd, qdd = Scara(params.kinematics).joint_motion(p, v, a, params.kinematics.elbow)
+    q, qd, qdd = Scara(params.kinematics).joint_motion(
+        p, v, a, params.kinematics.elbow if elbow is None else elbow)
     return Motion(t, p, v, a, q, qd, qdd)
 
 

@@ -10,7 +10,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from fivebar_drake.core.files import atomic_path, write_atomic
-from fivebar_drake.mechanisms.scara import Dynamics, Scara, ScaraParams, seed_inertia
+from fivebar_drake.mechanisms.scara import Dynamics, OutOfReach, Scara, ScaraParams, seed_inertia
 from fivebar_drake.mechanisms.scara import sizing as sz
 from fivebar_drake.studies.scara.analysis import (REPRODUCED_WITHIN, Motion, drake_check,
                                                   seed_claims, seed_motion, seed_notes)
@@ -53,6 +53,23 @@ def _demand_rows(params, motion: Motion, payload: float) -> dict:
             "parts_peak": {k: np.abs(v).max(axis=0).tolist() for k, v in tau.items()}}
 
 
+def _elbows(params: ScaraParams) -> list[dict]:
+    """The trajectory with each elbow: peak joint speeds and forces with the payload."""
+    out = []
+    dyn = Dynamics(params.kinematics, seed_inertia(params.links, params.links.payload_kg))
+    for elbow in (1, -1):
+        try:
+            m = seed_motion(params, elbow=elbow)
+        except OutOfReach as err:
+            out.append({"elbow": elbow, "reachable": False, "why": str(err)})
+            continue
+        tau = dyn.torques(m.q, m.qd, m.qdd)["total"]
+        out.append({"elbow": elbow, "reachable": True,
+                    "peak_joint_speed": np.abs(m.qd).max(axis=0).tolist(),
+                    "peak_force": np.abs(tau).max(axis=0).tolist()})
+    return out
+
+
 def analysis_data(params: ScaraParams) -> tuple[dict, Motion]:
     """Everything report.json holds, and the sampled trajectory."""
     k, sp, links = params.kinematics, params.sizing, params.links
@@ -86,6 +103,7 @@ def analysis_data(params: ScaraParams) -> tuple[dict, Motion]:
                        "peak_tool_speed_m_s": float(np.linalg.norm(motion.v, axis=1).max()),
                        "joint_units": ["rad", "rad", "m"]},
         "demand": [_demand_rows(params, motion, w) for w in (0.0, links.payload_kg)],
+        "elbows": _elbows(params),
         "drake_check": [drake_check(params, motion, w) for w in (0.0, links.payload_kg)],
         "seed_claims": seed_claims(params, motion, tau3),
         "seed_notes": seed_notes(params),
@@ -125,6 +143,12 @@ def markdown(data: dict) -> str:
                          f"{d['peak_time_s'][j]:.3f} | {_f(d['rms'][j])} | "
                          f"{_f(d['peak_speed'][j])} | {_f(d['peak_power_W'][j])} | "
                          f"{_f(d['input_power_W'][j])} |")
+    elbow = data["parameters"]["kinematics"]["elbow"]
+    lines += ["", f"With the payload, by elbow (the trajectory's is {elbow:+d}): "
+              + "; ".join(f"elbow {e['elbow']:+d}: peak speeds "
+                          f"{', '.join(_f(v) for v in e['peak_joint_speed'])}, peak forces "
+                          f"{', '.join(_f(v) for v in e['peak_force'])}" if e["reachable"]
+                          else f"elbow {e['elbow']:+d}: {e['why']}" for e in data["elbows"]) + "."]
     lines += ["", "Lagrange model against Drake's MultibodyPlant of the same arm (generated SDF):"]
     for c in data["drake_check"]:
         lines.append(f"- payload {c['payload_kg']:g} kg, {c['samples']} samples: inverse "
