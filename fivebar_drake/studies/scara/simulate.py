@@ -51,14 +51,16 @@ def markdown(summary: dict) -> str:
              f"kd = {summary['controller']['kd']:g} 1/s). The tool stayed within "
              f"{tr['max_error_m'] * 1e3:.3f} mm of the path (worst at t = {tr['at_s']:.3f} s, "
              f"RMS {tr['rms_error_m'] * 1e3:.3f} mm; tolerance {tr['tolerance_m'] * 1e3:g} mm).",
-             "", "| joint | peak applied | RMS | sized limit | peak / limit | peak speed | "
-             "clipped (peak, line) |", "|---|---|---|---|---|---|---|"]
+             "", "| joint | peak applied | Lagrange peak | RMS | sized limit | peak / limit | "
+             "peak speed | clipped (peak, line) |", "|---|---|---|---|---|---|---|---|"]
     for j in summary["joints"]:
         lines.append(f"| {j['joint']} | {j['peak_applied']:.4g} {j['unit']} | "
-                     f"{j['rms_applied']:.4g} | {j['limit']:.4g} | {j['peak_over_limit']:.1%} | "
+                     f"{j['lagrange_peak']:.4g} | {j['rms_applied']:.4g} | {j['limit']:.4g} | "
+                     f"{j['peak_over_limit']:.1%} | "
                      f"{j['peak_speed']:.3g} | {j['clipped_by_peak_fraction']:.1%}, "
                      f"{j['clipped_by_line_fraction']:.1%} |")
-    lines += ["", "Units: joints 1, 2 in N*m and rad/s, joint 3 in N and m/s. The limit of "
+    lines += ["", "Units: joints 1, 2 in N*m and rad/s, joint 3 in N and m/s. Lagrange peak: "
+              "M qdd + C qd + G of the desired motion (the analysis's model). The limit of "
               "joint 3 is the chosen servo's peak torque through the 1:2 belt and the ball "
               "screw (eq. 2.86).", "", "![tracking](sim_tracking.png)", "",
               f"Recording: `{RECORDING_FILE}` (open with `rerun {RECORDING_FILE}`)."]

@@ -19,7 +19,7 @@ from pydrake.trajectories import PiecewisePolynomial
 from fivebar_drake.core.files import say
 from fivebar_drake.core.motor import Motor, MotorModel, clip_flags
 from fivebar_drake.core.validation import ParameterError, check_number
-from fivebar_drake.mechanisms.scara import Scara, ScaraParams, seed_inertia
+from fivebar_drake.mechanisms.scara import Dynamics, Scara, ScaraParams, seed_inertia
 from fivebar_drake.mechanisms.scara.params import MAX_DURATION_S
 from fivebar_drake.mechanisms.scara import sizing as sz
 from fivebar_drake.studies.scara.analysis import Motion, screw, seed_motion
@@ -130,7 +130,7 @@ def run(params: ScaraParams, duration_s: float | None = None, progress: bool = F
 
 def summarize(params: ScaraParams, r: Run) -> dict:
     """Tracking error of the tool, and per joint the applied, commanded and clipped forces
-    against the sized motors."""
+    against the sized motors and the Lagrange model's peak along the desired motion."""
     scara = Scara(params.kinematics)
     tool = scara.forward(r.q).f
     t_des = r.desired.t
@@ -138,6 +138,9 @@ def summarize(params: ScaraParams, r: Run) -> dict:
     err = np.linalg.norm(tool - wanted, axis=1)
     k = int(np.argmax(err))
     tol = params.simulation.tracking_tolerance_m
+    d = r.desired
+    model = Dynamics(params.kinematics, seed_inertia(params.links, params.simulation.payload_kg))
+    model_peak = np.abs(model.torques(d.q, d.qd, d.qdd)["total"]).max(axis=0)
     joints = []
     for j, (name, unit, motor) in enumerate(zip(("q1", "q2", "q3"), ("N*m", "N*m", "N"),
                                                 r.motors)):
@@ -146,6 +149,7 @@ def summarize(params: ScaraParams, r: Run) -> dict:
         peak = float(np.abs(applied).max())
         joints.append({"joint": name, "unit": unit, "peak_applied": peak,
                        "rms_applied": float(np.sqrt(np.mean(applied**2))),
+                       "lagrange_peak": float(model_peak[j]),
                        "peak_command": float(np.abs(command).max()),
                        "limit": motor.peak_torque_Nm, "peak_over_limit": peak
                        / motor.peak_torque_Nm,
