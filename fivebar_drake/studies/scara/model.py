@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 from pydrake.math import RigidTransform
 from pydrake.multibody.parsing import Parser
-from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
+from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlant, MultibodyPlantConfig
 from pydrake.multibody.tree import MultibodyForces
 
 from fivebar_drake.mechanisms.scara import Inertia, ScaraArm, ScaraParams
@@ -25,7 +25,7 @@ def sdf_text(params: ScaraParams, inertia: Inertia) -> str:
 @dataclass(frozen=True)
 class ArmPlant:
     """A finalized plant of the arm and the index maps: q_index[i] (v_index[i]) is the plant
-    position (velocity) of joint i of (q1, q2, q3); actuation[i] the actuator of joint i."""
+    position (velocity) of joint i of (q1, q2, q3)."""
 
     plant: object
     q_index: np.ndarray
@@ -35,12 +35,10 @@ class ArmPlant:
 def add_arm(builder, params: ScaraParams, inertia: Inertia, time_step_s: float = 0.0) -> ArmPlant:
     """Add the finalized arm (base welded to the world, gravity of the parameters) to a
     DiagramBuilder, or make a lone plant if builder is None."""
-    config = MultibodyPlantConfig(time_step=time_step_s)
     if builder is None:
-        from pydrake.multibody.plant import MultibodyPlant
         plant = MultibodyPlant(time_step_s)
     else:
-        plant, _ = AddMultibodyPlant(config, builder)
+        plant, _ = AddMultibodyPlant(MultibodyPlantConfig(time_step=time_step_s), builder)
     Parser(plant).AddModelsFromString(sdf_text(params, inertia), "sdf")
     plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("base"), RigidTransform())
     plant.mutable_gravity_field().set_gravity_vector([0.0, 0.0, -inertia.g])

@@ -171,7 +171,8 @@ def markdown(data: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _save(fig, path: Path) -> Path:
+def save_figure(fig, path: Path) -> Path:
+    """Write a figure as PNG atomically and close it; returns path."""
     with atomic_path(path) as tmp:
         fig.savefig(tmp, dpi=110)
     plt.close(fig)
@@ -244,7 +245,7 @@ def write_analysis(params: ScaraParams, out: Path) -> tuple[list[str], list[Path
                plot_joint_forces(params, motion))
     written = [write_atomic(out / "report.json",
                             json.dumps(data, indent=2, allow_nan=False) + "\n")]
-    written += [_save(fig, out / f"{name}.png") for fig, name in zip(figures, FIGURES)]
+    written += [save_figure(fig, out / f"{name}.png") for fig, name in zip(figures, FIGURES)]
     written.append(write_atomic(out / "report.md", markdown(data)))
     claims = data["seed_claims"]
     loaded = data["demand"][1]

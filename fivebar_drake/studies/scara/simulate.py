@@ -8,8 +8,9 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 import numpy as np
 
-from fivebar_drake.core.files import atomic_path, write_atomic
+from fivebar_drake.core.files import write_atomic
 from fivebar_drake.mechanisms.scara import ScaraParams
+from fivebar_drake.studies.scara.report import save_figure
 from fivebar_drake.studies.scara.recording import RECORDING_FILE, write_recording
 from fivebar_drake.studies.scara.simulation import Run, run, summarize
 
@@ -73,11 +74,8 @@ def write_simulation(params: ScaraParams, out: Path, duration_s: float | None,
     r = run(params, duration_s, progress)
     summary = summarize(params, r)
     error = summary.pop("error_series")
-    fig = plot_run(r, summary, error)
-    with atomic_path(out / "sim_tracking.png") as tmp:
-        fig.savefig(tmp, dpi=110)
-    plt.close(fig)
-    written = [out / "sim_tracking.png", write_recording(out / RECORDING_FILE, params, r, error),
+    written = [save_figure(plot_run(r, summary, error), out / "sim_tracking.png"),
+               write_recording(out / RECORDING_FILE, params, r, error),
                write_atomic(out / "summary.md", markdown(summary)),
                write_atomic(out / "summary.json",
                             json.dumps(summary, indent=2, allow_nan=False) + "\n")]
