@@ -178,14 +178,24 @@ def seed_claims(params: ScaraParams, motion: Motion, lagrange_tau3: float) -> li
                              sz.motor_power_kW(abs(value), n_rpm, mu, const), "kW",
                              f"tau from: {reading}"))
     s = screw(params)
-    out += [claim("Fa_unloaded", "axial force of the screw, no load: (m_vit + m_tkep)(qdd3 + g)",
-                  sc["Fa_unloaded_N"], s["Fa_unloaded_N"], "N",
-                  f"m3 = {params.links.m3_kg:g} kg lifted at {sp.qdd3_m_s2} m/s^2 (eq. 2.85)"),
-            claim("Fa_unloaded", "axial force of the screw, no load",
-                  sc["Fa_unloaded_N"], lagrange_tau3, "N",
-                  "|tau3| of the Lagrange model (eq. 2.78) at the same acceleration upwards"),
-            claim("Fa_loaded", "axial force with the 20 kg load: m3 (qdd3 + g), m3 = 24 kg",
-                  sc["Fa_loaded_N"], s["Fa_loaded_N"], "N", "eq. 2.90 as written")]
+    m3, m_loaded, g = params.links.m3_kg, params.links.m3_kg + params.links.payload_kg, \
+        params.links.gravity_m_s2
+    fa_text = "axial force of the screw, no load: (m_vit + m_tkep)(qdd3 - g) (eq. 2.85)"
+    fa_loaded_text = "axial force with the 20 kg load: m3 (qdd3 + g), m3 = 24 kg (eq. 2.90)"
+    out += [claim("Fa_unloaded", fa_text, sc["Fa_unloaded_N"], s["Fa_unloaded_N"], "N",
+                  f"m3 = {m3:g} kg lifted at {sp.qdd3_m_s2} m/s^2 against gravity (the seed's "
+                  "numbers: qdd3 + g)"),
+            claim("Fa_unloaded", fa_text, sc["Fa_unloaded_N"],
+                  sz.axial_force(m3, sp.qdd3_m_s2, -g), "N",
+                  f"the formula's sign as written, qdd3 - g with qdd3 = {sp.qdd3_m_s2} m/s^2 "
+                  "(lowering, or lifting with gravity helping)"),
+            claim("Fa_unloaded", fa_text, sc["Fa_unloaded_N"], lagrange_tau3, "N",
+                  "|tau3| of the Lagrange model (eq. 2.78) with the tool accelerating upwards"),
+            claim("Fa_loaded", fa_loaded_text, sc["Fa_loaded_N"], s["Fa_loaded_N"], "N",
+                  "as written: 24 kg lifted at qdd3 + g"),
+            claim("Fa_loaded", fa_loaded_text, sc["Fa_loaded_N"],
+                  sz.axial_force(m_loaded, sp.qdd3_m_s2, -g), "N",
+                  "with eq. 2.85's sign, qdd3 - g")]
     t3_text = "nut torque T3 = Fa Dtb tan(gamma + phi) / 2 (eq. 2.86)"
     seed_angles = math.radians(sc["gamma_deg"]), math.radians(sc["phi_deg"])
     t3_written = sz.screw_torque(sc["Fa_unloaded_N"], sc["Dtb_mm"] * 1e-3, *seed_angles)
