@@ -190,7 +190,7 @@ def seed_claims(params: ScaraParams, motion: Motion, lagrange_tau3: float) -> li
                   f"the formula's sign as written, qdd3 - g with qdd3 = {sp.qdd3_m_s2} m/s^2 "
                   "(lowering, or lifting with gravity helping)"),
             claim("Fa_unloaded", fa_text, sc["Fa_unloaded_N"], lagrange_tau3, "N",
-                  "|tau3| of the Lagrange model (eq. 2.78) with the tool accelerating upwards"),
+                  "abs(tau3) of the Lagrange model (eq. 2.78) with the tool accelerating upwards"),
             claim("Fa_loaded", fa_loaded_text, sc["Fa_loaded_N"], s["Fa_loaded_N"], "N",
                   "as written: 24 kg lifted at qdd3 + g"),
             claim("Fa_loaded", fa_loaded_text, sc["Fa_loaded_N"],

@@ -163,7 +163,7 @@ def markdown(data: dict) -> str:
                    f"not reproduced — because this reading gives {_f(c['computed_value'])} "
                    f"({c['deviation']:+.1%})")
         lines.append(f"| {c['id']} | {_f(c['seed_value'])} | {_f(c['computed_value'])} | "
-                     f"{c['unit']} | {c['reading']} | {verdict} |")
+                     f"{c['unit']} | {c['reading'].replace('|', '/')} | {verdict} |")
     lines += ["", "## Where the seed's text is inconsistent", ""]
     lines += [f"- {n}" for n in data["seed_notes"]]
     lines += ["", "## Assumptions", ""] + [f"- {a}" for a in data["assumptions"]]
