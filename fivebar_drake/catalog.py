@@ -22,6 +22,7 @@ from types import ModuleType
 
 FIVEBAR = "fivebar_leg"
 STUDIES = {
+    "scara": "fivebar_drake.studies.scara",
 }
 MECHANISMS = (FIVEBAR, *STUDIES)
 
