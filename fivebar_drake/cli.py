@@ -23,7 +23,7 @@ from fivebar_drake import catalog
 from fivebar_drake.core.files import check_output_file, prepare_output_dir, say
 from fivebar_drake.core.footpath import PATHS
 from fivebar_drake.core.interrupts import Interrupted, Signals
-from fivebar_drake.core.validation import ParameterError
+from fivebar_drake.core.validation import ParameterError, check_number
 from fivebar_drake.robots.quadruped.config import load_params, sampling_error
 from fivebar_drake.robots.quadruped.plant import CLOSURES
 from fivebar_drake.simulation.scenario import Scenario
@@ -50,7 +50,7 @@ def _only_for_fivebar(args, *options) -> None:
         value = getattr(args, option.lstrip("-"))
         if value is not None:
             raise ParameterError(f"{option} = {value}: applies to --mechanism {catalog.FIVEBAR} "
-                                 f"only, not to {args.mechanism}", option, "the command line")
+                                 f"only, not to {args.mechanism}", option, "command line")
 
 
 def _study(args, signals, job: str) -> int:
@@ -63,9 +63,14 @@ def _study(args, signals, job: str) -> int:
     if job == "simulate" and not catalog.can_simulate(args.mechanism):
         raise ParameterError(f"--mechanism = {args.mechanism}: has no simulation; simulate "
                              f"takes {[m for m in catalog.MECHANISMS if catalog.can_simulate(m)]}",
-                             "--mechanism", "the command line")
+                             "--mechanism", "command line")
     start = time.perf_counter()
     params = study.load_params(args.config)
+    if job == "simulate" and args.duration is not None:
+        try:
+            check_number("--duration", args.duration, 0.0, low_open=True)
+        except ParameterError as err:
+            raise err.located("command line") from None
     files = study.ANALYSIS_FILES if job == "analyze" else study.SIMULATION_FILES
     default = f"out/{args.mechanism}" if job == "analyze" else f"out/simulation/{args.mechanism}"
     out = prepare_output_dir(args.out or default, "--out", files)
@@ -171,7 +176,7 @@ def _sweep(args, signals) -> int:
     spec = load_spec(args.spec)
     if args.workers is not None and (args.workers < 1 or args.scheduler):
         raise ParameterError(f"--workers = {args.workers}: must be >= 1, and applies to the "
-                             "local cluster (not with --scheduler)", "--workers", "the command line")
+                             "local cluster (not with --scheduler)", "--workers", "command line")
     out = Path(args.out or Path("out/sweep") / Path(args.spec).stem)
     start = time.perf_counter()
     result, summary, written = sweep(spec, out, args.workers, args.scheduler)
