@@ -22,6 +22,7 @@ from types import ModuleType
 
 FIVEBAR = "fivebar_leg"
 STUDIES = {
+    "ballscrew_leg": "fivebar_drake.studies.ballscrew_leg",
 }
 MECHANISMS = (FIVEBAR, *STUDIES)
 

@@ -7,8 +7,9 @@ Rigs (the plane of the leg is the world's x-y plane, y up, hinges along z):
 - "bench": the hip fixed to the world at O, hip and screw motors actuated, the foot free; the
   seed's analysis (the foot load applied as an external force, no gravity).
 - "squat": the hip on a carriage sliding on a vertical rail (mass foot_force / g: the 700 N
-  load), the foot pinned to the ground at the world origin, the hip free: one degree of freedom,
-  driven by the screw motor alone.
+  load), the foot pinned by a ball constraint to a ground link welded at the world origin (a
+  ball constraint on the world body itself crashes drake 1.51.1's SAP step), the hip free: one
+  degree of freedom, driven by the screw motor alone.
 
 The ScrewJoint's coordinate is the screw motor's angle (rad): the nut advances lead / (2 pi)
 per radian, so the joint's generalized force is the motor torque of a lossless screw. The model
@@ -50,6 +51,15 @@ def _revolute(name: str, parent: str, child: str, actuated: bool) -> str:
             f"<axis><xyz>0 0 1</xyz>{limit}</axis></joint>")
 
 
+def _ball(body_a: str, p_ap, body_b: str) -> str:
+    """A SAP ball constraint: the point p_ap (m) of body_a on the origin of body_b."""
+    return (f"<drake:ball_constraint><drake:ball_constraint_body_A>{body_a}"
+            f"</drake:ball_constraint_body_A><drake:ball_constraint_p_AP>{fmt(*p_ap)}"
+            f"</drake:ball_constraint_p_AP><drake:ball_constraint_body_B>{body_b}"
+            "</drake:ball_constraint_body_B><drake:ball_constraint_p_BQ>0 0 0"
+            "</drake:ball_constraint_p_BQ></drake:ball_constraint>")
+
+
 def model_sdf(params: Params, leg: BallScrewLeg, rig: str) -> str:
     """The SDF of the leg on a rig (see the module docstring), links at the zero pose (straight
     leg, screw along the thigh, nut at the hip)."""
@@ -64,7 +74,11 @@ def model_sdf(params: Params, leg: BallScrewLeg, rig: str) -> str:
         links.append(f'<link name="carriage">{inertial(mass, 0.0, 0.1, 0.1, 0.1)}</link>'
                      '<joint name="rail" type="prismatic"><parent>world</parent>'
                      "<child>carriage</child><axis><xyz>0 1 0</xyz>"
-                     "<limit><effort>0</effort></limit></axis></joint>")
+                     "<limit><effort>0</effort></limit></axis></joint>"
+                     f'<link name="ground">{inertial(1.0, 0.0, 1.0, 1.0, 1.0)}</link>'
+                     '<joint name="ground_weld" type="fixed"><parent>world</parent>'
+                     "<child>ground</child></joint>"
+                     + _ball("shank", (leg.shank_m, 0.0, 0.0), "ground"))
     nut_izz = 0.5 * s.nut_mass_kg * LINK_RADIUS_M**2
     links += [
         f'<link name="thigh"><pose>{down}</pose>{_rod(s.thigh_mass_kg, 0.0, l1)}</link>',
@@ -81,11 +95,7 @@ def model_sdf(params: Params, leg: BallScrewLeg, rig: str) -> str:
         f"<screw_thread_pitch>{fmt(leg.lead_m)}</screw_thread_pitch>"
         f"<drake:rotor_inertia>{fmt(m.rotor_inertia_kg_m2)}</drake:rotor_inertia>"
         f"<drake:gear_ratio>{fmt(m.gear_ratio)}</drake:gear_ratio></joint>",
-        "<drake:ball_constraint><drake:ball_constraint_body_A>shank"
-        f"</drake:ball_constraint_body_A><drake:ball_constraint_p_AP>{fmt(-s1, 0, 0)}"
-        "</drake:ball_constraint_p_AP><drake:ball_constraint_body_B>nut"
-        "</drake:ball_constraint_body_B><drake:ball_constraint_p_BQ>0 0 0"
-        "</drake:ball_constraint_p_BQ></drake:ball_constraint>",
+        _ball("shank", (-s1, 0.0, 0.0), "nut"),
     ]
     return (f'<?xml version="1.0"?>\n<sdf version="1.9"><model name="{MODEL}">'
             + "\n".join(links) + "</model></sdf>\n")
@@ -174,7 +184,7 @@ class LegModel:
 def build_model(params: Params, lever_m: float, rig: str, builder: DiagramBuilder | None = None,
                 gravity: bool | None = None) -> LegModel:
     """The leg's plant on a rig (RIGS), discrete with SAP (the ball constraints need it), added
-    to builder if given; the squat rig pins the foot at the world origin. gravity: None for the
+    to builder if given. gravity: None for the
     rig's default (off on the bench, as in the seed's analysis; on for the squat)."""
     if rig not in RIGS:
         raise ValueError(f"rig {rig!r}: one of {RIGS}")
@@ -188,9 +198,6 @@ def build_model(params: Params, lever_m: float, rig: str, builder: DiagramBuilde
     else:
         plant, _ = AddMultibodyPlant(config, builder)
     Parser(plant).AddModelsFromString(model_sdf(params, leg, rig), "sdf")
-    if rig == "squat":
-        plant.AddBallConstraint(plant.GetBodyByName("shank"), [leg.shank_m, 0.0, 0.0],
-                                plant.world_body(), [0.0, 0.0, 0.0])
     if gravity is None:
         gravity = rig == "squat"
     plant.mutable_gravity_field().set_gravity_vector(
