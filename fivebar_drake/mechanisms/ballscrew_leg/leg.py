@@ -81,6 +81,14 @@ class BallScrewLeg:
         (negative: bending the knee lengthens the screw)."""
         return self.thigh_m * self.lever_m * np.sin(q2) / self.screw_from_knee(q2)
 
+    def stroke_window(self, stroke_m: float, retracted_bend_rad: float):
+        """The two ends of the nut's travel: screw lengths (m) and knee bends -q2 (rad), fully
+        retracted at the bend retracted_bend_rad, extended by stroke_m (at most to the folded
+        knee)."""
+        short = float(self.screw_from_knee(-retracted_bend_rad))
+        long = min(short + stroke_m, self.screw_range()[1])
+        return (short, long), tuple(float(-self.knee_from_screw(x)) for x in (short, long))
+
     # -- kinematics -----------------------------------------------------------------------------
     def points(self, q1, q2) -> Pose:
         """The pose of hip and knee angles (rad)."""

@@ -17,6 +17,7 @@ from fivebar_drake.core.motor import Motor
 from fivebar_drake.core.validation import (MAX_GEAR_RATIO, MAX_GRAVITY_M_S2, MAX_LENGTH_M,
                                            MAX_MASS_KG, MAX_SAMPLES, ParameterError,
                                            check_lengths, check_number, require)
+from fivebar_drake.mechanisms.ballscrew_leg.leg import BallScrewLeg
 
 DEFAULT_PATH = resources.files("fivebar_drake") / "data" / "ballscrew_leg.toml"
 MAX_FOOT_FORCE_N = 1e5          # 10 t on one leg: a slip of units, not a design of this size
@@ -204,6 +205,15 @@ def params_from_dict(data: dict) -> Params:
     require(math.isclose(params.leg.thigh_m, params.leg.shank_m), "leg.shank_m",
             params.leg.shank_m, f"must equal leg.thigh_m = {params.leg.thigh_m:g}: the squat "
             "q2 = -2 q1 keeps the foot below the hip only for equal links")
+    leg = BallScrewLeg(params.leg.thigh_m, params.leg.shank_m, s.lever_m, params.screw.lead_m)
+    _, bends = leg.stroke_window(params.screw.stroke_m,
+                                 2.0 * math.radians(params.screw.retracted_at_q1_deg))
+    lo, hi = (math.degrees(b / 2.0) for b in bends)
+    for name in ("q1_top_deg", "q1_bottom_deg"):
+        value = getattr(s, name)
+        require(lo - 1e-9 <= value <= hi + 1e-9, f"simulation.{name}", value,
+                f"must lie within the q1 range {lo:.2f} .. {hi:.2f} deg the screw's stroke "
+                f"(screw.stroke_m = {params.screw.stroke_m:g}) allows the lever {s.lever_m:g} m")
     return params
 
 

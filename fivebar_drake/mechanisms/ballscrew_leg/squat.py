@@ -102,12 +102,10 @@ def stroke_range(params: Params, lever_m: float) -> StrokeRange:
     """The knee's range under the screw's stroke: fully retracted at the squat angle
     screw.retracted_at_q1_deg, extended by screw.stroke_m (at most to the folded knee)."""
     leg = ball_screw_leg(params, lever_m)
-    q1r = np.radians(params.screw.retracted_at_q1_deg)
-    short = float(leg.screw_from_knee(-2.0 * q1r))
-    long = min(short + params.screw.stroke_m, leg.screw_range()[1])
-    bends = tuple(float(-leg.knee_from_screw(x)) for x in (short, long))
+    lengths, bends = leg.stroke_window(params.screw.stroke_m,
+                                       2.0 * np.radians(params.screw.retracted_at_q1_deg))
     squat = params.squat
     ends = leg.screw_from_knee(-2.0 * np.radians([squat.q1_min_deg, squat.q1_max_deg]))
-    return StrokeRange(lever_m=lever_m, screw_m=(short, long), bend_rad=bends,
+    return StrokeRange(lever_m=lever_m, screw_m=lengths, bend_rad=bends,
                        q1_rad=tuple(b / 2.0 for b in bends),
                        needed_stroke_m=float(abs(ends[1] - ends[0])))

@@ -35,7 +35,8 @@ def _range_text(params: Params) -> str:
 
 
 def _reading(ratio: str, efficiency: str, params: Params) -> str:
-    return (f"{RATIO_READINGS[ratio]}; {EFFICIENCY_READINGS[efficiency]}; {_range_text(params)}")
+    return (f"{ratio} / {efficiency}: {RATIO_READINGS[ratio]}; {EFFICIENCY_READINGS[efficiency]}; "
+            f"{_range_text(params)}")
 
 
 def seed_claims(params: Params, statics: dict) -> list[dict]:

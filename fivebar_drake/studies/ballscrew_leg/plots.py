@@ -49,15 +49,16 @@ def motor_torques(a: Analysis, path: Path) -> Path:
 def equivalent_ratio(a: Analysis, path: Path) -> Path:
     """Knee torque / screw motor torque against q1 per lever, max and min marked."""
     fig, ax = plt.subplots(figsize=(8, 5))
-    for s in sorted(a.statics):
+    for k, s in enumerate(sorted(a.statics)):
         st = a.statics[s]
         deg = np.degrees(st.q1)
         for e, style in (("forward", "-"), ("back-driven", ":")):
             r = st.ratio["joint", e]
-            line, = ax.plot(deg, r, style, label=f"s1 = {s * 1e3:g} mm, {e}")
+            color = f"C{k}"
+            ax.plot(deg, r, style, color=color, label=f"s1 = {s * 1e3:g} mm, {e}")
             i, j = int(np.argmax(r)), int(np.argmin(r))
-            ax.plot(deg[i], r[i], "^", color=line.get_color())
-            ax.plot(deg[j], r[j], "v", color=line.get_color())
+            ax.plot(deg[i], r[i], "^", color=color)
+            ax.plot(deg[j], r[j], "v", color=color)
             if e == "forward":
                 ax.annotate(f"max {r[i]:.1f}", (deg[i], r[i]), textcoords="offset points",
                             xytext=(4, 4), fontsize=8)
@@ -69,7 +70,7 @@ def equivalent_ratio(a: Analysis, path: Path) -> Path:
     ax.set_ylabel("equivalent reduction ratio (knee torque / screw motor torque)")
     ax.set_title("Ball screw's equivalent reduction ratio (^ max, v min)")
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, ncol=2)
+    ax.legend(fontsize=8, ncol=2, loc="upper right")
     fig.tight_layout()
     return _save(fig, path)
 
