@@ -82,6 +82,7 @@ def test_analyze_end_to_end(tmp_path):
     assert REQUIRED_IDS <= {c["id"] for c in claims}
     assert all(set(c) == FIELDS for c in claims)
     by = {(c["id"], *c["reading"].split(":")[0].split(" / ")): c for c in claims}
+    assert len(by) == len(claims)                     # one object per claim and reading
     joint = "joint"
     # hand: the peak ratio is 2 pi eta s1 / lead (the q1 grid is 0.05 deg: within 1e-5)
     for cid, s1, seed in (("ratio_max_s1_0.02", 0.02, 20.0), ("ratio_max_s1_0.05", 0.05, 56.0)):
@@ -98,11 +99,27 @@ def test_analyze_end_to_end(tmp_path):
     q1 = math.radians(1.0)
     q2l = math.sqrt(0.04 + 0.0004 - 0.008 * math.cos(2 * q1))
     expected_min = 2 * math.pi * 0.9 * 0.2 * 0.02 * math.sin(2 * q1) / (0.005 * q2l)
-    assert by["ratio_min_s1_0.02", joint, "forward"]["computed_value"] == pytest.approx(expected_min,
-                                                                                   rel=1e-5)
+    low = by["ratio_min_s1_0.02", joint, "forward"]
+    assert low["computed_value"] == pytest.approx(expected_min, rel=1e-5)
     vs = by["ratio_s1_0.07_vs_0.05", joint, "forward"]
     assert vs["computed_value"] == pytest.approx(2 * math.pi * 0.9 * 0.07 / 0.005, rel=1e-5)
     assert vs["reproduced"] is False
+    # the screw motor needs less torque than the geared motor where the ratio beats 10:1:
+    # between the two roots of 2 pi 0.9 0.2 0.05 sin 2q / (0.005 q2l(q)) = 10 (bisection)
+    def excess(q):
+        return 2 * math.pi * 0.9 * 0.01 * math.sin(2 * q) / (
+            0.005 * math.sqrt(0.0425 - 0.02 * math.cos(2 * q))) - 10
+
+    roots = []
+    for lo, hi in ((1.0, 20.0), (85.0, 60.0)):          # ends: ratio below 10, then above
+        lo, hi = math.radians(lo), math.radians(hi)
+        for _ in range(60):
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if excess(mid) < 0 else (lo, mid)
+        roots.append(math.degrees(lo))
+    share = abs(roots[1] - roots[0]) / 84.0
+    below = by["screw_motor_below_geared_s1_0.05", "forward"]
+    assert below["computed_value"] == pytest.approx(share, abs=2 / 1681)
     text = (tmp_path / "report.md").read_text()
     assert "not reproduced" in text and "ratio_min_s1_0.02" in text
 
@@ -120,6 +137,10 @@ def test_bad_config_names_file_and_field(tmp_path, capsys):
     assert main(["simulate", "--mechanism", "ballscrew_leg", "--config", str(bad),
                  "--out", str(tmp_path / "out")]) == 2
     assert "simulation.lever_m" in capsys.readouterr().err
+    bad.write_text(DEFAULT_PATH.read_text().replace("stroke_m = 0.06", "stroke_mm = 60"))
+    assert main(["analyze", "--mechanism", "ballscrew_leg", "--config", str(bad),
+                 "--out", str(tmp_path / "out")]) == 2
+    assert "screw.stroke_mm" in capsys.readouterr().err
     # 60 mm of stroke from the straight leg bends the knee to acos(-0.08) for s1 = 0.05 m:
     # the squat can reach q1 = 47.29 deg, not 50
     bad.write_text(DEFAULT_PATH.read_text().replace("q1_bottom_deg = 45.0", "q1_bottom_deg = 50.0"))

@@ -179,9 +179,11 @@ def _section(cls, table, name: str):
     require(isinstance(table, dict), f"[{name}]", table, "must be a table of keys")
     fields = {f.name: f.type for f in dataclasses.fields(cls)}
     extra, absent = sorted(set(table) - set(fields)), sorted(set(fields) - set(table))
-    require(not extra, f"{name}.{extra[0] if extra else ''}", table.get(extra[0]) if extra else None,
-            f"unknown key; [{name}] takes {sorted(fields)}")
-    require(not absent, f"{name}.{absent[0] if absent else ''}", None, "is missing")
+    if extra:
+        require(False, f"{name}.{extra[0]}", table[extra[0]],
+                f"unknown key; [{name}] takes {sorted(fields)}")
+    if absent:
+        require(False, f"{name}.{absent[0]}", None, "is missing")
     kwargs = {}
     for key, value in table.items():
         if fields[key] == "float" and type(value) is int:

@@ -71,6 +71,14 @@ def seed_claims(params: Params, statics: dict) -> list[dict]:
                 56.0, top[0.07], "ratio", reading + f"; reproduced when the maximum at 0.07 m is "
                 f"below the maximum at 0.05 m in the same reading ({top[0.05]:.3f})",
                 reproduced=top[0.07] < top[0.05])
+    for e in EFFICIENCY_READINGS:
+        st = statics[0.05]
+        below = float(np.mean(np.abs(st.screw_motor_Nm[e]) < np.abs(st.geared_motor_Nm)))
+        add("screw_motor_below_geared_s1_0.05", "with s1 = 0.05 m the screw motor needs less "
+            "torque than the geared knee's motor under the same load", 1.0, below,
+            "share of the squat", f"{e}: the share of the sampled squat where the screw motor's "
+            f"torque is below the geared knee motor's own torque; {EFFICIENCY_READINGS[e]}; "
+            + _range_text(params))
     for s in SEED_LEVERS:
         st = statics[s]
         peak = int(np.argmax(st.ratio["joint", "forward"]))

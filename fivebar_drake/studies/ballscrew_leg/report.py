@@ -85,6 +85,14 @@ def _why_not(a: Analysis) -> list[str]:
             f"{', '.join(f'{q:.2f}' for q in cross)} deg (joint reading, forward), so the "
             "seed's minimum is the value at the end of its (unstated) plotted range; the "
             f"file's range starts at {a.params.squat.q1_min_deg:g} deg.")
+    if 0.05 in s:
+        gear = a.params.geared_knee.gear_ratio * a.params.geared_knee.efficiency
+        cross = ratio_crossings(s[0.05], ("joint", "forward"), gear)
+        out.append(
+            f"- **screw motor below the geared motor at s1 = 0.05 m**: wherever the ratio beats "
+            f"{gear:g}:1; it crosses {gear:g}:1 at q1 = {', '.join(f'{q:.2f}' for q in cross)} "
+            "deg (forward): near the straight leg (the screw near its dead centre) and near the "
+            "folded knee the screw motor needs more torque than the geared motor.")
     if 0.07 in s and 0.05 in s:
         out.append(
             f"- **0.07 m worse than 0.05 m**: the ratio at a given knee angle grows with s1 "

@@ -141,8 +141,9 @@ def run_squat(params: Params, duration_s: float | None = None) -> SquatRun:
 class Signals:
     """A run's signals in SI: q1 and its reference (rad), motor speed (rad/s), the torques
     (N*m: command, delivered, applied, the closed-form static torque of the load alone with a
-    lossless screw, Drake's static torque along the reference, links included), the loop gaps at D and at the foot (m), the carriage height (m), the points O, A,
-    D, P and the nut (rows, 5, 2) in m."""
+    lossless screw, Drake's static torque along the reference, links included), the loop gaps
+    at D and at the foot (m), the carriage height (m), the points O, A, D, P and the nut
+    (rows, 5, 2) in m."""
 
     t: np.ndarray
     q1: np.ndarray
