@@ -148,7 +148,10 @@ def test_bad_config_names_file_and_field(tmp_path, capsys):
                  "--out", str(tmp_path / "out")]) == 2
     err = capsys.readouterr().err
     assert "simulation.q1_bottom_deg" in err and f"{math.degrees(math.acos(-0.08)) / 2:.2f}" in err
-    assert not (tmp_path / "out").exists()
+    assert not (tmp_path / "out").exists()            # refused before the folder is touched
+    assert main(["simulate", "--mechanism", "ballscrew_leg", "--duration", "-1",
+                 "--out", str(tmp_path / "out")]) == 2
+    assert "--duration" in capsys.readouterr().err
 
 
 def test_simulate_end_to_end(tmp_path, bs_params):

@@ -184,19 +184,15 @@ class LegModel:
 def build_model(params: Params, lever_m: float, rig: str, builder: DiagramBuilder | None = None,
                 gravity: bool | None = None) -> LegModel:
     """The leg's plant on a rig (RIGS), discrete with SAP (the ball constraints need it), added
-    to builder if given. gravity: None for the
+    to builder if given (else to a builder of its own, never built: the plant alone, for the
+    statics). gravity: None for the
     rig's default (off on the bench, as in the seed's analysis; on for the squat)."""
     if rig not in RIGS:
         raise ValueError(f"rig {rig!r}: one of {RIGS}")
     leg = BallScrewLeg(params.leg.thigh_m, params.leg.shank_m, lever_m, params.screw.lead_m)
     config = MultibodyPlantConfig(time_step=params.simulation.time_step_s,
                                   discrete_contact_approximation="sap")
-    if builder is None:
-        plant = MultibodyPlant(config.time_step)
-        plant.set_discrete_contact_approximation(
-            plant.get_discrete_contact_approximation().kSap)
-    else:
-        plant, _ = AddMultibodyPlant(config, builder)
+    plant, _ = AddMultibodyPlant(config, DiagramBuilder() if builder is None else builder)
     Parser(plant).AddModelsFromString(model_sdf(params, leg, rig), "sdf")
     if gravity is None:
         gravity = rig == "squat"
