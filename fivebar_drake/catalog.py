@@ -22,6 +22,7 @@ from types import ModuleType
 
 FIVEBAR = "fivebar_leg"
 STUDIES = {
+    "ballscrew_leg": "fivebar_drake.studies.ballscrew_leg",
     "scara": "fivebar_drake.studies.scara",
 }
 MECHANISMS = (FIVEBAR, *STUDIES)

@@ -45,5 +45,11 @@ def test_bad_thermal_value(tmp_path, old, new, message):
 def test_missing_thermal_key(tmp_path):
     bad = tmp_path / "old.toml"
     bad.write_text(re.sub(r"^ambient_C = .*$", "", DEFAULT_PATH.read_text(), flags=re.M))
-    with pytest.raises(ParameterError, match=r"\[motor\] is missing key\(s\) \['ambient_C'\]"):
+    with pytest.raises(ParameterError, match=r"motor = .*: the thermal model needs all of"):
         load_params(bad)
+    none = tmp_path / "none.toml"
+    none.write_text(re.sub(r"^(continuous_torque_Nm|torque_constant_Nm_A|winding_resistance_ohm|"
+                           r"thermal_resistance_K_W|thermal_time_constant_s|winding_limit_C|"
+                           r"ambient_C) = .*$", "", DEFAULT_PATH.read_text(), flags=re.M))
+    with pytest.raises(ParameterError, match="the analysis needs the motor's thermal model"):
+        load_params(none)

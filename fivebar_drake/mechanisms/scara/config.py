@@ -4,12 +4,10 @@ inside the workspace with the configured elbow."""
 
 from __future__ import annotations
 
-import tomllib
-from importlib import resources
 from pathlib import Path
 import numpy as np
 
-from fivebar_drake.core.files import read_input_text
+from fivebar_drake.core.parameter_files import load_parameter_file
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.mechanisms.scara.kinematics import OutOfReach, Scara
 from fivebar_drake.mechanisms.scara.params import ScaraParams, params_from_dict
@@ -31,18 +29,9 @@ def check_trajectory(params: ScaraParams) -> None:
 def load_params(path: str | Path | None = None) -> ScaraParams:
     """The validated parameters of a TOML file (None: the packaged data/scara.toml);
     ParameterError naming the file and the field."""
-    if path is None:
-        text = resources.files("fivebar_drake").joinpath("data/scara.toml").read_text("utf-8")
-        source = "fivebar_drake/data/scara.toml"
-    else:
-        text, source = read_input_text(path, "parameter file"), str(path)
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as err:
-        raise ParameterError(f"not valid TOML: {err}", source=source) from None
-    try:
-        params = params_from_dict(data, source)
+    def build(data):
+        params = params_from_dict(data, str(path or "packaged scara.toml"))
         check_trajectory(params)
         return params
-    except ParameterError as err:
-        raise err.located(source) from None
+
+    return load_parameter_file(path, "scara.toml", build)

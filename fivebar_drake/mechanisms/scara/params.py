@@ -7,6 +7,7 @@ import dataclasses
 import math
 from dataclasses import dataclass
 
+from fivebar_drake.core.parameter_files import build_section, check_keys
 from fivebar_drake.core.validation import (MAX_GRAVITY_M_S2, MAX_LENGTH_M, MAX_MASS_KG,
                                            MAX_SAMPLES, MAX_SPEED_RAD_S, MAX_TORQUE_NM,
                                            ParameterError, check_number, require)
@@ -256,35 +257,11 @@ SEED_CLAIMS = ("tau1_max_Nm", "W1_kW", "tau2_max_Nm", "W2_kW", "Fa_unloaded_N", 
                "eta_p")
 
 
-def _keys(table, section: str, allowed) -> None:
-    require(isinstance(table, dict), f"[{section}]", table, "must be a table of keys")
-    unknown, missing = sorted(set(table) - set(allowed)), sorted(set(allowed) - set(table))
-    if unknown:
-        raise ParameterError(f"[{section}] has unknown key(s) {unknown}; allowed: "
-                             f"{sorted(allowed)}", f"{section}.{unknown[0]}")
-    if missing:
-        raise ParameterError(f"[{section}] is missing key(s) {missing}",
-                             f"{section}.{missing[0]}")
-
-
-def _section(cls, table, section: str):
-    fields = {f.name: f.type for f in dataclasses.fields(cls)}
-    _keys(table, section, fields)
-    values = {}
-    for key, value in table.items():
-        if fields[key] == "float" and isinstance(value, int) and not isinstance(value, bool):
-            value = float(value)
-        elif fields[key] == "float":
-            require(isinstance(value, float), f"{section}.{key}", value, "must be a number")
-        values[key] = tuple(value) if isinstance(value, list) else value
-    return cls(**values)
-
-
 def params_from_dict(data: dict, source: str = "") -> ScaraParams:
     """Validated ScaraParams from the nested dict of a parameter file (ParameterError)."""
-    _keys(data, "file", {*SECTIONS, "seed_claims"})
-    _keys(data["seed_claims"], "seed_claims", SEED_CLAIMS)
+    check_keys(data, "file", {*SECTIONS, "seed_claims"})
+    check_keys(data["seed_claims"], "seed_claims", SEED_CLAIMS)
     claims = {k: check_number(f"seed_claims.{k}", v, 0.0, MAX_FORCE_N, low_open=True)
               for k, v in data["seed_claims"].items()}
-    built = {name: _section(cls, data[name], name) for name, cls in SECTIONS.items()}
+    built = {name: build_section(cls, data[name], name) for name, cls in SECTIONS.items()}
     return ScaraParams(seed_claims=claims, source=source or "packaged scara.toml", **built)

@@ -5,15 +5,13 @@ what needs the kinematics: every foot path must stay in the workspace."""
 from __future__ import annotations
 
 import dataclasses
-import tomllib
-from importlib import resources
 from pathlib import Path
 import numpy as np
 
 from fivebar_drake.core.checks import Checks
-from fivebar_drake.core.files import read_input_text
 from fivebar_drake.core.footpath import Gait, PATHS, evaluate
 from fivebar_drake.core.motor import Motor
+from fivebar_drake.core.parameter_files import build_section, load_parameter_file, packaged
 from fivebar_drake.core.validation import MAX_SAMPLES, ParameterError, require
 from fivebar_drake.mechanisms.fivebar import (KNEES_OUT, LegGeometry, LinkInertia,
                                               UnreachableError, inverse, sample_gait)
@@ -28,27 +26,6 @@ REFERENCE_REFINEMENT = 8
 SAMPLING_ERROR_WARN = 0.05   # the speed check and safety factors move visibly beyond this
 
 
-def _build(cls, table, section: str):
-    require(isinstance(table, dict), f"[{section}]", table, "must be a table of keys")
-    names = {f.name: f for f in dataclasses.fields(cls)}
-    unknown = sorted(set(table) - set(names))
-    missing = sorted(set(names) - set(table))
-    if unknown:
-        raise ParameterError(f"[{section}] has unknown key(s) {unknown}; allowed: {sorted(names)}",
-                             f"{section}.{unknown[0]}")
-    if missing:
-        raise ParameterError(f"[{section}] is missing key(s) {missing}", f"{section}.{missing[0]}")
-    values = {}
-    for key, value in table.items():
-        if names[key].type in ("float", "float | None") and isinstance(value, int) \
-                and not isinstance(value, bool):
-            value = float(value)       # TOML's 1 for 1.0; every other type is checked by cls
-        elif isinstance(value, list):
-            value = tuple(value)       # a point [x, y]
-        values[key] = value
-    return cls(**values)
-
-
 def params_from_dict(data: dict) -> Params:
     """Build and validate Params from the nested dict of a parameter file."""
     sections = {"leg", "links", "robot", "gait", "motor", "checks", "body"}
@@ -58,14 +35,14 @@ def params_from_dict(data: dict) -> Params:
                              f"expected {sorted(sections)}")
     require(isinstance(data["links"], dict), "[links]", data["links"], "must hold [links.AC] ...")
     params = Params(
-        leg=_build(LegGeometry, data["leg"], "leg"),
-        links={name: _build(LinkInertia, table, f"links.{name}")
+        leg=build_section(LegGeometry, data["leg"], "leg"),
+        links={name: build_section(LinkInertia, table, f"links.{name}")
                for name, table in data["links"].items()},
-        robot=_build(Robot, data["robot"], "robot"),
-        gait=_build(Gait, data["gait"], "gait"),
-        motor=_build(Motor, data["motor"], "motor"),
-        checks=_build(Checks, data["checks"], "checks"),
-        body=_build(Body, data["body"], "body"),
+        robot=build_section(Robot, data["robot"], "robot"),
+        gait=build_section(Gait, data["gait"], "gait"),
+        motor=build_section(Motor, data["motor"], "motor"),
+        checks=build_section(Checks, data["checks"], "checks"),
+        body=build_section(Body, data["body"], "body"),
     )
     check_gait_reachable(params)
     return params
@@ -114,19 +91,10 @@ def sampling_error(params: Params, path: str) -> dict:
         f"samples); raise gait.samples for figures within {SAMPLING_ERROR_WARN:.0%}")
     return err
 
-DEFAULT_PATH = resources.files("fivebar_drake") / "data" / "default.toml"
+DEFAULT_PATH = packaged("default.toml")
 
 
 def load_params(path: str | Path | None = None) -> Params:
     """Load and validate a parameter file (TOML); None loads the packaged default. Errors name
     the file (ParameterError.source)."""
-    source = DEFAULT_PATH if path is None else Path(path)
-    text = read_input_text(source, "parameter file")
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as err:
-        raise ParameterError(f"not valid TOML: {err}", source=str(source)) from None
-    try:
-        return params_from_dict(data)
-    except ParameterError as err:
-        raise err.located(source) from None
+    return load_parameter_file(path, "default.toml", params_from_dict)
