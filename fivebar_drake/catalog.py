@@ -22,6 +22,7 @@ from types import ModuleType
 
 FIVEBAR = "fivebar_leg"
 STUDIES = {
+    "parallel4": "fivebar_drake.studies.parallel4",
 }
 MECHANISMS = (FIVEBAR, *STUDIES)
 

@@ -17,8 +17,8 @@ from __future__ import annotations
 
 import numpy as np
 from pydrake.multibody.parsing import Parser
-from pydrake.multibody.plant import (AddMultibodyPlant, MultibodyPlantConfig)
-from pydrake.multibody.tree import JacobianWrtVariable
+from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
+from pydrake.multibody.tree import JacobianWrtVariable, PdControllerGains
 from pydrake.systems.framework import DiagramBuilder
 
 from fivebar_drake.core.sdf import fmt
@@ -103,13 +103,19 @@ def sdf_text(g: Geometry, m: Model) -> str:
 class Parallel4Plant:
     """The plant (discrete, SAP) in a DiagramBuilder, with the joint bookkeeping."""
 
-    def __init__(self, g: Geometry, m: Model, time_step_s: float, builder=None):
+    def __init__(self, g: Geometry, m: Model, time_step_s: float, builder=None,
+                 pd_gains: tuple[float, float] | None = None):
+        """pd_gains: (kp N/m, kd N*s/m) of the plant's implicit PD on each actuator, or none."""
         self.g, self.m = g, m
         self.builder = builder or DiagramBuilder()
         config = MultibodyPlantConfig(time_step=time_step_s, discrete_contact_approximation="sap")
         self.plant, _ = AddMultibodyPlant(config, self.builder)
         self.plant.mutable_gravity_field().set_gravity_vector([0.0, 0.0, -m.gravity_m_s2])
         (self.instance,) = Parser(self.plant).AddModelsFromString(sdf_text(g, m), "sdf")
+        if pd_gains is not None:
+            for index in self.plant.GetJointActuatorIndices():
+                self.plant.get_mutable_joint_actuator(index).set_controller_gains(
+                    PdControllerGains(p=pd_gains[0], d=pd_gains[1]))
         self.plant.Finalize()
         p = self.plant
         self.sliders = [p.GetJointByName(f"l{i}") for i in LEGS]
@@ -193,11 +199,11 @@ def gravity_load(g: Geometry, m: Model, pose) -> np.ndarray:
     pose = np.asarray(pose, dtype=float)
     w = m.gravity_m_s2
     r = platform_offsets(g, pose[..., 3])                      # (..., 2, 3)
-    at_points = -w * m.leg_mass_kg                             # two half legs at each point
-    fz = -w * (m.platform_mass_kg + m.guide_mass_kg) + 2 * at_points
+    at_points = -w * m.leg_mass_kg         # f_z at each platform point: two half legs
     # moment about y of a force f_z at offset r: (r x f)_y = r_z f_x - r_x f_z = -r_x f_z
     my = -(r[..., 0, 0] + r[..., 1, 0]) * at_points
-    zero = np.zeros_like(fz)
+    fz = np.full_like(my, -w * (m.platform_mass_kg + m.guide_mass_kg) + 2 * at_points)
+    zero = np.zeros_like(my)
     return np.stack([zero, zero, fz, my], axis=-1)
 
 
