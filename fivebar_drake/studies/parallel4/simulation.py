@@ -127,6 +127,7 @@ def blueprint() -> rrb.Blueprint:
     return rrb.Blueprint(rrb.Horizontal(
         rrb.Spatial3DView(origin="world", name="manipulator"),
         rrb.Vertical(rrb.TimeSeriesView(origin="actuator", name="actuator forces (N)"),
+                     rrb.TimeSeriesView(origin="platform", name="platform pose (m, deg)"),
                      rrb.TimeSeriesView(origin="tracking", name="tracking error (m, deg)"),
                      rrb.TimeSeriesView(origin="loop_gap", name="loop gap (m)")),
         column_shares=[3, 2]), collapse_panels=True)
@@ -168,6 +169,9 @@ def write_recording(path: Path, params: Params, run: Run) -> Path:
                 _scalars(rec, f"actuator/static/l{i + 1}", run.t, run.static_closed[:, i],
                          f"l{i + 1} static, closed form")
                 _scalars(rec, f"loop_gap/leg{i + 1}", run.t, run.gap[:, i], f"leg {i + 1}")
+            for k, name in enumerate(("x", "y", "z")):
+                _scalars(rec, f"platform/{name}_m", run.t, run.pose[:, k], f"{name} (m)")
+            _scalars(rec, "platform/theta_deg", run.t, np.degrees(run.pose[:, 3]), "theta (deg)")
             _scalars(rec, "tracking/position_m", run.t,
                      np.linalg.norm(run.pose[:, :3] - run.desired[:, :3], axis=1), "|P - P_d| (m)")
             _scalars(rec, "tracking/theta_deg", run.t,
