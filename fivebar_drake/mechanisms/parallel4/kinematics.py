@@ -122,7 +122,7 @@ def jacobians(g: Geometry, pose, q) -> tuple[np.ndarray, np.ndarray]:
     pose, q = np.asarray(pose, dtype=float), np.asarray(q, dtype=float)
     p = pair_points(g, pose)[..., list(PAIR), :]                      # (..., 4, 3)
     ab = p.copy()
-    ab[..., 0] -= q                                                   # A_iB_i = (x_i - l_i, y_i, z_i)
+    ab[..., 0] -= q                                   # A_iB_i = (x_i - l_i, y_i, z_i)
     r = platform_offsets(g, pose[..., 3])[..., list(PAIR), :]
     turn = r[..., 2] * ab[..., 0] - r[..., 0] * ab[..., 2]
     B = np.concatenate([ab, turn[..., None]], axis=-1)

@@ -19,7 +19,8 @@ def holding_forces(g: Geometry, pose, load, mode=SEED_MODE) -> np.ndarray:
     wrench `load` (..., 4) applied to it: virtual work J^T tau + load = 0 (the seed's
     F = J^T tau, eq. 2.26, with F = -load the wrench the platform exerts)."""
     J = velocity_jacobian(g, pose, inverse(g, pose, mode))
-    return -np.linalg.solve(np.swapaxes(J, -1, -2), np.asarray(load, dtype=float)[..., None])[..., 0]
+    load = np.asarray(load, dtype=float)[..., None]
+    return -np.linalg.solve(np.swapaxes(J, -1, -2), load)[..., 0]
 
 
 def stiffness(g: Geometry, pose, k, mode=SEED_MODE, scale=(1.0, 1.0, 1.0, 1.0)) -> np.ndarray:

@@ -175,7 +175,7 @@ def drake_statics(params: Params, samples: int = 25, seed: int = 11) -> dict:
     closed = closed_form_static_forces(g, params.model, poses)
     relative = np.abs(drake - closed).max(axis=1) / np.abs(closed).max(axis=1)
     return {"poses": int(len(poses)), "max_relative_difference": float(relative.max()),
-            "max_loop_gap_m": float(max(gaps)), "mobility": sorted(mobility),
+            "max_loop_gap_m": float(max(gaps)), "mobility": sorted(int(v) for v in mobility),
             "example_pose": [float(v) for v in poses[0]],
             "example_drake_N": [float(v) for v in drake[0]],
             "example_closed_form_N": [float(v) for v in closed[0]]}

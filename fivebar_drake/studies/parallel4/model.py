@@ -66,10 +66,11 @@ def sdf_text(g: Geometry, m: Model) -> str:
             f"{_visual(f'<box><size>{fmt(slider, slider, slider)}</size></box>', '0.3 0.3 0.3 1')}"
             f"</link><joint name='l{i}' type='prismatic'><parent>world</parent>"
             f"<child>slider_{i}</child><axis><xyz>1 0 0</xyz></axis></joint>")
-        rod = m.leg_mass_kg * g.R ** 2 / 12
+        rod = m.leg_mass_kg * g.R ** 2 / 12               # thin rod about its centre
+        spin = m.leg_mass_kg * m.leg_radius_m ** 2 / 2
         parts.append(
             f"<link name='leg_{i}'><pose>{fmt(*origin)} 0 0 0</pose>"
-            f"{_inertial(m.leg_mass_kg, rod, rod, m.leg_mass_kg * m.leg_radius_m ** 2 / 2, -g.R / 2)}"
+            f"{_inertial(m.leg_mass_kg, rod, rod, spin, -g.R / 2)}"
             + _visual(f"<cylinder><radius>{fmt(m.leg_radius_m)}</radius><length>{fmt(g.R)}"
                       f"</length></cylinder>", "0.85 0.45 0.2 1" if i < 3 else "0.2 0.45 0.85 1",
                       f"0 0 {fmt(-g.R / 2)} 0 0 0")
@@ -167,7 +168,8 @@ class Parallel4Plant:
 
     def mobility(self, context) -> int:
         """nv minus the rank of the loop constraint Jacobian: the freedoms the model keeps."""
-        return self.plant.num_velocities() - np.linalg.matrix_rank(self._constraint_rows(context)[1])
+        rank = np.linalg.matrix_rank(self._constraint_rows(context)[1])
+        return self.plant.num_velocities() - rank
 
     def projected_static_forces(self, context) -> np.ndarray:
         """Actuator forces (4,), N, holding the plant's current pose at rest under gravity:

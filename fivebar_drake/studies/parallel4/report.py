@@ -160,6 +160,30 @@ def _fmt(v) -> str:
     return str(v)
 
 
+def _condition_tables(rows: list[dict]) -> list[str]:
+    """One table per condition-number claim: readings by (a - b, R), * where reproduced."""
+    lines = []
+    for claim, (base, theta, seed_value) in SEED_COND.items():
+        mine = [r for r in rows if r["id"] == claim]
+        variants = list(dict.fromkeys(r["reading"].split("; ", 1)[1] for r in mine))
+        lines += ["", f"**{claim}**: the seed reads about {seed_value:g} at (y, z) = (0.04, "
+                  f"-0.32) m, {base} base, theta = {theta:g} deg (* within 5 %):", "",
+                  "| reading | " + " | ".join(variants) + " |",
+                  "|---|" + "---|" * len(variants)]
+        for reading in READINGS:
+            cells = []
+            for v in variants:
+                r = next(r for r in mine if r["reading"] == f"{reading}; {v}")
+                cells.append(f"{r['computed_value']:.4g}" + (" *" if r["reproduced"] else ""))
+            lines.append(f"| {reading} | " + " | ".join(cells) + " |")
+        hits = [r["reading"] for r in mine if r["reproduced"]]
+        close = min(mine, key=lambda r: abs(r["computed_value"] - seed_value))
+        lines += ["", f"Reproduced by: {'; '.join(hits)}." if hits else
+                  f"No reading within 5 %; the closest is {close['computed_value']:.3g} "
+                  f"({close['reading']})."]
+    return lines
+
+
 def markdown(params: Params, results: dict, seed_claims: list[dict], figures) -> str:
     g, ck, ds = params.geometry, results["checks"], results["drake_statics"]
     lines = [
@@ -202,10 +226,13 @@ def markdown(params: Params, results: dict, seed_claims: list[dict], figures) ->
               "| id | claim | seed | computed | unit | reading | result |",
               "|---|---|---|---|---|---|---|"]
     for c in seed_claims:
+        if c["id"] in SEED_COND:
+            continue
         result = ("reproduced" if c["reproduced"] else "not reproduced") + (
             f" — {c['why']}" if c["why"] else "")
         lines.append(f"| {c['id']} | {c['claim']} | {_fmt(c['seed_value'])} | "
                      f"{_fmt(c['computed_value'])} | {c['unit']} | {c['reading']} | {result} |")
+    lines += _condition_tables(results["seed_point"])
     lines += ["", "## Readings of the condition number", "",
               "The seed defines the condition number as sqrt(lambda_max/lambda_min) of "
               "K = J^T k J (eq. 2.27, 2.28) but mixes m and rad in x and gives no k. Equal k "

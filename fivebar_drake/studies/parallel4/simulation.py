@@ -92,7 +92,8 @@ def simulate(params: Params, duration_s: float | None = None) -> Run:
         forces[order] = force
         drake_static = np.empty(4)
         drake_static[order] = model.projected_static_forces(static_context)
-        rows.append((t, x[guide], x[sliders], forces, drake_static, model.loop_gaps(static_context)))
+        rows.append((t, x[guide], x[sliders], forces, drake_static,
+                     model.loop_gaps(static_context)))
     t, pose, qs, force, static_drake, gap = (np.array(c) for c in zip(*rows))
     return Run(t, pose, sim.poses(t), qs, force, closed_form_static_forces(g, m, pose),
                static_drake, gap, forward(g, qs, strict=False))

@@ -73,7 +73,7 @@ def test_unreachable_pose_and_impossible_actuator_positions_raise():
     with pytest.raises(BranchError, match="2R"):
         forward(G, [0.5, -0.5, 0.3, -0.3])
     with pytest.raises(BranchError, match="do not meet"):
-        forward(G, [0.05, -0.05, 0.39, -0.39])                   # pair circles 0.39 and 0.38 m apart
+        forward(G, [0.05, -0.05, 0.39, -0.39])     # pair circles of radii 0.397 and 0.089 m, centres 0.24 m apart: one inside the other
     assert np.isnan(forward(G, [0.05, -0.05, 0.39, -0.39], strict=False)).all()
 
 
