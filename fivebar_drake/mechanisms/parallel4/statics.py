@@ -75,8 +75,3 @@ def poses_yz(Y, Z, theta: float) -> np.ndarray:
     """Poses (..., 4) at x = 0 (the kinematics does not depend on x) on a yz grid at theta."""
     return np.stack([np.zeros_like(Y), Y, Z, np.full_like(Y, theta)], axis=-1)
 
-
-def workspace_area(g: Geometry, theta: float, Y, Z, cell: float) -> float:
-    """Area (m^2) of the yz cross-section of the workspace at theta (rad): the workspace volume
-    per metre of x travel (it is the same at every x)."""
-    return float(in_workspace(g, poses_yz(Y, Z, theta)).sum() * cell)

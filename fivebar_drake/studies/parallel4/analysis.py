@@ -56,8 +56,8 @@ def checks(g: Geometry, seed: int = 7) -> dict:
     the IK, over random workspace poses; the seed's B column against the same."""
     rng = np.random.default_rng(seed)
     poses = np.column_stack([rng.uniform(-0.3, 0.3, CHECK_SAMPLES),
-                             rng.uniform(-g.R, g.R, CHECK_SAMPLES),
-                             rng.uniform(-g.R - g.c - g.d, 0.0, CHECK_SAMPLES),
+                             rng.uniform(-g.R / 2, g.R / 2, CHECK_SAMPLES),
+                             rng.uniform(-g.R - g.c - g.d, -g.R / 2, CHECK_SAMPLES),
                              rng.uniform(-1.4, 1.4, CHECK_SAMPLES)])
     poses = poses[in_workspace(g, poses)]
     q = inverse(g, poses)
@@ -96,7 +96,8 @@ def workspace_studies(params: Params) -> list[dict]:
                 rows.append({"value": value, "area_m2": area, "centroid_yz_m": centroid,
                              "lowest_point_yz_m": lowest, "mask": mask})
             out.append({"name": study.name, "figure": study.figure, "varied": study.varied,
-                        "theta_deg": theta_deg, "rows": rows})
+                        "theta_deg": theta_deg, "rows": rows,
+                        "base": {k: getattr(study.base, k) for k in "abcdR"}})
     return out
 
 

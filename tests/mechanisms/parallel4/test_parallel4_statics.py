@@ -4,11 +4,11 @@ finite-difference energy Hessians and hand-computed areas."""
 import numpy as np
 
 from fivebar_drake.mechanisms.parallel4.geometry import Geometry
-from fivebar_drake.mechanisms.parallel4.kinematics import inverse, type2_line_z
+from fivebar_drake.mechanisms.parallel4.kinematics import inverse, reach, type2_line_z
 from fivebar_drake.mechanisms.parallel4.mechanism import Parallel4
 from fivebar_drake.mechanisms.parallel4.statics import (
     condition_number, holding_forces, in_workspace, poses_yz, stiffness, translational_block,
-    translational_free_rotation, workspace_area, yz_grid)
+    translational_free_rotation, yz_grid)
 
 G = Geometry(a=0.13, b=0.02, c=0.05, d=0.03, R=0.4, d_min_over_R=0.5, d_max_over_R=1.7)
 POSES = np.array([[0.1, 0.02, -0.3, 0.2], [-0.2, -0.05, -0.28, -0.6], [0.0, 0.04, -0.32, 1.0]])
@@ -56,6 +56,13 @@ def test_stiffness_spd_and_condition_grows_toward_the_type2_line():
     poses = np.stack([np.zeros(6), np.full(6, y_line), z_line - gaps, np.full(6, theta)], -1)
     cond = condition_number(stiffness(G, poses, K_ACT))
     assert np.all(np.diff(cond) > 0) and cond[-1] > 10 * cond[0]
+    # toward det A = 0: at y = 0 pair 2's point (e, z - g) reaches R at z = g - sqrt(R^2 - e^2)
+    g_ = G.c * np.cos(theta) - G.d
+    z_reach = g_ - np.sqrt(G.R ** 2 - G.e ** 2)
+    poses = np.stack([np.zeros(6), np.zeros(6), z_reach + gaps, np.full(6, theta)], -1)
+    assert np.allclose(reach(G, poses)[:, 1], 0, atol=2 * G.R * gaps.max() + 1e-3)
+    cond = condition_number(stiffness(G, poses, K_ACT))
+    assert np.all(np.diff(cond) > 0) and cond[-1] > 10 * cond[0]
 
 
 def test_condition_number_of_known_matrices():
@@ -77,7 +84,8 @@ def test_workspace_area_of_one_pair_annulus_by_hand():
     Y, Z, cell = yz_grid(0.5, -0.5, 0.0, 0.001)
     r, h = g.R, g.e
     lens = 2 * r * r * np.arccos(h / r) - 2 * h * np.sqrt(r * r - h * h)
-    assert np.isclose(workspace_area(g, 0.0, Y, Z, cell), lens / 2, rtol=2e-3)
+    area = in_workspace(g, poses_yz(Y, Z, 0.0)).sum() * cell
+    assert np.isclose(area, lens / 2, rtol=2e-3)
     assert not in_workspace(g, poses_yz(np.array([0.0]), np.array([0.01]), 0.0))[0]
 
 
