@@ -88,6 +88,17 @@ def test_workspace_area_and_statics_in_the_report(analyzed):
     assert len({r["area_m2"] for r in rows}) == 1
 
 
+def test_a_point_out_of_reach_is_reported_not_computed(tmp_path):
+    path = _bad_file(tmp_path, "point_z = -0.32", "point_z = -0.9")
+    out = tmp_path / "out"
+    assert main(["analyze", "--mechanism", "parallel4", "--config", str(path),
+                 "--out", str(out)]) == 0
+    rows = [c for c in json.loads((out / "report.json").read_text())["seed_claims"]
+            if c["id"] == "cond_wide_0deg"]
+    assert rows and all(c["computed_value"] is None and not c["reproduced"]
+                        and "out of the legs' reach" in c["reading"] for c in rows)
+
+
 def _bad_file(tmp_path, old, new):
     assert old in TEXT
     path = tmp_path / "bad.toml"

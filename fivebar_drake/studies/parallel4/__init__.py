@@ -68,7 +68,7 @@ def write_analysis(params: Params, out: Path) -> tuple[list[str], list[Path]]:
         lines.append(f"  {c['id']}: {'reproduced' if c['reproduced'] else 'not reproduced'}")
     best = {}
     for c in claims:
-        if c["id"] in analysis.SEED_COND:
+        if c["id"] in analysis.SEED_COND and c["computed_value"] is not None:
             err = abs(c["computed_value"] - c["seed_value"])
             if c["id"] not in best or err < best[c["id"]][0]:
                 best[c["id"]] = (err, c)

@@ -12,7 +12,7 @@ import numpy as np
 from fivebar_drake.mechanisms.parallel4.geometry import (SEED_JOINT_FREEDOMS, SEED_LINKS,
                                                          Geometry, grubler)
 from fivebar_drake.mechanisms.parallel4.kinematics import (
-    forward, inverse, jacobians, seed_B, type2_line_z, velocity_jacobian)
+    forward, inverse, jacobians, reach, seed_B, type2_line_z, velocity_jacobian)
 from fivebar_drake.mechanisms.parallel4.params import Params
 from fivebar_drake.mechanisms.parallel4.statics import (
     condition_number, in_workspace, poses_yz, stiffness, translational_block,
@@ -140,12 +140,14 @@ def seed_point_conditions(params: Params) -> list[dict]:
             for R in st.R_readings:
                 ge = dataclasses.replace(g, a=g.b + e, R=R)
                 pose = np.array([0.0, st.point_y, st.point_z, math.radians(theta_deg)])
-                inside = bool(in_workspace(ge, pose))
+                reachable = bool(np.all(reach(ge, pose) >= 0))
+                note = ("" if in_workspace(ge, pose) else "; the point is outside the workspace"
+                        if reachable else "; the point is out of the legs' reach")
                 for reading in READINGS:
-                    value = float(reading_condition(ge, pose, st.actuator_N_m, reading))
+                    value = (float(reading_condition(ge, pose, st.actuator_N_m, reading))
+                             if reachable else math.nan)
                     rows.append({"id": claim, "seed_value": seed_value, "computed_value": value,
-                                 "reading": f"{reading}; a - b = {e:g} m, R = {R:g} m"
-                                            + ("" if inside else "; point outside the workspace"),
+                                 "reading": f"{reading}; a - b = {e:g} m, R = {R:g} m{note}",
                                  "reproduced": abs(value - seed_value)
                                  <= REPRODUCED_WITHIN * seed_value})
     return rows

@@ -154,7 +154,7 @@ def claims(params: Params, results: dict) -> list[dict]:
             row["id"], f"Sec. 2.4: condition number about {row['seed_value']:g} at (y, z) = "
             f"(0.04, -0.32) m, {base} base, {theta:g} deg", row["seed_value"],
             row["computed_value"], "", row["reading"], row["reproduced"],
-            "" if row["reproduced"] else
+            "" if row["reproduced"] else "out of reach" if math.isnan(row["computed_value"]) else
             f"{row['computed_value']:.3g} is {row['computed_value'] / row['seed_value']:.2f} "
             "times the seed's"))
     return out
@@ -187,8 +187,10 @@ def _condition_tables(rows: list[dict]) -> list[str]:
                 cells.append(f"{r['computed_value']:.4g}" + (" *" if r["reproduced"] else ""))
             lines.append(f"| {reading} | " + " | ".join(cells) + " |")
         hits = [r["reading"] for r in mine if r["reproduced"]]
-        close = min(mine, key=lambda r: abs(r["computed_value"] - seed_value))
+        finite = [r for r in mine if not math.isnan(r["computed_value"])]
+        close = min(finite, key=lambda r: abs(r["computed_value"] - seed_value), default=None)
         lines += ["", f"Reproduced by: {'; '.join(hits)}." if hits else
+                  "No reading computes: the point is out of reach." if close is None else
                   f"No reading within 5 %; the closest is {close['computed_value']:.3g} "
                   f"({close['reading']})."]
     return lines
