@@ -68,7 +68,16 @@ def checks(g: Geometry, seed: int = 7) -> dict:
     A, B = jacobians(g, poses, q)
     J = velocity_jacobian(g, poses, q)
     Js = seed_B(B) / np.diagonal(A, axis1=-2, axis2=-1)[..., None]
-    return {"poses": int(len(poses)),
+    # eq. 2.17: (d1^2 - d2^2)/4 against its right side as written (y (b - a)) and as derived
+    d1, d2 = q[:, 0] - q[:, 1], q[:, 2] - q[:, 3]
+    lhs = (d1 ** 2 - d2 ** 2) / 4
+    y, z = poses[:, 1], poses[:, 2]
+    gz = 4 * z * (g.c * np.cos(poses[:, 3]) - g.d)
+    scale = np.abs(lhs).max()
+    return {"eq_2_17_as_written_residual": float(np.abs(lhs - (4 * y * (g.b - g.a) - gz)).max()
+                                                 / scale),
+            "eq_2_17_derived_residual": float(np.abs(lhs - (4 * y * (g.a - g.b) - gz)).max()
+                                              / scale),"poses": int(len(poses)),
             "fk_ik_round_trip_max": float(np.abs(forward(g, q) - poses).max()),
             "fk_upper_branch_round_trip_max": float(np.abs(
                 forward(g, inverse(g, upper), lower=False) - upper).max()),

@@ -133,6 +133,19 @@ def claims(params: Params, results: dict) -> list[dict]:
             "pair circles' centres; checked numerically); both agree only where c cos = d"))
     ck = results["checks"]
     out.append(_claim(
+        "fk_closed_form", "Eq. 2.14, 2.15, 2.18, 2.20 give the pose from l1..l4 (inverting eq. "
+        "2.10-2.13)", 0.0, ck["fk_ik_round_trip_max"], "max |FK(IK(pose)) - pose|",
+        f"{ck['poses']} random workspace poses", ck["fk_ik_round_trip_max"] < 1e-9))
+    out.append(_claim(
+        "eq_2_17", "Eq. 2.17: (d1^2 - d2^2)/4 = 4y(b - a) - 4z(c cos theta - d)", 0.0,
+        ck["eq_2_17_as_written_residual"], "max residual / max |left side|",
+        f"{ck['poses']} random workspace poses", ck["eq_2_17_as_written_residual"] < 1e-9,
+        "" if ck["eq_2_17_as_written_residual"] < 1e-9 else
+        f"the y term's sign slipped: 4y(a - b) - 4z(c cos theta - d) holds to "
+        f"{ck['eq_2_17_derived_residual']:.1e}. Eq. 2.17 follows from the FK derivation's leg-1 "
+        "offset y - b + a (eq. 2.10 has y + b - a); eq. 2.18 then divides by a - b, which undoes "
+        "it: the final formula is right"))
+    out.append(_claim(
         "B_fourth_column", "Eq. 2.23: row i of B is [A_iB_i, (A_iB_i x PB_i) . j]", 0.0,
         ck["seed_B_jacobian_vs_finite_differences_max"], "max |J - dq/dx|",
         "A^-1 B with the seed's B against central differences of the IK", False,
@@ -242,8 +255,9 @@ def markdown(params: Params, results: dict, seed_claims: list[dict], figures) ->
             continue
         result = ("reproduced" if c["reproduced"] else "not reproduced") + (
             f" — {c['why']}" if c["why"] else "")
-        lines.append(f"| {c['id']} | {c['claim']} | {_fmt(c['seed_value'])} | "
-                     f"{_fmt(c['computed_value'])} | {c['unit']} | {c['reading']} | {result} |")
+        cells = (c["id"], c["claim"], _fmt(c["seed_value"]), _fmt(c["computed_value"]),
+                 c["unit"], c["reading"], result)
+        lines.append("| " + " | ".join(str(v).replace("|", "\\|") for v in cells) + " |")
     lines += _condition_tables(results["seed_point"])
     lines += ["", "## Readings of the condition number", "",
               "The seed defines the condition number as sqrt(lambda_max/lambda_min) of "

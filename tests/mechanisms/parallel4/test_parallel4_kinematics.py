@@ -147,3 +147,16 @@ def test_grubler_counts_the_seeds_structure():
     assert sum(SEED_JOINT_FREEDOMS) == 22 == 4 + 6 * 3          # eq. 2.3
     assert grubler(SEED_LINKS, SEED_JOINT_FREEDOMS) == (4, 3)
     assert grubler(4, (1, 1, 1, 1), lam=3) == (1, 1)            # a planar four-bar
+
+
+def test_eq_2_17_needs_a_minus_b_on_its_y_term_and_eq_2_18_is_right():
+    g = TILTED
+    poses = workspace_poses(g)
+    q = inverse(g, poses)
+    d1, d2 = q[:, 0] - q[:, 1], q[:, 2] - q[:, 3]
+    y, z, gz = poses[:, 1], poses[:, 2], g.c * np.cos(poses[:, 3]) - g.d
+    lhs = (d1 ** 2 - d2 ** 2) / 4
+    assert np.allclose(lhs, 4 * y * (g.a - g.b) - 4 * z * gz, atol=1e-14)
+    assert not np.allclose(lhs, 4 * y * (g.b - g.a) - 4 * z * gz, atol=1e-4)
+    s = np.sqrt(4 * g.c ** 2 - (q[:, :2].mean(1) - q[:, 2:].mean(1)) ** 2) - 2 * g.d
+    assert np.allclose(y, (d1 ** 2 - d2 ** 2 + 8 * z * s) / (16 * (g.a - g.b)), atol=1e-12)
