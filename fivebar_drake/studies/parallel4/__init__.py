@@ -62,10 +62,10 @@ def write_analysis(params: Params, out: Path) -> tuple[list[str], list[Path]]:
              f"(relative, {ds['poses']} poses)",
              f"seed claims: {sum(c['reproduced'] for c in claims)} of {len(claims)} readings "
              "reproduced"]
-    for c in claims:
-        if c["id"].startswith("cond_") and "grows" not in c["id"]:
-            continue
-        lines.append(f"  {c['id']}: {'reproduced' if c['reproduced'] else 'not reproduced'}")
+    ids = dict.fromkeys(c["id"] for c in claims if c["id"] not in analysis.SEED_COND)
+    for id_ in ids:
+        mine = [c["reproduced"] for c in claims if c["id"] == id_]
+        lines.append(f"  {id_}: {sum(mine)} of {len(mine)} readings reproduced")
     best = {}
     for c in claims:
         if c["id"] in analysis.SEED_COND and c["computed_value"] is not None:
