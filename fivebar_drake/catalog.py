@@ -24,6 +24,7 @@ FIVEBAR = "fivebar_leg"
 STUDIES = {
     "ballscrew_leg": "fivebar_drake.studies.ballscrew_leg",
     "scara": "fivebar_drake.studies.scara",
+    "parallel4": "fivebar_drake.studies.parallel4",
 }
 MECHANISMS = (FIVEBAR, *STUDIES)
 

@@ -8,8 +8,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 import numpy as np
 
-from fivebar_drake.analysis.force_capability import (home_capability, max_force, MODE_NAMES,
-                                                     support_available)
+from fivebar_drake.analysis.force_capability import (home_capability, max_force, support_available)
 from fivebar_drake.analysis.gear_ratio import GearTrade, RATIO_RANGE, gear_trade
 from fivebar_drake.analysis.joint_loads import JOINT_LINKS, JOINT_NAMES, JointLoads, joint_loads
 from fivebar_drake.analysis.thermal import Thermal, thermal_margin

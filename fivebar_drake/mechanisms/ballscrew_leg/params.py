@@ -3,7 +3,6 @@ every error names the file, the field, the value and what is allowed."""
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -13,8 +12,7 @@ import numpy as np
 from fivebar_drake.core.parameter_files import build_section, load_parameter_file, packaged
 from fivebar_drake.core.motor import Motor
 from fivebar_drake.core.validation import (MAX_GEAR_RATIO, MAX_GRAVITY_M_S2, MAX_LENGTH_M,
-                                           MAX_MASS_KG, MAX_SAMPLES, ParameterError,
-                                           check_lengths, check_number, require)
+                                           MAX_MASS_KG, MAX_SAMPLES, check_lengths, check_number, require)
 from fivebar_drake.mechanisms.ballscrew_leg.leg import BallScrewLeg
 
 DEFAULT_PATH = packaged("ballscrew_leg.toml")

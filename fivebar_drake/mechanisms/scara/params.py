@@ -3,14 +3,13 @@ the loader whose errors name the file, the field, the value and the allowed rang
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from dataclasses import dataclass
 
 from fivebar_drake.core.parameter_files import build_section, check_keys
 from fivebar_drake.core.validation import (MAX_GRAVITY_M_S2, MAX_LENGTH_M, MAX_MASS_KG,
                                            MAX_SAMPLES, MAX_SPEED_RAD_S, MAX_TORQUE_NM,
-                                           ParameterError, check_number, require)
+                                           check_number, require)
 
 MAX_DURATION_S = 600.0          # a trajectory segment of ten minutes is no pick-and-place move
 MAX_ACCELERATION_M_S2 = 1000.0  # ~100 g: beyond any arm's joint
