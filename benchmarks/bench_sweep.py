@@ -1,6 +1,6 @@
 """Sweep benchmark (`make bench`): closed-form design points per second on one core (each a whole
 gait cycle of N samples with IK and mode tracking, the full model's torques and the verdicts,
-through sweep.points.analysis_rows as a worker runs them), and the parallel efficiency of a
+through sweep.points.analysis_rows in tasks of engine.ANALYSIS_CHUNK points, as a worker runs them), and the parallel efficiency of a
 simulation sweep on a local Dask cluster: the throughput of 2 workers over that of 1 on the same
 sweep, divided by 2. Prints a table, then, as its last line, one JSON object:
 analysis_points_per_s, analysis_points_per_s_geometry_varied, simulation_parallel_efficiency
@@ -15,7 +15,7 @@ import time
 from pathlib import Path
 
 from fivebar_drake.robots.quadruped.config import load_params
-from fivebar_drake.sweep.engine import run_sweep
+from fivebar_drake.sweep.engine import ANALYSIS_CHUNK, run_sweep
 from fivebar_drake.sweep.points import analysis_rows
 from fivebar_drake.sweep.spec import spec_from_dict
 
@@ -34,9 +34,10 @@ def points_per_second(spec_data: dict, samples: int | None) -> tuple[float, int]
     base = load_params()
     analysis_rows(base, SETTINGS, points[:10])          # compile
     best = 0.0
-    for _ in range(3):
+    for _ in range(3):       # in the tasks of a sweep: ANALYSIS_CHUNK points each
         start = time.perf_counter()
-        rows = analysis_rows(base, SETTINGS, points)
+        rows = [row for i in range(0, len(points), ANALYSIS_CHUNK)
+                for row in analysis_rows(base, SETTINGS, points[i:i + ANALYSIS_CHUNK])]
         best = max(best, len(points) / (time.perf_counter() - start))
     assert all(r["status"] == "ok" for r in rows), "a benchmark point failed"
     return best, len(points)

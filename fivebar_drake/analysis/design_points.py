@@ -11,11 +11,15 @@ column per design), one pass of the mechanism's Jacobians and dynamics.
 from __future__ import annotations
 
 import dataclasses
+from types import SimpleNamespace
+
 import numpy as np
 
+from fivebar_drake.analysis.thermal import thermal_margin
 from fivebar_drake.core.checks import verdict
 from fivebar_drake.core.footpath import (TROT_PHASES_RAD, cycle_phase, path_arrays, path_constants,
                                          stance_loads)
+from fivebar_drake.core.motor import THERMAL_FIELDS
 from fivebar_drake.core.validation import ParameterError, require
 from fivebar_drake.mechanisms.fivebar import (MOTORS, UnreachableError, periodic_derivatives,
                                               track_modes)
@@ -102,7 +106,9 @@ def evaluate_designs(designs: list[Params], path: str = "seed_ellipse",
     computes them: per motor
     (MOTORS) peak_torque_Nm, rms_torque_Nm, safety_factor, verdict, peak_speed_rad_s, speed_ok,
     torque_speed_margin; and stride_speed_m_s (2 a f, the foot's mean ground speed on the
-    stride). A design whose path leaves the workspace gets {"error": ...} instead."""
+    stride), and with the motor's thermal model thermal_margin_K and time_to_winding_limit_s
+    (analysis.thermal.thermal_margin at the RMS torque). A design whose path leaves the workspace
+    gets {"error": ...} instead."""
     rows: list[dict | None] = [None] * len(designs)
     groups: dict = {}
     for i, params in enumerate(designs):
@@ -141,6 +147,12 @@ def _evaluate_group(designs: list[Params], path: str, model: str) -> list[dict]:
     peak = np.array([p.motor.peak_torque_Nm for p in designs])[:, None]
     no_load = np.array([p.motor.no_load_speed_rad_s for p in designs])[:, None]
     figures = motor_figures(peak, no_load, total, qd)
+    if first.motor.has_thermal_model:    # the windings at the cycle's RMS torque, every design
+        motors = SimpleNamespace(**{name: np.array([getattr(p.motor, name) for p in designs])[:, None]
+                                    for name in ("gear_ratio", *THERMAL_FIELDS)})
+        heat = thermal_margin(motors, figures["rms_torque_Nm"])
+        figures["thermal_margin_K"] = heat.margin_K
+        figures["time_to_winding_limit_s"] = heat.time_to_limit_s
     rows = []
     for i, p in enumerate(designs):
         row = {"stride_speed_m_s": 2.0 * p.gait.a_m * p.gait.frequency_hz}

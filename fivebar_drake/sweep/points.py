@@ -22,7 +22,6 @@ import math
 
 from fivebar_drake.analysis.design_points import evaluate_designs, with_changes
 from fivebar_drake.analysis.thermal import thermal_margin
-from fivebar_drake.core.motor import Motor
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.pipeline import run_simulation, summarize_run
@@ -54,14 +53,8 @@ def columns(fidelity: str, varied: list[str]) -> list[str]:
     return [*HEAD, *varied, *WORST, *motors, *run, "error"]
 
 
-def _worst(motors: dict, demand_key: str, motor: Motor) -> dict:
-    """The worst motor's figures (lowest safety factor); each motor gains its thermal figures
-    at its RMS torque, and the least thermal margin is reported."""
-    for figures in motors.values():
-        if motor.has_thermal_model and math.isfinite(figures["rms_torque_Nm"]):
-            heat = thermal_margin(motor, figures["rms_torque_Nm"])
-            figures["thermal_margin_K"] = float(heat.margin_K)
-            figures["time_to_winding_limit_s"] = float(heat.time_to_limit_s)
+def _worst(motors: dict, demand_key: str) -> dict:
+    """The worst motor's figures (lowest safety factor) and the least thermal margin."""
     name, worst = min(motors.items(), key=lambda kv: kv[1]["safety_factor"])
     margins = [m["thermal_margin_K"] for m in motors.values() if "thermal_margin_K" in m]
     return {"worst_motor": name, "worst_verdict": worst["verdict"],
@@ -83,15 +76,14 @@ def analysis_rows(base: Params, settings: tuple[str, str],
         except ParameterError as err:
             row.update(status="failed", error=str(err))
         rows.append(row)
-    for i, design, result in zip(where, designs, evaluate_designs(designs, *settings)):
+    for i, result in zip(where, evaluate_designs(designs, *settings)):
         if "error" in result:
             rows[i].update(status="failed", error=result["error"])
             continue
         motors = {m: result[m] for m in MOTORS}
         speed_ok = all(m["speed_ok"] for m in motors.values())
         rows[i].update(status="ok", speed_m_s=result["stride_speed_m_s"],
-                       **_worst(motors, "peak_torque_Nm", design.motor), speed_ok=speed_ok,
-                       error="",
+                       **_worst(motors, "peak_torque_Nm"), speed_ok=speed_ok, error="",
                        worst_torque_speed_margin=min(m["torque_speed_margin"]
                                                      for m in motors.values()))
         if not speed_ok:
@@ -123,9 +115,14 @@ def simulation_row(base: Params, scenario: Scenario, index: int, changes: dict) 
     except Exception as err:  # noqa: BLE001  (a failed point is recorded; the sweep goes on)
         return {**row, "status": "failed", "error": f"{type(err).__name__}: {err}"}
     motors = {f"{leg}_{m}": v for leg, ms in summary["legs"].items() for m, v in ms.items()}
+    for figures in motors.values():       # the windings at the run's RMS torque
+        if params.motor.has_thermal_model and math.isfinite(figures["rms_torque_Nm"]):
+            heat = thermal_margin(params.motor, figures["rms_torque_Nm"])
+            figures["thermal_margin_K"] = float(heat.margin_K)
+            figures["time_to_winding_limit_s"] = float(heat.time_to_limit_s)
     row.update(status="stopped" if record.error else "ok", error=record.error or "",
                speed_m_s=summary["mean_forward_speed_m_s"],
-               **_worst(motors, "demand_p99_Nm", params.motor))
+               **_worst(motors, "demand_p99_Nm"))
     if summary["verdict"] == "insufficient":
         row["worst_verdict"] = "insufficient"
     row.update({f"{name}_{k}": v.get(k, "") for name, v in motors.items()

@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 from fivebar_drake.analysis.design_points import evaluate_designs, with_changes
+from fivebar_drake.analysis.thermal import thermal_margin
 from fivebar_drake.analysis.torques import analyze
 from fivebar_drake.cli import main
 from fivebar_drake.core.validation import ParameterError
@@ -44,7 +45,8 @@ def table_text(result):
 def test_vectorised_designs_match_the_analysis_of_each():
     base = load_params()
     changes = [{"gait.frequency_hz": 0.7, "leg.ce_m": 0.15}, {"gait.a_m": 0.03},
-               {"gait.b_m": 0.02, "motor.peak_torque_Nm": 4.0}, {"leg.ce_m": 0.15}]
+               {"gait.b_m": 0.02, "motor.peak_torque_Nm": 4.0}, {"leg.ce_m": 0.15},
+               {"motor.gear_ratio": 12.0}]
     designs = [with_changes(base, c) for c in changes]
     for path, model in itertools.product(("seed_ellipse", "trot"), ("full", "full_trot")):
         for design, row in zip(designs, evaluate_designs(designs, path, model)):
@@ -54,6 +56,8 @@ def test_vectorised_designs_match_the_analysis_of_each():
                             "peak_speed_rad_s", "torque_speed_margin"):
                     assert row[motor][key] == pytest.approx(ref[motor][key], rel=1e-12)
                 assert row[motor]["verdict"] == ref[motor]["verdict"]
+                heat = thermal_margin(design.motor, ref[motor]["rms_torque_Nm"])
+                assert row[motor]["thermal_margin_K"] == pytest.approx(heat.margin_K, rel=1e-12)
 
 
 def test_gear_ratio_keeps_the_motor():

@@ -30,9 +30,13 @@ def track_modes(leg: LegGeometry, foot, start_mode=KNEES_OUT) -> tuple[LegPose, 
         dist = np.abs(wrap(flat[:, k] - flat[choice[k - 1], k - 1, paths])).sum(-1)
         choice[k] = np.nanargmin(dist, axis=0)
     choice = choice.reshape(foot.shape[:-1])
-    picked = {name: np.take_along_axis(np.stack([getattr(s, name) for s in solutions]),
-                                       choice[None, ..., None], 0)[0]
-              for name in ("q", "c", "d", "e")}
+    picked = {}
+    for name in ("q", "c", "d", "e"):
+        value = getattr(solutions[0], name).copy()
+        for m in range(1, len(order)):
+            where = choice == m
+            value[where] = getattr(solutions[m], name)[where]
+        picked[name] = value
     pose = LegPose(**picked, f=foot)
     mode_index = np.array([ALL_MODES.index(m) for m in order])[choice]
     return pose, mode_index
