@@ -138,8 +138,11 @@ def _client(workers: int | None, scheduler: str | None):
 
 
 def run_sweep(spec: SweepSpec, out: str | Path, workers: int | None = None,
-              scheduler: str | None = None, progress: bool = True) -> SweepResult:
-    """Run the sweep's missing points into out/points.csv (see the module's docstring)."""
+              scheduler: str | None = None, progress: bool = True,
+              client=None) -> SweepResult:
+    """Run the sweep's missing points into out/points.csv (see the module's docstring).
+    client: a Dask client to use (and leave open), e.g. one cluster for several sweeps;
+    otherwise one of the scheduler, or of a new local cluster of `workers`, for this sweep."""
     out = Path(out)
     params, scenario = base_inputs(spec)
     header = columns(spec.fidelity, spec.names)
@@ -148,7 +151,9 @@ def run_sweep(spec: SweepSpec, out: str | Path, workers: int | None = None,
     todo = [(i, p) for i, p in enumerate(spec.points()) if i not in done]
     bar = Progress(len(done) + len(todo), len(done), progress)
     computed = 0
-    if todo:
+    if todo and client is not None:
+        computed = _compute(client, spec, params, scenario, todo, out / TABLE_FILE, header, bar)
+    elif todo:
         client = _client(workers, scheduler)
         try:
             computed = _compute(client, spec, params, scenario, todo, out / TABLE_FILE, header,
@@ -206,13 +211,13 @@ def _write_table(path: Path, header: list[str], rows: list[dict]) -> None:
 
 
 def sweep(spec: SweepSpec, out: str | Path, workers: int | None = None,
-          scheduler: str | None = None, progress: bool = True):
+          scheduler: str | None = None, progress: bool = True, client=None):
     """run_sweep, then the plots and sweep.md. Returns (SweepResult, summary dict, the paths
     written: table, plots, report)."""
     from fivebar_drake.sweep.plots import write_sweep_plots
     from fivebar_drake.sweep.report import summarize_sweep, write_sweep_report
 
-    result = run_sweep(spec, out, workers, scheduler, progress)
+    result = run_sweep(spec, out, workers, scheduler, progress, client)
     sf_pass = base_inputs(spec)[0].checks.sf_pass
     summary = summarize_sweep(result.rows, spec.names, sf_pass)
     written = [result.table, *write_sweep_plots(result.rows, spec.plot, spec.fidelity, sf_pass,
