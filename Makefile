@@ -26,6 +26,8 @@ demo: $(STAMP)
 	$(BIN)/fivebar-drake compare $(OUT)/simulation/trot $(OUT)/simulation/seed_ellipse \
 		--out $(OUT)/gait_comparison.md
 	$(BIN)/fivebar-drake sweep fivebar_drake/data/sweep_example.yaml --out $(OUT)/sweep
+	for m in ballscrew_leg scara parallel4; do \
+		$(BIN)/fivebar-drake analyze --mechanism $$m --out $(OUT)/$$m || exit 1; done
 
 test: $(STAMP)
 	$(BIN)/pytest
