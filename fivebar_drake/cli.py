@@ -179,7 +179,12 @@ def _sweep(args, signals) -> int:
                              "local cluster (not with --scheduler)", "--workers", "command line")
     out = Path(args.out or Path("out/sweep") / Path(args.spec).stem)
     start = time.perf_counter()
-    result, summary, written = sweep(spec, out, args.workers, args.scheduler)
+    try:
+        result, summary, written = sweep(spec, out, args.workers, args.scheduler)
+    except (KeyboardInterrupt, Interrupted):
+        _err(f"the finished points are in {out / 'points.csv'}; run the same command again to "
+             "compute the rest")
+        raise
     say(f"{summary['points']} design points ({spec.fidelity}), {result.computed} computed now, "
         f"{result.failed} failed; outcomes: " + ", ".join(
             f"{k} {v}" for k, v in sorted(summary["outcomes"].items())))
