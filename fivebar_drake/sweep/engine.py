@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import csv
 import dataclasses
+import io
 import json
 import os
 import sys
@@ -73,10 +74,15 @@ def _scenario_with(scenario, path: str, value):
 
 
 def _read_rows(table: Path) -> list[dict]:
+    """The table's complete rows; a last line cut short (the sweep was killed while writing it)
+    is removed from the file, so its point is computed again."""
     if not table.exists():
         return []
-    with open(table, newline="", encoding="utf-8") as f:
-        return list(csv.DictReader(f))
+    text = table.read_text(encoding="utf-8")
+    if text and not text.endswith("\n"):
+        text = text[:text.rfind("\n") + 1]
+        write_atomic(table, text)
+    return list(csv.DictReader(io.StringIO(text, newline="")))
 
 
 def _open_output(spec: SweepSpec, out: Path, header: list[str]) -> list[dict]:
@@ -201,8 +207,6 @@ def _compute(client, spec, params, scenario, todo, table: Path, header, bar: Pro
 
 
 def _write_table(path: Path, header: list[str], rows: list[dict]) -> None:
-    import io
-
     text = io.StringIO()
     writer = csv.DictWriter(text, fieldnames=header, restval="")
     writer.writeheader()
