@@ -146,8 +146,8 @@ def add_controller(builder: DiagramBuilder, scenario: Scenario, params: Params, 
     controller = builder.AddNamedSystem("leg_controller", FootLegController(
         params, layout, gains, scenario.control_period_s, scenario.control_delay_periods,
         scenario.catch_gain, scenario.catch_rate_s, scenario.touchdown_detection))
-    speed_index = np.zeros(layout.actuators.size, dtype=int)    # joint speed of each actuator
-    speed_index[layout.actuators.ravel()] = layout.v_index.ravel() + layout.nq
+    speed_index = np.zeros(layout.state.actuators.size, dtype=int)    # joint speed of each actuator
+    speed_index[layout.state.actuators.ravel()] = layout.state.v_index.ravel() + layout.state.nq
     motor = builder.AddNamedSystem("motor_model", MotorModel(
         params.motor, speed_index, layout.nx, scenario.motor_period_s))
     state = plant.get_state_output_port(instance)
@@ -173,7 +173,7 @@ def add_recorders(builder: DiagramBuilder, scenario: Scenario, plant, instance,
     log_period, per_row = recorded_periods(scenario, time_step)
     recorder = builder.AddNamedSystem("recorder", VectorLogSink(layout.nx + layout.nv,
                                                                 log_period))
-    motor_log = builder.AddNamedSystem("motor_log", VectorLogSink(3 * layout.actuators.size,
+    motor_log = builder.AddNamedSystem("motor_log", VectorLogSink(3 * layout.state.actuators.size,
                                                                   scenario.motor_period_s))
     builder.Connect(plant.get_generalized_contact_forces_output_port(instance),
                     integrator.get_input_port())
@@ -198,7 +198,7 @@ def build_diagram(scenario: Scenario, params: Params, design: ClosureDesign,
     actuation_log = None
     if log_actuation:
         actuation_log = builder.AddNamedSystem("actuation_log", VectorLogSink(
-            layout.actuators.size, design.time_step_s))
+            layout.state.actuators.size, design.time_step_s))
         builder.Connect(motor.GetOutputPort("applied_torque"), actuation_log.get_input_port())
     setup = Setup(plant=plant, instance=instance, layout=layout, design=design,
                   gains=controller.constants.gains, recorder=recorder, motor_log=motor_log,

@@ -71,7 +71,7 @@ def link_points(layout: RobotLayout, params: Params, states: np.ndarray) -> np.n
     rotation in the body and the body pose of the state. The plant's own E and F differ by at
     most a few loop gaps; NaN where the motor angles cannot close the loop (a run that came
     apart)."""
-    q = states[:, layout.q_index]                                     # (rows, legs, 2) rad
+    q = states[:, layout.state.q_index]                                     # (rows, legs, 2) rad
     ta, tb = (np.ascontiguousarray(q[..., j].ravel()) for j in (0, 1))
     cx, cy, dx, dy, ex, ey, fx, fy = forward_points(params.leg.core, ta, tb,
                                                     np.ones_like(ta), True)
@@ -79,7 +79,7 @@ def link_points(layout: RobotLayout, params: Params, states: np.ndarray) -> np.n
     plane = np.stack([a, np.stack([cx, cy], -1), np.stack([ex, ey], -1), np.stack([fx, fy], -1),
                       b, np.stack([dx, dy], -1)], 1).reshape(q.shape[:2] + (6, 2))
     in_body = plane_to_body(layout.hips_m[:, None, :], plane)
-    pose = states[:, layout.body_q:layout.body_q + 7]                 # quaternion wxyz, position
+    pose = states[:, layout.state.body_q:layout.state.body_q + 7]                 # quaternion wxyz, position
     r_world_body = np.array([body_rotation(v) for v in pose[:, :4]])
     return pose[:, None, None, 4:] + np.einsum("sij,slpj->slpi", r_world_body, in_body)
 

@@ -61,8 +61,8 @@ def interval_table(setup: Setup, params: Params, context) -> dict:
     times, data = log.sample_times().copy(), log.data().T.copy()
     states, integrals = data[:, :lay.nx], data[:, lay.nx:]
     dt = np.diff(times)[:, None]
-    q_act = np.zeros((len(times), lay.q_index.size))
-    q_act[:, lay.actuators.ravel()] = states[:, lay.q_index.ravel()]
+    q_act = np.zeros((len(times), lay.state.q_index.size))
+    q_act[:, lay.state.actuators.ravel()] = states[:, lay.state.q_index.ravel()]
     tree_q = np.array([lay.indices[leg].q for leg in lay.legs])
     # the motor's samples in each interval: those from its start up to before its end
     motor = setup.motor_log.FindLog(context)
@@ -141,7 +141,7 @@ def simulate(scenario: Scenario, params: Params, progress=True, log_actuation=Fa
                 setup.plant.GetMyContextFromRoot(context))
             if not np.all(np.isfinite(plant_state)):
                 raise RuntimeError("the plant state is not finite")
-            tilt = tilt_deg(plant_state[setup.layout.body_q:setup.layout.body_q + 4])
+            tilt = tilt_deg(plant_state[setup.layout.state.body_q:setup.layout.state.body_q + 4])
             if tilt > FALL_TILT_DEG:
                 raise ValueError(f"the robot fell over: tilt {tilt:.0f} deg")
             interrupted = stop() if stop else ""
@@ -183,7 +183,7 @@ def divergence(message: str, t: float, scenario: Scenario, params: Params, layou
     if not len(recent["t"]):
         return f"{head} at its start ({drake}); check the time step ({step}) and the gains"
     gap = recent["gap"].max(axis=0)
-    height = recent["state"][:, layout.body_q + 6]
+    height = recent["state"][:, layout.state.body_q + 6]
     speed = np.abs(recent["speed"]).max()
     clipped = float(np.mean(recent["clipped_peak"] + recent["clipped_line"]))
     if gap.max() > DIVERGED_GAP_M:

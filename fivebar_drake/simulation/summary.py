@@ -90,17 +90,17 @@ def signals(record: SimulationRecord) -> Signals:
     table, lay = record.table, record.layout
     params, scenario = record.params, record.scenario
     st, t = table["state"], table["t"]
-    per_leg = lambda x: x[:, lay.actuators]  # noqa: E731  (rows, 8) -> (rows, legs, 2)
+    per_leg = lambda x: x[:, lay.state.actuators]  # noqa: E731  (rows, 8) -> (rows, legs, 2)
     qd = per_leg(table["speed"])
     period = np.median(np.diff(t)) if len(t) > 1 else scenario.log_period_s
-    q = st[:, lay.q_index] - qd * period / 2        # pose at the middle of each interval
+    q = st[:, lay.state.q_index] - qd * period / 2        # pose at the middle of each interval
     # the mean acceleration over each interval is exactly its change of speed over its length
     # (the run starts at rest), consistent with the impulse-averaged contact forces
-    qd_end = st[:, lay.v_index + lay.nq]
+    qd_end = st[:, lay.state.v_index + lay.state.nq]
     qdd = np.diff(qd_end, axis=0, prepend=0.0 * qd_end[:1]) / np.diff(t, prepend=0.0)[:, None, None]
     pose = forward(params.leg, q)
     lj = link_jacobians(params.leg, params.links, pose)
-    quat = st[:, lay.body_q:lay.body_q + 4]
+    quat = st[:, lay.state.body_q:lay.state.body_q + 4]
     r_world_plane = np.array([body_rotation(v) @ plane_rotation() for v in quat])
     # contact point: the bottom of the foot sphere, (0, 0, -r) from its centre in the world
     down = -params.body.foot_radius_m * r_world_plane[:, 2, :2]          # leg plane (x, y)
@@ -128,8 +128,8 @@ def signals(record: SimulationRecord) -> Signals:
                     qdd, lj).total
     rotor = params.motor.reflected_inertia_kg_m2 * qdd
     return Signals(
-        t=t, body_p=st[:, lay.body_q + 4:lay.body_q + 7], body_quat=quat,
-        body_v=st[:, lay.nq + lay.body_v + 3:lay.nq + lay.body_v + 6], tilt_deg=tilt_deg(quat),
+        t=t, body_p=st[:, lay.state.body_q + 4:lay.state.body_q + 7], body_quat=quat,
+        body_v=st[:, lay.state.nq + lay.state.body_v + 3:lay.state.nq + lay.state.body_v + 6], tilt_deg=tilt_deg(quat),
         q=q, qd=qd, command=per_leg(table["command"]), applied=per_leg(table["motor_torque"]),
         static_seed=static_torques(params.leg, params.links, seed_model(params), pose, lj),
         static_trot=trot_static, static_contact=static_contact, links=links, rotor=rotor,

@@ -124,8 +124,7 @@ class FootLegController(LeafSystem):
         super().__init__()
         self._mechanism, self._layout = params.mechanism, layout
         self.constants = LawConstants(
-            q_index=layout.q_index, v_index=layout.v_index, actuators=layout.actuators,
-            body_q=layout.body_q, body_v=layout.body_v, nq=layout.nq,
+            state=layout.state,
             hips_m=np.ascontiguousarray(layout.hips_m, dtype=float),
             com_m=np.asarray(layout.com_m, dtype=float), mass_kg=float(layout.mass_kg),
             plane=plane_rotation(), geom=params.leg.core,
@@ -137,7 +136,7 @@ class FootLegController(LeafSystem):
             stand_offset_m=float(body_height(params, 0.0)), mu=params.body.foot_friction,
             catch_gain=float(catch_gain), catch_rate_s=float(catch_rate_s),
             catch_limit_m=params.gait.b_m, touchdown=bool(touchdown_detection))
-        n = layout.q_index.size
+        n = layout.state.q_index.size
         self._references = self.DeclareVectorInputPort("foot_references", 7 * n // 2)
         self._state = self.DeclareVectorInputPort("plant_state", layout.nx)
         # the released command (the output) and the delay_periods commands after it, oldest first
@@ -155,7 +154,7 @@ class FootLegController(LeafSystem):
                                         np.asarray(state, dtype=float))
         if not finite:                        # name the reason, if it is a reach
             self._mechanism.inverse(goal)
-            self._mechanism.forward(state[self._layout.q_index])
+            self._mechanism.forward(state[self._layout.state.q_index])
         return out
 
     def _update(self, context, discrete_state):

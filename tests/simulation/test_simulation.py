@@ -344,7 +344,7 @@ def test_recorded_link_points_are_the_plants(run, rng):
                     gait.y_home_m + rng.uniform(-1, 1) * gait.b_m]
             q[layout.indices[leg].q] = tree_positions(inverse(g, np.array(foot)))
         quat = rng.normal(size=4)
-        q[layout.body_q:layout.body_q + 7] = [*quat / np.linalg.norm(quat),
+        q[layout.state.body_q:layout.state.body_q + 7] = [*quat / np.linalg.norm(quat),
                                               *rng.uniform(-1, 1, 3)]
         closed.append(q)
     ours = link_points(record.layout, params, np.array(closed))
@@ -355,7 +355,7 @@ def test_recorded_link_points_are_the_plants(run, rng):
     ours = link_points(record.layout, params, record.table["state"][rows])
     for k, row in enumerate(rows):
         ref = plant_link_points(plant, instance, layout, params,
-                                record.table["state"][row, :layout.nq])
+                                record.table["state"][row, :layout.state.nq])
         err = np.linalg.norm(ours[k] - ref, axis=-1)                           # (legs, 6)
         assert np.all(err[:, [0, 1, 4, 5]] < 1e-9)
         c, e, d = ref[:, 1], ref[:, 2], ref[:, 5]

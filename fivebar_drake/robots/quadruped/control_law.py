@@ -22,6 +22,7 @@ from fivebar_drake.core.rotation import body_rotation, wrap
 from fivebar_drake.mechanisms.fivebar import (bias_at, coriolis_at, foot_from, forward_pose,
                                               inverse_pose, link_jacobians_at, mass_matrix_at,
                                               pose_jacobians, static_at)
+from fivebar_drake.robots.quadruped.plant import StateIndices
 
 
 TOUCHDOWN_BAND_M = 0.004   # a descending swing foot this close to the ground joins the support
@@ -43,9 +44,8 @@ class ControlGains(NamedTuple):
 
 
 class LawConstants(NamedTuple):
-    """Everything the law needs, as plain numbers and arrays (SI). Plant indices: q_index,
-    v_index, actuators (legs, 2) of motors A, B; body_q (quaternion w, x, y, z then position),
-    body_v (angular then linear velocity, world), nq. Robot: hips_m (legs, 3) and com_m (3,) in
+    """Everything the law needs, as plain numbers and arrays (SI). Plant indices: state
+    (plant.StateIndices, the robot layout's). Robot: hips_m (legs, 3) and com_m (3,) in
     the body frame, mass_kg, plane (3, 3) = R_body_plane. Leg: geom (LegGeometry.core),
     com_fraction, masses, izz (4,) of the links, gravity, reflected_inertia (N^2 J_rotor).
     Gains (ControlGains). Feet: foot_radius_m, friction mu; stand_offset_m: the body height
@@ -53,12 +53,7 @@ class LawConstants(NamedTuple):
     reflex: catch_gain, catch_rate_s, catch_limit_m (the step height); touchdown: early-touchdown
     detection on."""
 
-    q_index: np.ndarray
-    v_index: np.ndarray
-    actuators: np.ndarray
-    body_q: int
-    body_v: int
-    nq: int
+    state: StateIndices
     hips_m: np.ndarray
     com_m: np.ndarray
     mass_kg: float
@@ -106,7 +101,7 @@ def catch_offset(k, state, r_wb):
     out = np.zeros((k.hips_m.shape[0], 2))
     if k.catch_gain == 0.0:
         return out
-    w0 = k.nq + k.body_v
+    w0 = k.state.nq + k.state.body_v
     for leg in range(out.shape[0]):
         h = k.hips_m[leg]
         hx, hy, hz = (r_wb[0, 0] * h[0] + r_wb[0, 1] * h[1] + r_wb[0, 2] * h[2],
@@ -129,7 +124,7 @@ def early_touchdown(k, fx, fy, velocities, state, r_wb):
     out = np.zeros(fx.shape[0])
     for leg in range(fx.shape[0]):
         if velocities[leg, 1] < 0.0:
-            clearance = (state[k.body_q + 6] + feet_b[leg, 0] * r_wb[2, 0]
+            clearance = (state[k.state.body_q + 6] + feet_b[leg, 0] * r_wb[2, 0]
                          + feet_b[leg, 1] * r_wb[2, 1] + feet_b[leg, 2] * r_wb[2, 2]
                          - k.foot_radius_m)
             out[leg] = min(max(2.0 - clearance / (0.5 * TOUCHDOWN_BAND_M), 0.0), 1.0)
@@ -147,8 +142,8 @@ def ground_forces(k, targets, velocities, accelerations, weights, fx, fy, state,
     if total <= 0.0:
         return np.zeros((n, 2))
     share = weights / total
-    w0 = k.nq + k.body_v
-    z = state[k.body_q + 6]
+    w0 = k.state.nq + k.state.body_v
+    z = state[k.state.body_q + 6]
     r_bw = np.ascontiguousarray(r_wb.T)
     omega_b = r_bw @ state[w0:w0 + 3]
     v_w = state[w0 + 3:w0 + 6]
@@ -194,7 +189,7 @@ def leg_command(k, references, state):
     n = references.shape[0] // 7
     targets, velocities = references[:2 * n].reshape(n, 2), references[2 * n:4 * n].reshape(n, 2)
     accelerations, weights = references[4 * n:6 * n].reshape(n, 2), references[6 * n:]
-    r_wb = body_rotation(state[k.body_q:k.body_q + 4])
+    r_wb = body_rotation(state[k.state.body_q:k.state.body_q + 4])
     goal = targets + catch_offset(k, state, r_wb)
     swing, stance, jf_now = np.empty((n, 2)), np.empty((n, 2)), np.empty((n, 2, 2))
     fx, fy = np.empty(n), np.empty(n)
@@ -204,8 +199,8 @@ def leg_command(k, references, state):
     m, c, weight, foot = np.empty((2, 2)), np.empty(2), np.empty(2), np.empty(2)
     qd_des, qdd_des = np.empty(2), np.empty(2)
     for i in range(n):
-        qa, qb = state[k.q_index[i, 0]], state[k.q_index[i, 1]]
-        qda, qdb = state[k.nq + k.v_index[i, 0]], state[k.nq + k.v_index[i, 1]]
+        qa, qb = state[k.state.q_index[i, 0]], state[k.state.q_index[i, 1]]
+        qda, qdb = state[k.state.nq + k.state.v_index[i, 0]], state[k.state.nq + k.state.v_index[i, 1]]
         # swing: IK of the target (moved by the catch reflex), its rates and accelerations,
         # inverse-dynamics feed-forward
         ta, tb, cx, cy, dx, dy, ex, ey = inverse_pose(k.geom, goal[i, 0], goal[i, 1], 1.0, 1.0)
@@ -236,5 +231,5 @@ def leg_command(k, references, state):
         w = weights[i]
         for j in range(2):
             push = jf_now[i, 0, j] * forces[i, 0] + jf_now[i, 1, j] * forces[i, 1]
-            out[k.actuators[i, j]] = w * (stance[i, j] - push) + (1.0 - w) * swing[i, j]
+            out[k.state.actuators[i, j]] = w * (stance[i, j] - push) + (1.0 - w) * swing[i, j]
     return out, goal, np.all(np.isfinite(out))

@@ -4,6 +4,7 @@ plain-data layout the controller needs, ground and standing pose."""
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import NamedTuple
 import numpy as np
 from pydrake.geometry import AddContactMaterial, Box, ProximityProperties
 from pydrake.math import RigidTransform
@@ -109,11 +110,13 @@ def robot_layout(plant, instance, legs, params: Params) -> RobotLayout:
     com = spatial.get_com()
     inertia = spatial.Shift(com).CalcRotationalInertia().CopyToFullMatrix3()
     return RobotLayout(
-        legs=tuple(legs), indices=indices, q_index=np.array([indices[leg].q[:2] for leg in legs]),
-        v_index=np.array([indices[leg].v[:2] for leg in legs]),
-        actuators=np.array([indices[leg].actuators for leg in legs]),
-        body_q=body.floating_positions_start(), body_v=body.floating_velocities_start_in_v(),
-        nq=plant.num_positions(), nv=plant.num_velocities(), nx=plant.num_multibody_states(),
+        legs=tuple(legs), indices=indices, state=StateIndices(
+            q_index=np.array([indices[leg].q[:2] for leg in legs]),
+            v_index=np.array([indices[leg].v[:2] for leg in legs]),
+            actuators=np.array([indices[leg].actuators for leg in legs]),
+            body_q=body.floating_positions_start(), body_v=body.floating_velocities_start_in_v(),
+            nq=plant.num_positions()),
+        nv=plant.num_velocities(), nx=plant.num_multibody_states(),
         hips_m=np.array([hip_positions(params)[leg] for leg in legs]), com_m=np.asarray(com),
         mass_kg=spatial.get_mass(), inertia_kg_m2=inertia)
 
@@ -162,23 +165,31 @@ def set_standing_pose(plant, context, instance, legs, params: Params) -> None:
                           RigidTransform([0.0, 0.0, standing_height(params)]))
 
 
-@dataclass(frozen=True)
-class RobotLayout:
-    """The finalized plant as plain data (what the controller and the post-processing need):
-    the leg names and each leg's joint indices (LegIndices); per leg (legs, 2) the plant q and v
-    indices of motors A and B and their actuation indices; the body's first position index
-    (quaternion w, x, y, z, then position) and velocity index (angular then linear, world
-    frame); nq, nv, nx; hip positions (legs, 3) m and the robot's COM (3,) m in the body frame;
-    robot mass (kg) and inertia about the COM (3, 3) kg*m^2."""
+class StateIndices(NamedTuple):
+    """Where the controller finds the motors and the body in the plant's state and actuation
+    (a NamedTuple: the compiled control law takes it as it is): per leg (legs, 2) the plant q
+    and v indices of motors A and B and their actuation indices; the body's first position
+    index (quaternion w, x, y, z, then position) and velocity index (angular then linear, world
+    frame); nq (the state is [q, v])."""
 
-    legs: tuple[str, ...]
-    indices: dict[str, LegIndices]
     q_index: np.ndarray
     v_index: np.ndarray
     actuators: np.ndarray
     body_q: int
     body_v: int
     nq: int
+
+
+@dataclass(frozen=True)
+class RobotLayout:
+    """The finalized plant as plain data (what the controller and the post-processing need):
+    the leg names and each leg's joint indices (LegIndices); the motors' and the body's indices
+    (StateIndices); nv, nx; hip positions (legs, 3) m and the robot's COM (3,) m in the body
+    frame; robot mass (kg) and inertia about the COM (3, 3) kg*m^2."""
+
+    legs: tuple[str, ...]
+    indices: dict[str, LegIndices]
+    state: StateIndices
     nv: int
     nx: int
     hips_m: np.ndarray
