@@ -11,7 +11,7 @@ from fivebar_drake.analysis import design_plots
 from fivebar_drake.analysis.force_capability import workspace_grid
 from fivebar_drake.analysis.report import FIGURE_NAMES
 from fivebar_drake.analysis.torques import Analysis
-from fivebar_drake.core.files import atomic_path
+from fivebar_drake.core.files import save_figure
 from fivebar_drake.mechanisms.fivebar import MOTORS, workspace
 
 
@@ -19,13 +19,6 @@ MODEL_STYLE = {"seed": "--", "full": "-", "full_trot": ":"}
 COMPONENTS = (("inertial", "inertial M q''"), ("coriolis", "Coriolis c(q, q')"),
               ("link_weight", "link weights"), ("foot_load", "foot load m_leg g"),
               ("total", "total"))
-
-
-def _save(fig, path: Path) -> Path:
-    with atomic_path(path) as tmp:
-        fig.savefig(tmp, dpi=120)
-    plt.close(fig)
-    return path
 
 
 def joint_angles(an: Analysis) -> plt.Figure:
@@ -124,7 +117,8 @@ def workspace_map(an: Analysis) -> plt.Figure:
 def write_plots(an: Analysis, out_dir: Path) -> list[Path]:
     """Write every plot of the analysis into out_dir as PNG (atomically); returns the paths."""
     out_dir.mkdir(parents=True, exist_ok=True)
-    return [_save(figure(an), out_dir / f"{name}.png") for name, figure in FIGURES.items()]
+    return [save_figure(figure(an), out_dir / f"{name}.png", dpi=120)
+            for name, figure in FIGURES.items()]
 
 # the report names the figures (report.FIGURE_NAMES, without importing matplotlib); in its order
 FIGURES = dict(zip(FIGURE_NAMES, (joint_angles, joint_rates, torque_components, total_torque,

@@ -6,7 +6,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from fivebar_drake.core.files import atomic_path, read_input_text, write_atomic
+from fivebar_drake.core.files import read_input_text, save_figure, write_atomic
 from fivebar_drake.core.validation import ParameterError, require
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.simulation.summary import MIN_CYCLES
@@ -112,14 +112,9 @@ def figure(summaries: list[dict]):
 
 def write_comparison(run_dirs, out_md: Path) -> list[Path]:
     """Write out_md and a PNG beside it comparing the runs in run_dirs (each atomically)."""
-    import matplotlib.pyplot as plt
 
     summaries = load_summaries(run_dirs)
     out_md.parent.mkdir(parents=True, exist_ok=True)
     write_atomic(out_md, markdown(summaries))
     png = out_md.with_suffix(".png")
-    fig = figure(summaries)
-    with atomic_path(png) as tmp:
-        fig.savefig(tmp, dpi=110)
-    plt.close(fig)
-    return [out_md, png]
+    return [out_md, save_figure(figure(summaries), png)]

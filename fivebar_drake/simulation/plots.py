@@ -6,7 +6,7 @@ from __future__ import annotations
 from pathlib import Path
 import matplotlib.pyplot as plt
 
-from fivebar_drake.core.files import atomic_path
+from fivebar_drake.core.files import save_figure
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.simulation.summary import MOTORS, Signals
 
@@ -63,12 +63,6 @@ SIM_PLOT_FILES = ("sim_torques.png", "sim_motion.png")
 def write_sim_plots(sig: Signals, legs, params: Params, summary: dict,
                     out_dir: Path) -> list[Path]:
     """Write SIM_PLOT_FILES into out_dir (atomically); returns their paths."""
-    paths = []
     figures = (torque_figure(sig, legs, params, summary["window_s"]),
                motion_figure(sig, legs, summary["gait_speed_m_s"]))
-    for name, fig in zip(SIM_PLOT_FILES, figures):
-        with atomic_path(out_dir / name) as tmp:
-            fig.savefig(tmp, dpi=110)
-        plt.close(fig)
-        paths.append(out_dir / name)
-    return paths
+    return [save_figure(fig, out_dir / name) for name, fig in zip(SIM_PLOT_FILES, figures)]

@@ -15,13 +15,12 @@ Each run gets its own recording id, so two runs open side by side in one viewer.
 
 from __future__ import annotations
 
-import uuid
 from pathlib import Path
 import numpy as np
 import rerun as rr
 import rerun.blueprint as rrb
 
-from fivebar_drake.core.files import atomic_path
+from fivebar_drake.core.rerun_files import TIMELINE, pose_frames, recording_file, scalars
 from fivebar_drake.core.rotation import body_rotation
 from fivebar_drake.mechanisms.fivebar import forward_points
 from fivebar_drake.robots.quadruped.params import Params
@@ -32,7 +31,6 @@ from fivebar_drake.simulation.summary import MOTORS, Signals
 
 
 RECORDING_FILE = "run.rrd"
-TIMELINE = "sim_time"
 FORCE_ARROW_M_PER_N = 0.001    # 1 mm of arrow per newton
 LEG_STRIPS = ([0, 1, 2, 3], [4, 5, 2])   # of link_points' A, C, E, F, B, D: A-C-E-F and B-D-E
 
@@ -55,13 +53,6 @@ def blueprint(legs) -> rrb.Blueprint:
                          rrb.TimeSeriesView(origin="stats", name="statistics window"))),
             column_shares=[1, 1]),
         collapse_panels=True)
-
-
-def _scalars(rec, path: str, t, values, name: str | None = None) -> None:
-    rec.send_columns(path, indexes=[rr.TimeColumn(TIMELINE, duration=t)],
-                     columns=rr.Scalars.columns(scalars=np.asarray(values, dtype=float)))
-    if name:
-        rec.log(path, rr.SeriesLines(names=name), static=True)
 
 
 def link_points(layout: RobotLayout, params: Params, states: np.ndarray) -> np.ndarray:
@@ -90,17 +81,11 @@ def write_recording(path: Path, sig: Signals, record: SimulationRecord, summary:
     states) and its summary (statistics window, per-cycle peaks)."""
     scenario = record.scenario
     path.parent.mkdir(parents=True, exist_ok=True)
-    rec = rr.RecordingStream("fivebar_drake", recording_id=f"fivebar_drake-{scenario.gait}-"
-                             f"{scenario.closure}-{uuid.uuid4().hex[:12]}")
-    rec.set_log_time_enabled(False)
-    rec.set_log_tick_enabled(False)
-    with atomic_path(path) as tmp:
-        rec.save(str(tmp), default_blueprint=blueprint(record.layout.legs))
-        with rec:
-            if len(sig.t):
-                _log_scene(rec, sig, record)
-                _log_series(rec, sig, record.layout.legs, record.params, summary)
-        rec.disconnect()
+    with recording_file(path, f"fivebar_drake-{scenario.gait}-{scenario.closure}",
+                        blueprint(record.layout.legs)) as rec:
+        if len(sig.t):
+            _log_scene(rec, sig, record)
+            _log_series(rec, sig, record.layout.legs, record.params, summary)
     return path
 
 
@@ -111,9 +96,7 @@ def _log_scene(rec, sig: Signals, record: SimulationRecord):
     rec.log("world/body", rr.Boxes3D(half_sizes=[[b.length_m / 2, b.width_m / 2, b.height_m / 2]],
                                      colors=[[150, 150, 165]]), static=True)
     t = sig.t
-    frames = np.unique(np.searchsorted(t, np.arange(0.0, t[-1] + 1e-9,
-                                                    1.0 / record.scenario.pose_rate_hz)))
-    frames = frames[frames < len(t)]
+    frames = pose_frames(t, record.scenario.pose_rate_hz)
     tf = t[frames]
     time = [rr.TimeColumn(TIMELINE, duration=tf)]
     quat = sig.body_quat[frames]
@@ -141,27 +124,27 @@ def _log_series(rec, sig: Signals, legs, params: Params, summary: dict):
     start, end = summary["window_s"]
     cycle_ends = start + params.gait.period_s * np.arange(1, summary["cycles_in_window"] + 1)
     for i, leg in enumerate(legs):
-        _scalars(rec, f"loop_gap/{leg}", sig.t, sig.gap[:, i], leg)
-        _scalars(rec, f"contact/{leg}/tangential", sig.t, sig.foot_force_plane[:, i, 0])
-        _scalars(rec, f"contact/{leg}/normal", sig.t, sig.foot_force_plane[:, i, 1])
+        scalars(rec, f"loop_gap/{leg}", sig.t, sig.gap[:, i], leg)
+        scalars(rec, f"contact/{leg}/tangential", sig.t, sig.foot_force_plane[:, i, 0])
+        scalars(rec, f"contact/{leg}/normal", sig.t, sig.foot_force_plane[:, i, 1])
         for j, m in enumerate(MOTORS):
             base = f"torque/{leg}/{m}"
-            _scalars(rec, f"joints/{leg}/{m}/angle", sig.t, sig.q[:, i, j])
-            _scalars(rec, f"joints/{leg}/{m}/speed", sig.t, sig.qd[:, i, j])
+            scalars(rec, f"joints/{leg}/{m}/angle", sig.t, sig.q[:, i, j])
+            scalars(rec, f"joints/{leg}/{m}/speed", sig.t, sig.qd[:, i, j])
             for name, values in (("commanded", sig.command), ("applied", sig.applied),
                                  ("static_contact", sig.static_contact),
                                  ("static_trot", sig.static_trot),
                                  ("static_seed", sig.static_seed)):
-                _scalars(rec, f"{base}/{name}", sig.t, values[:, i, j], f"{m} {name}")
-            _scalars(rec, f"{base}/limit_pos", sig.t, np.full(n, limit), "+limit")
-            _scalars(rec, f"{base}/limit_neg", sig.t, np.full(n, -limit), "-limit")
+                scalars(rec, f"{base}/{name}", sig.t, values[:, i, j], f"{m} {name}")
+            scalars(rec, f"{base}/limit_pos", sig.t, np.full(n, limit), "+limit")
+            scalars(rec, f"{base}/limit_neg", sig.t, np.full(n, -limit), "-limit")
             if len(cycle_ends):
-                _scalars(rec, f"cycle_peak/{leg}/{m}", cycle_ends,
+                scalars(rec, f"cycle_peak/{leg}/{m}", cycle_ends,
                          summary["legs"][leg][m]["per_cycle_peak_Nm"], f"{leg} {m}")
-    _scalars(rec, "body/height", sig.t, sig.body_p[:, 2], "height (m)")
-    _scalars(rec, "body/forward_speed", sig.t, sig.body_v[:, 0], "forward speed (m/s)")
-    _scalars(rec, "body/tilt_deg", sig.t, sig.tilt_deg, "tilt (deg)")
-    _scalars(rec, "stats/window", sig.t, ((sig.t > start) & (sig.t <= end)).astype(float),
+    scalars(rec, "body/height", sig.t, sig.body_p[:, 2], "height (m)")
+    scalars(rec, "body/forward_speed", sig.t, sig.body_v[:, 0], "forward speed (m/s)")
+    scalars(rec, "body/tilt_deg", sig.t, sig.tilt_deg, "tilt (deg)")
+    scalars(rec, "stats/window", sig.t, ((sig.t > start) & (sig.t <= end)).astype(float),
              "statistics window")
 
 

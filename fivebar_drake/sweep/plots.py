@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from fivebar_drake.core.files import atomic_path
+from fivebar_drake.core.files import save_figure
 
 SWEEP_PLOTS = ("verdict_map.png", "pareto.png")
 COLORS = {"pass": "tab:green", "warn": "tab:orange", "fail": "tab:red",
@@ -79,10 +79,5 @@ def write_sweep_plots(rows: list[dict], axes: tuple[str, ...], fidelity: str, sf
 
 
 def _save(fig, path: Path) -> Path:
-    import matplotlib.pyplot as plt
-
     fig.tight_layout()
-    with atomic_path(path) as tmp:
-        fig.savefig(tmp, format="png", dpi=110)
-    plt.close(fig)
-    return path
+    return save_figure(fig, path)

@@ -8,18 +8,11 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 import numpy as np
 
-from fivebar_drake.core.files import atomic_path
+from fivebar_drake.core.files import save_figure
 from fivebar_drake.mechanisms.ballscrew_leg import ball_screw_leg
 from fivebar_drake.studies.ballscrew_leg.analysis import Analysis
 
 PLOT_FILES = ("motor_torques.png", "equivalent_ratio.png", "knee_range.png")
-
-
-def _save(fig, path: Path) -> Path:
-    with atomic_path(path) as tmp:
-        fig.savefig(tmp, dpi=120, format="png")
-    plt.close(fig)
-    return path
 
 
 def motor_torques(a: Analysis, path: Path) -> Path:
@@ -43,7 +36,7 @@ def motor_torques(a: Analysis, path: Path) -> Path:
     fig.suptitle(f"Static motor torques, {a.params.load.foot_force_N:g} N on the foot, "
                  "vertical squat q2 = -2 q1")
     fig.tight_layout()
-    return _save(fig, path)
+    return save_figure(fig, path, dpi=120)
 
 
 def equivalent_ratio(a: Analysis, path: Path) -> Path:
@@ -72,7 +65,7 @@ def equivalent_ratio(a: Analysis, path: Path) -> Path:
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8, ncol=2, loc="upper right")
     fig.tight_layout()
-    return _save(fig, path)
+    return save_figure(fig, path, dpi=120)
 
 
 def knee_range(a: Analysis, path: Path) -> Path:
@@ -97,7 +90,7 @@ def knee_range(a: Analysis, path: Path) -> Path:
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()
-    return _save(fig, path)
+    return save_figure(fig, path, dpi=120)
 
 
 def write_plots(a: Analysis, out: Path) -> list[Path]:

@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import json
 import time
-import uuid
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -28,11 +27,11 @@ from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import Adder, LogVectorOutput, TrajectorySource
 from pydrake.trajectories import PiecewisePolynomial
 
-from fivebar_drake.core.files import atomic_path, write_atomic
+from fivebar_drake.core.files import save_figure, write_atomic
 from fivebar_drake.core.motor import MotorModel, clip_flags
 from fivebar_drake.core.validation import check_number
 from fivebar_drake.mechanisms.ballscrew_leg import TREE_JOINTS, Params, ball_screw_leg
-from fivebar_drake.simulation.recording import TIMELINE, _scalars
+from fivebar_drake.core.rerun_files import TIMELINE, pose_frames, recording_file, scalars
 from fivebar_drake.studies.ballscrew_leg.model import LegModel, build_model
 
 SIMULATION_FILES = ("squat.png", "run.rrd", "summary.md", "summary.json")   # summary.json last
@@ -261,47 +260,36 @@ def _plot(sig: Signals, p: Params, path: Path) -> Path:
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
     fig.tight_layout()
-    with atomic_path(path) as tmp:
-        fig.savefig(tmp, dpi=110, format="png")
-    plt.close(fig)
-    return path
+    return save_figure(fig, path)
 
 
 def write_recording(sig: Signals, p: Params, path: Path) -> Path:
     """The run's .rrd (blueprint inside, footer written, then renamed into place)."""
-    rec = rr.RecordingStream("fivebar_drake", recording_id=f"ballscrew_leg-{uuid.uuid4().hex[:12]}")
-    rec.set_log_time_enabled(False)
-    rec.set_log_tick_enabled(False)
     view = rrb.Blueprint(rrb.Horizontal(
         rrb.Spatial3DView(origin="world", name="leg"),
         rrb.Vertical(rrb.TimeSeriesView(origin="torque", name="screw motor torque (N·m)"),
                      rrb.TimeSeriesView(origin="joints", name="q1 (deg)"),
                      rrb.TimeSeriesView(origin="loop_gap", name="loop gaps (m)"))),
         collapse_panels=True)
-    frames = np.unique(np.searchsorted(sig.t, np.arange(0.0, sig.t[-1] + 1e-9,
-                                                        1.0 / p.simulation.pose_rate_hz)))
-    frames = frames[frames < len(sig.t)]
+    frames = pose_frames(sig.t, p.simulation.pose_rate_hz)
     pts = np.concatenate([sig.points, np.zeros(sig.points.shape[:2] + (1,))], -1)[frames]
     strips = [s for f in pts for s in (f[[0, 1, 3]], f[[2, 1]], f[[0, 4]])]
-    with atomic_path(path) as tmp:
-        rec.save(str(tmp), default_blueprint=view)
-        with rec:
-            rec.send_columns("world/leg", indexes=[rr.TimeColumn(TIMELINE, duration=sig.t[frames])],
-                             columns=rr.LineStrips3D.columns(strips=strips).partition(
-                                 [3] * len(frames)))
-            rec.log("world/leg", rr.LineStrips3D.from_fields(radii=0.004), static=True)
-            for name, values in (("commanded", sig.command), ("applied", sig.applied),
-                                 ("static_closed_form", sig.static)):
-                _scalars(rec, f"torque/{name}", sig.t, values, name)
-            _scalars(rec, "torque/limit", sig.t, np.full(len(sig.t), -p.motor.peak_torque_Nm),
-                     "-limit")
-            _scalars(rec, "joints/q1", sig.t, np.degrees(sig.q1), "q1")
-            _scalars(rec, "joints/q1_reference", sig.t, np.degrees(sig.q1_ref), "reference")
-            _scalars(rec, "loop_gap/D", sig.t, sig.gap_d, "D")
-            _scalars(rec, "loop_gap/foot", sig.t, sig.gap_foot, "foot")
-            _scalars(rec, "motor/speed", sig.t, sig.motor_speed, "motor speed (rad/s)")
-            _scalars(rec, "carriage/height", sig.t, sig.height, "hip height (m)")
-        rec.disconnect()
+    with recording_file(path, "ballscrew_leg", view) as rec:
+        rec.send_columns("world/leg", indexes=[rr.TimeColumn(TIMELINE, duration=sig.t[frames])],
+                         columns=rr.LineStrips3D.columns(strips=strips).partition(
+                             [3] * len(frames)))
+        rec.log("world/leg", rr.LineStrips3D.from_fields(radii=0.004), static=True)
+        for name, values in (("commanded", sig.command), ("applied", sig.applied),
+                             ("static_closed_form", sig.static)):
+            scalars(rec, f"torque/{name}", sig.t, values, name)
+        scalars(rec, "torque/limit", sig.t, np.full(len(sig.t), -p.motor.peak_torque_Nm),
+                "-limit")
+        scalars(rec, "joints/q1", sig.t, np.degrees(sig.q1), "q1")
+        scalars(rec, "joints/q1_reference", sig.t, np.degrees(sig.q1_ref), "reference")
+        scalars(rec, "loop_gap/D", sig.t, sig.gap_d, "D")
+        scalars(rec, "loop_gap/foot", sig.t, sig.gap_foot, "foot")
+        scalars(rec, "motor/speed", sig.t, sig.motor_speed, "motor speed (rad/s)")
+        scalars(rec, "carriage/height", sig.t, sig.height, "hip height (m)")
     return path
 
 

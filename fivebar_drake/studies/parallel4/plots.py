@@ -10,7 +10,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.colors import LogNorm
 
-from fivebar_drake.analysis.plots import _save
+from fivebar_drake.core.files import save_figure
 from fivebar_drake.mechanisms.parallel4.kinematics import type2_line_z
 from fivebar_drake.mechanisms.parallel4.params import Params
 from fivebar_drake.mechanisms.parallel4.statics import in_workspace, poses_yz, yz_grid
@@ -42,7 +42,7 @@ def workspace_sections(params: Params, results: dict, path: Path) -> Path:
     for ax in axes.flat[len(panels):]:
         ax.axis("off")
     fig.tight_layout()
-    return _save(fig, path)
+    return save_figure(fig, path, dpi=120)
 
 
 def workspace_area(results: dict, path: Path) -> Path:
@@ -57,7 +57,7 @@ def workspace_area(results: dict, path: Path) -> Path:
                        ylabel="yz area (m^2) = m^3 per m of x")
         ax.legend(fontsize=7)
     fig.tight_layout()
-    return _save(fig, path)
+    return save_figure(fig, path, dpi=120)
 
 
 def singularities(params: Params, path: Path) -> Path:
@@ -81,7 +81,7 @@ def singularities(params: Params, path: Path) -> Path:
         ax.legend(fontsize=7, loc="upper right")
     fig.suptitle("Singularity loci on the design geometry (grey: workspace)")
     fig.tight_layout()
-    return _save(fig, path)
+    return save_figure(fig, path, dpi=120)
 
 
 def condition_maps(params: Params, results: dict, reading: str, path: Path) -> Path:
@@ -101,7 +101,7 @@ def condition_maps(params: Params, results: dict, reading: str, path: Path) -> P
                f"{m['theta_deg']:g} deg", xlabel="y (m)", ylabel="z (m)", aspect="equal")
     fig.suptitle(f"Condition number: {reading} (+: the seed's point)")
     fig.tight_layout()
-    return _save(fig, path)
+    return save_figure(fig, path, dpi=120)
 
 
 def write(out: Path, params: Params, results: dict) -> list[Path]:

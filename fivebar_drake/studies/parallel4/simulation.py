@@ -4,7 +4,6 @@ static forces as feedforward), its results, and the Rerun recording (3-D at reco
 
 from __future__ import annotations
 
-import uuid
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -15,11 +14,10 @@ from pydrake.systems.analysis import Simulator
 from pydrake.systems.primitives import TrajectorySource
 from pydrake.trajectories import PiecewisePolynomial
 
-from fivebar_drake.core.files import atomic_path
 from fivebar_drake.mechanisms.parallel4.kinematics import (PAIR, forward, inverse,
                                                            platform_offsets, velocity_jacobian)
 from fivebar_drake.mechanisms.parallel4.params import Params
-from fivebar_drake.simulation.recording import TIMELINE, _scalars
+from fivebar_drake.core.rerun_files import TIMELINE, recording_file, scalars
 from fivebar_drake.studies.parallel4.model import (Parallel4Plant, base_points,
                                                    closed_form_static_forces)
 
@@ -137,45 +135,39 @@ def blueprint() -> rrb.Blueprint:
 def write_recording(path: Path, params: Params, run: Run) -> Path:
     """The run's .rrd file (written atomically, with its blueprint and footer)."""
     g = params.geometry
-    rec = rr.RecordingStream("fivebar_drake", recording_id=f"parallel4-{uuid.uuid4().hex[:12]}")
-    rec.set_log_time_enabled(False)
-    rec.set_log_tick_enabled(False)
-    with atomic_path(path) as tmp:
-        rec.save(str(tmp), default_blueprint=blueprint())
-        with rec:
-            rails = [[[-RAIL_HALF_LENGTH_M, y, z], [RAIL_HALF_LENGTH_M, y, z]]
-                     for y, z in ((g.a, g.d), (-g.a, -g.d))]
-            rec.log("world/rails", rr.LineStrips3D(rails, radii=0.004, colors=[[90, 90, 90]]),
-                    static=True)
-            rec.log("world/path", rr.LineStrips3D([run.desired[:, :3]], radii=0.0015,
-                                                  colors=[[230, 80, 60]]), static=True)
-            time = [rr.TimeColumn(TIMELINE, duration=run.t)]
-            n = len(run.t)
-            strips = _leg_strips(params, run)
-            rec.send_columns("world/legs", indexes=time, columns=rr.LineStrips3D.columns(
-                strips=list(strips.reshape(n * 4, 2, 3))).partition([4] * n))
-            rec.log("world/legs", rr.LineStrips3D.from_fields(radii=0.006), static=True)
-            tips = platform_offsets(g, run.pose[:, 3]) + run.pose[:, None, :3]
-            rec.send_columns("world/platform", indexes=time, columns=rr.LineStrips3D.columns(
-                strips=list(tips)).partition([1] * n))
-            rec.log("world/platform", rr.LineStrips3D.from_fields(radii=0.012,
-                                                                 colors=[[60, 180, 90]]),
-                    static=True)
-            rec.send_columns("world/sliders", indexes=time, columns=rr.Points3D.columns(
-                positions=list(strips[:, :, 0].reshape(n * 4, 3))).partition([4] * n))
-            rec.log("world/sliders", rr.Points3D.from_fields(radii=0.02), static=True)
-            for i in range(4):
-                _scalars(rec, f"actuator/applied/l{i + 1}", run.t, run.force[:, i],
-                         f"l{i + 1} applied")
-                _scalars(rec, f"actuator/static/l{i + 1}", run.t, run.static_closed[:, i],
-                         f"l{i + 1} static, closed form")
-                _scalars(rec, f"loop_gap/leg{i + 1}", run.t, run.gap[:, i], f"leg {i + 1}")
-            for k, name in enumerate(("x", "y", "z")):
-                _scalars(rec, f"platform/{name}_m", run.t, run.pose[:, k], f"{name} (m)")
-            _scalars(rec, "platform/theta_deg", run.t, np.degrees(run.pose[:, 3]), "theta (deg)")
-            _scalars(rec, "tracking/position_m", run.t,
-                     np.linalg.norm(run.pose[:, :3] - run.desired[:, :3], axis=1), "|P - P_d| (m)")
-            _scalars(rec, "tracking/theta_deg", run.t,
-                     np.degrees(run.pose[:, 3] - run.desired[:, 3]), "theta - theta_d (deg)")
-        rec.disconnect()
+    with recording_file(path, "parallel4", blueprint()) as rec:
+        rails = [[[-RAIL_HALF_LENGTH_M, y, z], [RAIL_HALF_LENGTH_M, y, z]]
+                 for y, z in ((g.a, g.d), (-g.a, -g.d))]
+        rec.log("world/rails", rr.LineStrips3D(rails, radii=0.004, colors=[[90, 90, 90]]),
+                static=True)
+        rec.log("world/path", rr.LineStrips3D([run.desired[:, :3]], radii=0.0015,
+                                              colors=[[230, 80, 60]]), static=True)
+        time = [rr.TimeColumn(TIMELINE, duration=run.t)]
+        n = len(run.t)
+        strips = _leg_strips(params, run)
+        rec.send_columns("world/legs", indexes=time, columns=rr.LineStrips3D.columns(
+            strips=list(strips.reshape(n * 4, 2, 3))).partition([4] * n))
+        rec.log("world/legs", rr.LineStrips3D.from_fields(radii=0.006), static=True)
+        tips = platform_offsets(g, run.pose[:, 3]) + run.pose[:, None, :3]
+        rec.send_columns("world/platform", indexes=time, columns=rr.LineStrips3D.columns(
+            strips=list(tips)).partition([1] * n))
+        rec.log("world/platform", rr.LineStrips3D.from_fields(radii=0.012,
+                                                             colors=[[60, 180, 90]]),
+                static=True)
+        rec.send_columns("world/sliders", indexes=time, columns=rr.Points3D.columns(
+            positions=list(strips[:, :, 0].reshape(n * 4, 3))).partition([4] * n))
+        rec.log("world/sliders", rr.Points3D.from_fields(radii=0.02), static=True)
+        for i in range(4):
+            scalars(rec, f"actuator/applied/l{i + 1}", run.t, run.force[:, i],
+                     f"l{i + 1} applied")
+            scalars(rec, f"actuator/static/l{i + 1}", run.t, run.static_closed[:, i],
+                     f"l{i + 1} static, closed form")
+            scalars(rec, f"loop_gap/leg{i + 1}", run.t, run.gap[:, i], f"leg {i + 1}")
+        for k, name in enumerate(("x", "y", "z")):
+            scalars(rec, f"platform/{name}_m", run.t, run.pose[:, k], f"{name} (m)")
+        scalars(rec, "platform/theta_deg", run.t, np.degrees(run.pose[:, 3]), "theta (deg)")
+        scalars(rec, "tracking/position_m", run.t,
+                 np.linalg.norm(run.pose[:, :3] - run.desired[:, :3], axis=1), "|P - P_d| (m)")
+        scalars(rec, "tracking/theta_deg", run.t,
+                 np.degrees(run.pose[:, 3] - run.desired[:, 3]), "theta - theta_d (deg)")
     return path

@@ -7,15 +7,13 @@ joints/q<i>/{actual, desired}, torque/q<i>/{commanded, applied, limit_pos, limit
 
 from __future__ import annotations
 
-import uuid
 from pathlib import Path
 import numpy as np
 import rerun as rr
 import rerun.blueprint as rrb
 
-from fivebar_drake.core.files import atomic_path
 from fivebar_drake.mechanisms.scara import Scara, ScaraParams
-from fivebar_drake.simulation.recording import TIMELINE, _scalars
+from fivebar_drake.core.rerun_files import TIMELINE, pose_frames, recording_file, scalars
 from fivebar_drake.studies.scara.simulation import Run
 
 RECORDING_FILE = "run.rrd"
@@ -49,22 +47,13 @@ def blueprint() -> rrb.Blueprint:
 
 def write_recording(path: Path, params: ScaraParams, r: Run, error_m: np.ndarray) -> Path:
     """Write the run's .rrd atomically (complete with its footer, then renamed into place)."""
-    rec = rr.RecordingStream("fivebar_drake", recording_id=f"fivebar_drake-scara-"
-                             f"{uuid.uuid4().hex[:12]}")
-    rec.set_log_time_enabled(False)
-    rec.set_log_tick_enabled(False)
-    with atomic_path(path) as tmp:
-        rec.save(str(tmp), default_blueprint=blueprint())
-        with rec:
-            _log(rec, params, r, error_m)
-        rec.disconnect()
+    with recording_file(path, "fivebar_drake-scara", blueprint()) as rec:
+        _log(rec, params, r, error_m)
     return path
 
 
 def _log(rec, params: ScaraParams, r: Run, error_m) -> None:
-    frames = np.unique(np.searchsorted(r.t, np.arange(0.0, r.t[-1] + 1e-9,
-                                                      1.0 / params.simulation.pose_rate_hz)))
-    frames = frames[frames < len(r.t)]
+    frames = pose_frames(r.t, params.simulation.pose_rate_hz)
     time = [rr.TimeColumn(TIMELINE, duration=r.t[frames])]
     points = arm_points(params, r.q[frames])
     rec.send_columns("world/arm", indexes=time, columns=rr.LineStrips3D.columns(
@@ -79,14 +68,14 @@ def _log(rec, params: ScaraParams, r: Run, error_m) -> None:
             static=True)
     rec.log("world/trace", rr.LineStrips3D([Scara(params.kinematics).forward(r.q).f],
                                            radii=0.0015, colors=[[230, 80, 60]]), static=True)
-    _scalars(rec, "tracking/error_mm", r.t, error_m * 1e3, "tool error (mm)")
+    scalars(rec, "tracking/error_mm", r.t, error_m * 1e3, "tool error (mm)")
     for j, name in enumerate(JOINTS):
-        _scalars(rec, f"joints/{name}/actual", r.t, r.q[:, j], f"{name} actual")
-        _scalars(rec, f"joints/{name}/desired", r.desired.t, r.desired.q[:, j],
+        scalars(rec, f"joints/{name}/actual", r.t, r.q[:, j], f"{name} actual")
+        scalars(rec, f"joints/{name}/desired", r.desired.t, r.desired.q[:, j],
                  f"{name} desired")
         base = f"torque/{name}"
-        _scalars(rec, f"{base}/commanded", r.t, r.record[:, j, 0], f"{name} commanded")
-        _scalars(rec, f"{base}/applied", r.t, r.record[:, j, 2], f"{name} applied")
+        scalars(rec, f"{base}/commanded", r.t, r.record[:, j, 0], f"{name} commanded")
+        scalars(rec, f"{base}/applied", r.t, r.record[:, j, 2], f"{name} applied")
         limit = r.motors[j].peak_torque_Nm
-        _scalars(rec, f"{base}/limit_pos", r.t, np.full(len(r.t), limit), "+limit")
-        _scalars(rec, f"{base}/limit_neg", r.t, np.full(len(r.t), -limit), "-limit")
+        scalars(rec, f"{base}/limit_pos", r.t, np.full(len(r.t), limit), "+limit")
+        scalars(rec, f"{base}/limit_neg", r.t, np.full(len(r.t), -limit), "-limit")

@@ -9,7 +9,7 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 import numpy as np
 
-from fivebar_drake.core.files import atomic_path, write_atomic
+from fivebar_drake.core.files import save_figure, write_atomic
 from fivebar_drake.mechanisms.scara import Dynamics, OutOfReach, Scara, ScaraParams, seed_inertia
 from fivebar_drake.mechanisms.scara import sizing as sz
 from fivebar_drake.studies.scara.analysis import (REPRODUCED_WITHIN, Motion, drake_check,
@@ -169,14 +169,6 @@ def markdown(data: dict) -> str:
     lines += ["", "## Assumptions", ""] + [f"- {a}" for a in data["assumptions"]]
     lines += ["", "## Plots", ""] + [f"![{n}]({n}.png)" for n in FIGURES]
     return "\n".join(lines) + "\n"
-
-
-def save_figure(fig, path: Path) -> Path:
-    """Write a figure as PNG atomically and close it; returns path."""
-    with atomic_path(path) as tmp:
-        fig.savefig(tmp, dpi=110)
-    plt.close(fig)
-    return path
 
 
 def plot_workspace(params: ScaraParams, motion: Motion) -> plt.Figure:

@@ -10,7 +10,7 @@ import numpy as np
 
 from fivebar_drake.core.files import write_atomic
 from fivebar_drake.mechanisms.scara import ScaraParams
-from fivebar_drake.studies.scara.report import save_figure
+from fivebar_drake.core.files import save_figure
 from fivebar_drake.studies.scara.recording import RECORDING_FILE, write_recording
 from fivebar_drake.studies.scara.simulation import Run, run, summarize
 
