@@ -12,12 +12,12 @@ Parquet file is written whole), it survives a kill, and every tool reads it.
 from __future__ import annotations
 
 import csv
-import dataclasses
 import io
 import json
 import os
 import sys
 import time
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -25,8 +25,10 @@ from fivebar_drake.analysis.design_points import with_changes
 from fivebar_drake.core.files import write_atomic
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.robots.quadruped.config import load_params
+from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.simulation.scenario import load_scenario
-from fivebar_drake.sweep.points import SCENARIO, analysis_rows, columns, simulation_rows
+from fivebar_drake.sweep.points import (SCENARIO, analysis_rows, columns, scenario_with,
+                                        simulation_rows)
 from fivebar_drake.sweep.spec import SweepSpec
 
 TABLE_FILE, SPEC_FILE = "points.csv", "sweep.json"
@@ -37,12 +39,14 @@ PROGRESS_EVERY_S = 1.0
 @dataclass
 class SweepResult:
     """What run_sweep did: the table's path, its rows (strings as in the file, point order),
-    how many points were computed now, and how many of all rows failed."""
+    how many points were computed now, how many of all rows failed, and the base parameters
+    the points changed."""
 
     table: Path
     rows: list[dict]
     computed: int
     failed: int
+    params: Params
 
 
 def base_inputs(spec: SweepSpec):
@@ -58,19 +62,10 @@ def base_inputs(spec: SweepSpec):
     for v in spec.vary:
         for value in (v.values or (v.low, v.high)):
             if v.path.startswith(SCENARIO):
-                _scenario_with(scenario, v.path, value)
+                scenario_with(scenario, {v.path: value})
             else:
                 with_changes(params, {v.path: value})
     return params, scenario
-
-
-def _scenario_with(scenario, path: str, value):
-    name = path[len(SCENARIO):]
-    if name not in {f.name for f in dataclasses.fields(scenario)}:
-        raise ParameterError(f"{path}: no such scenario field", path)
-    changed = dataclasses.replace(scenario, **{name: value})
-    changed.validate()
-    return changed
 
 
 def _read_rows(table: Path) -> list[dict]:
@@ -127,20 +122,32 @@ class Progress:
                   self.done < self.total else "\n", file=sys.stderr, flush=True)
 
 
-def _client(workers: int | None, scheduler: str | None):
-    """A Dask client of the scheduler at `scheduler`, or of a new local cluster of `workers`
-    process workers with one thread each (default: one per core)."""
+@contextmanager
+def _client(workers: int | None, scheduler: str | None, client=None):
+    """client, if given (left open); else a Dask client of the scheduler at `scheduler`, or of
+    a new local cluster of `workers` process workers with one thread each (default: one per
+    core), closed with its local cluster when the block ends."""
+    if client is not None:
+        yield client
+        return
     from dask.distributed import Client, LocalCluster
 
     if scheduler:
         try:
-            return Client(scheduler, timeout="10s")
+            client = Client(scheduler, timeout="10s")
         except (OSError, TimeoutError) as err:
             raise ParameterError(f"--scheduler = {scheduler}: no Dask scheduler answers there "
                                  f"({err})", "--scheduler") from None
-    cluster = LocalCluster(n_workers=workers or os.cpu_count(), threads_per_worker=1,
-                           processes=True, dashboard_address=":0")
-    return Client(cluster)
+    else:
+        client = Client(LocalCluster(n_workers=workers or os.cpu_count(), threads_per_worker=1,
+                                     processes=True, dashboard_address=":0"))
+    try:
+        yield client
+    finally:
+        cluster = client.cluster
+        client.close()
+        if cluster is not None and not scheduler:
+            cluster.close()
 
 
 def run_sweep(spec: SweepSpec, out: str | Path, workers: int | None = None,
@@ -157,22 +164,14 @@ def run_sweep(spec: SweepSpec, out: str | Path, workers: int | None = None,
     todo = [(i, p) for i, p in enumerate(spec.points()) if i not in done]
     bar = Progress(len(done) + len(todo), len(done), progress)
     computed = 0
-    if todo and client is not None:
-        computed = _compute(client, spec, params, scenario, todo, out / TABLE_FILE, header, bar)
-    elif todo:
-        client = _client(workers, scheduler)
-        try:
-            computed = _compute(client, spec, params, scenario, todo, out / TABLE_FILE, header,
+    if todo:
+        with _client(workers, scheduler, client) as dask:
+            computed = _compute(dask, spec, params, scenario, todo, out / TABLE_FILE, header,
                                 bar)
-        finally:
-            cluster = client.cluster
-            client.close()
-            if cluster is not None and not scheduler:
-                cluster.close()
     rows = sorted(_read_rows(out / TABLE_FILE), key=lambda r: int(r["point"]))
     _write_table(out / TABLE_FILE, header, rows)
     return SweepResult(table=out / TABLE_FILE, rows=rows, computed=computed,
-                       failed=sum(r["status"] == "failed" for r in rows))
+                       failed=sum(r["status"] == "failed" for r in rows), params=params)
 
 
 def _compute(client, spec, params, scenario, todo, table: Path, header, bar: Progress) -> int:
@@ -222,7 +221,7 @@ def sweep(spec: SweepSpec, out: str | Path, workers: int | None = None,
     from fivebar_drake.sweep.report import summarize_sweep, write_sweep_report
 
     result = run_sweep(spec, out, workers, scheduler, progress, client)
-    sf_pass = base_inputs(spec)[0].checks.sf_pass
+    sf_pass = result.params.checks.sf_pass
     summary = summarize_sweep(result.rows, spec.names, sf_pass)
     written = [result.table, *write_sweep_plots(result.rows, spec.plot, spec.fidelity, sf_pass,
                                                 Path(out)),

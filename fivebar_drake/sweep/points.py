@@ -92,6 +92,19 @@ def analysis_rows(base: Params, settings: tuple[str, str],
     return rows
 
 
+def scenario_with(scenario: Scenario, changes: dict) -> Scenario:
+    """The scenario with fields changed by `scenario.NAME` paths, validated (ParameterError
+    naming the path)."""
+    known = {f.name for f in dataclasses.fields(scenario)}
+    for path in changes:
+        if path[len(SCENARIO):] not in known:
+            raise ParameterError(f"{path}: no such scenario field; the fields are "
+                                 f"{sorted(known)}", path)
+    changed = dataclasses.replace(scenario, **{k[len(SCENARIO):]: v for k, v in changes.items()})
+    changed.validate()
+    return changed
+
+
 def simulation_rows(base: Params, scenario: Scenario, points: list[tuple[int, dict]]) -> list[dict]:
     """Rows of simulation points (index, {dotted path: value}), one after the other
     (simulation_row)."""
@@ -103,11 +116,8 @@ def simulation_row(base: Params, scenario: Scenario, index: int, changes: dict) 
     parameters with the others, simulated (run_simulation) and summarized (summarize_run)."""
     row = {"point": index, **changes}
     try:
-        fields = {k[len(SCENARIO):]: v for k, v in changes.items() if k.startswith(SCENARIO)}
-        try:
-            scenario = dataclasses.replace(scenario, **fields)
-        except TypeError as err:
-            raise ParameterError(f"scenario: {err}", "scenario") from None
+        scenario = scenario_with(scenario, {k: v for k, v in changes.items()
+                                            if k.startswith(SCENARIO)})
         params = with_changes(base, {k: v for k, v in changes.items()
                                      if not k.startswith(SCENARIO)})
         record = run_simulation(scenario, params, progress=False)
