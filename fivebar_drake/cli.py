@@ -1,10 +1,10 @@
 """Command line of fivebar_drake:
 
   fivebar-drake analyze  [--mechanism NAME] [--gait {seed_ellipse,trot}] [--config FILE]
-                         [--out DIR]
+                         [--set FIELD=VALUE ...] [--out DIR]
   fivebar-drake simulate [--mechanism NAME] [--scenario FILE] [--config FILE]
-                         [--gait {trot,seed_ellipse}] [--duration S]
-                         [--closure {bushing,bushing_rpy,ball}] [--out DIR]
+                         [--set FIELD=VALUE ...] [--gait {trot,seed_ellipse}] [--duration S]
+                         [--closure {bushing,bushing_rpy,ball}] [--step-check] [--out DIR]
   fivebar-drake sweep    SPEC.yaml [--out DIR] [--workers N] [--scheduler ADDRESS]
   fivebar-drake compare  RUN_DIR [RUN_DIR ...] [--out FILE]
   fivebar-drake models   [--scenario FILE] [--config FILE] [--out DIR]"""
@@ -31,7 +31,8 @@ from fivebar_drake.simulation.scenario import Scenario
 
 EXIT_CODES = """exit codes:
   0    done
-  1    the run failed (stopped early, diverged) or has no verdict (too few gait cycles)
+  1    the run failed (stopped early, diverged), has no verdict (too few gait cycles) or
+       did not achieve its motion (verdict not_achieved)
   2    bad input: a parameter or scenario file, a command-line value, an output path
   3    internal error (a bug): the message names a log file with the traceback
   130  interrupted by SIGINT (Ctrl-C), 143 by SIGTERM; simulate writes what it has first"""
@@ -47,10 +48,33 @@ def _err(text: str) -> None:
 def _only_for_fivebar(args, *options) -> None:
     """ParameterError for an option of the quadruped's 5-bar leg given with another mechanism."""
     for option in options:
-        value = getattr(args, option.lstrip("-"))
+        value = getattr(args, option.lstrip("-").replace("-", "_"))
         if value is not None:
             raise ParameterError(f"{option} = {value}: applies to --mechanism {catalog.FIVEBAR} "
                                  f"only, not to {args.mechanism}", option, "command line")
+
+
+def _with_sets(params, sets):
+    """The parameters with the command line's --set FIELD=VALUE edits (ParameterError naming
+    the command line)."""
+    if not sets:
+        return params
+    from fivebar_drake.analysis.design_points import with_changes
+
+    changes = {}
+    for item in sets:
+        field, sep, text = item.partition("=")
+        if not sep or not field:
+            raise ParameterError(f"--set {item}: write FIELD=VALUE, e.g. motor.gear_ratio=11.5",
+                                 "--set", "command line")
+        try:
+            changes[field.strip()] = float(text)
+        except ValueError:
+            changes[field.strip()] = text.strip()
+    try:
+        return with_changes(params, changes)
+    except ParameterError as err:
+        raise err.located("command line (--set)") from None
 
 
 def _study(args, signals, job: str) -> int:
@@ -89,7 +113,7 @@ def _study(args, signals, job: str) -> int:
 
 def _analyze(args, signals) -> int:
     if args.mechanism != catalog.FIVEBAR:
-        _only_for_fivebar(args, "--gait")
+        _only_for_fivebar(args, "--gait", "--set")
         return _study(args, signals, "analyze")
     import matplotlib
 
@@ -98,7 +122,7 @@ def _analyze(args, signals) -> int:
 
     args.gait = args.gait or "seed_ellipse"
     start = time.perf_counter()
-    params = load_params(args.config)             # bad input: exit 2 before the folder is touched
+    params = _with_sets(load_params(args.config), args.set)   # bad input: exit 2 first
     out = prepare_output_dir(args.out or "out/analysis", "--out", pipeline.ANALYSIS_FILES)
     say(f"parameters: {args.config or 'packaged default'}")
     record = pipeline.run_analysis(params, gait=args.gait)
@@ -109,7 +133,8 @@ def _analyze(args, signals) -> int:
     for model, motor, m in sorted(readings, key=lambda r: r[2]["safety_factor"]):
         say(f"  {model:>9} motor {motor}: peak {m['peak_torque_Nm']:.3f} N m, "
             f"static {m['static_torque_Nm']:.3f} N m, SF {m['safety_factor']:.2f} "
-            f"({m['verdict'].upper()}), peak speed {m['peak_speed_rad_s']:.2f} rad/s")
+            f"({m['verdict'].upper()}), peak speed {m['peak_speed_rad_s']:.2f} rad/s; verdict "
+            f"{m['checks']['verdict'].upper()} ({m['checks']['deciding_check']} check)")
     say(f"wrote {len(written)} files to {out.resolve()} in {time.perf_counter() - start:.1f} s:")
     for path in written:
         say(f"  {path}")
@@ -120,7 +145,7 @@ def _analyze(args, signals) -> int:
 
 def _simulate(args, signals) -> int:
     if args.mechanism != catalog.FIVEBAR:
-        _only_for_fivebar(args, "--scenario", "--gait", "--closure")
+        _only_for_fivebar(args, "--scenario", "--gait", "--closure", "--set", "--step-check")
         return _study(args, signals, "simulate")
     import matplotlib
 
@@ -130,9 +155,20 @@ def _simulate(args, signals) -> int:
 
     scenario, params = load_run(args.scenario, duration_s=args.duration, closure=args.closure,
                                 gait=args.gait, params_file=args.config)
+    params = _with_sets(params, args.set)
+    if args.set:
+        from fivebar_drake.simulation.builder import check_run
+        check_run(scenario, params)         # the edited robot, before the folder is touched
     out = prepare_output_dir(args.out or "out/simulation", "--out", pipeline.SIMULATION_FILES)
     record = pipeline.run_simulation(scenario, params, progress=True, stop=lambda: signals.name)
-    summary, written = pipeline.write_simulation(record, out)   # summary.json last
+    half = None
+    if args.step_check and not record.error and not record.interrupted and not signals.signum:
+        say(f"step check: the same run at half the plant step "
+            f"({record.design.time_step_s / 2:g} s)")
+        half = pipeline.run_step_check(record, progress=True, stop=lambda: signals.name)
+        if half.interrupted:
+            half = None
+    summary, written = pipeline.write_simulation(record, out, half)   # summary.json last
     say(f"{summary['gait']} gait, {summary['closure']} closure: {summary['duration_s']:.2f} s "
         f"simulated, {summary['real_time_factor']:.2f}x real time, worst loop gap "
         f"{summary['max_loop_gap_m'] * 1e3:.4f} mm, {summary['cycles_in_window']} whole cycles, "
@@ -141,8 +177,14 @@ def _simulate(args, signals) -> int:
     for leg, motors in summary["legs"].items():
         say("  " + leg + ": " + ", ".join(
             f"{m} demand p99 {v['demand_p99_Nm']:.2f} N m (RMS {v['rms_torque_Nm']:.2f}, "
-            f"SF {v['safety_factor']:.2f} {v['verdict']})" for m, v in motors.items()))
-    say(f"verdict: {summary['verdict'].upper()} (worst motor {summary['worst_motor']})")
+            f"SF {v['safety_factor']:.2f}, {v['verdict']})" for m, v in motors.items()))
+    say(f"verdict: {summary['verdict'].upper()} (worst motor {summary['worst_motor']}, "
+        f"{summary['deciding_check']} check)")
+    if summary["step_check"]:
+        sc = summary["step_check"]
+        say(f"step check at {sc['half_time_step_s']:g} s: worst demand p99 change "
+            f"{sc['worst_demand_p99_change']:+.2%}, worst SF change {sc['worst_sf_change']:.3f}"
+            + (f"; MARGINAL: {sc['why']}" if sc["marginal"] else ""))
     say(summary["answer"])
     say(f"wrote {len(written)} files to {out.resolve()}:")
     for path in written:
@@ -161,6 +203,9 @@ def _simulate(args, signals) -> int:
         return 1
     if summary["verdict"] == "insufficient":
         _err(f"error: no verdict: {summary['answer']}")
+        return 1
+    if summary["verdict"] == "not_achieved":
+        _err(f"error: the motion was not achieved: {summary['answer']}")
         return 1
     return 0
 
@@ -249,6 +294,10 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--config", **{**config, "help": "parameter file (TOML, the layout of the "
                                   "mechanism's file in fivebar_drake/data/: default.toml for the "
                                   "5-bar leg, NAME.toml for another); default: the packaged one"})
+    sets = dict(action="append", metavar="FIELD=VALUE",
+                help="change a parameter by its dotted path (as a sweep does), e.g. "
+                     "motor.gear_ratio=11.5; repeatable, 5-bar quadruped only")
+    p.add_argument("--set", **sets)
     p.add_argument("--out", metavar="DIR",
                    help="output folder; a previous analysis's files in it are replaced "
                         "(default: out/analysis for the 5-bar leg, out/NAME for another)")
@@ -267,6 +316,11 @@ def parser() -> argparse.ArgumentParser:
                         f"{DEFAULTS.duration_s:g})")
     s.add_argument("--closure", choices=CLOSURES,
                    help=f"loop closure (overrides the scenario's; default: {DEFAULTS.closure})")
+    s.add_argument("--set", **sets)
+    s.add_argument("--step-check", action="store_const", const=True,
+                   help="run again at half the plant step and report the change of each "
+                        "motor's demand p99, RMS and safety factor (verdict marginal where it "
+                        "reaches a threshold); quadruped only")
     s.add_argument("--out", metavar="DIR",
                    help="output folder; a previous run's files in it are removed before the "
                         "run starts (default: out/simulation for the quadruped, "

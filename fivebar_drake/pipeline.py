@@ -31,7 +31,8 @@ from fivebar_drake.simulation.plots import SIM_PLOT_FILES, write_sim_plots
 from fivebar_drake.simulation.recording import RECORDING_FILE, write_recording
 from fivebar_drake.simulation.runner import SimulationRecord, simulate
 from fivebar_drake.simulation.scenario import Scenario
-from fivebar_drake.simulation.summary import SUMMARY_FILES, signals, summarize, write_summary
+from fivebar_drake.simulation.summary import (SUMMARY_FILES, apply_step_check, signals, summarize,
+                                              write_summary)
 
 
 SIMULATION_FILES = SIM_PLOT_FILES + (RECORDING_FILE,) + SUMMARY_FILES   # summary.json last
@@ -92,31 +93,47 @@ def run_simulation(scenario: Scenario, params: Params | None = None, progress: b
                     progress=progress, log_actuation=log_actuation, stop=stop)
 
 
+def run_step_check(record: SimulationRecord, progress: bool = True,
+                   stop: Callable[[], str] | None = None) -> SimulationRecord:
+    """The run's scenario again at half its plant step (the step check: summarize_run and
+    write_simulation take it as `half`)."""
+    scenario = dataclasses.replace(record.scenario, time_step_s=record.design.time_step_s / 2)
+    return run_simulation(scenario, record.params, progress=progress, stop=stop)
+
+
 def seed_reference(params: Params) -> dict:
     """The static reference of every simulation summary: the seed model on the seed's ellipse
     (report.json's results.seed, per motor)."""
     return analyze(params).results["results"]["seed"]
 
 
-def _review(record: SimulationRecord):
-    """(Signals, summary dictionary) of a run."""
+def _review(record: SimulationRecord, half: SimulationRecord | None = None):
+    """(Signals, summary dictionary) of a run; with `half` (run_step_check) its step check."""
     sig = signals(record)
-    return sig, summarize(sig, record, seed_reference(record.params))
+    reference = seed_reference(record.params)
+    summary = summarize(sig, record, reference)
+    if half is not None:
+        apply_step_check(summary, summarize(signals(half), half, reference), record.params)
+    return sig, summary
 
 
-def summarize_run(record: SimulationRecord) -> dict:
+def summarize_run(record: SimulationRecord, half: SimulationRecord | None = None) -> dict:
     """The run's summary (summary.json's dictionary, SI units): whole-cycle statistics per leg
-    and motor against the static estimates, the verdict and the answer in one sentence."""
-    return _review(record)[1]
+    and motor against the static estimates, the checks, the verdict and the answer in one
+    sentence; with `half`, the same run at half the plant step (run_step_check), the step
+    check (summary["step_check"], verdict "marginal" where the step error reaches a
+    threshold)."""
+    return _review(record, half)[1]
 
 
-def write_simulation(record: SimulationRecord, out_dir: str | Path) -> tuple[dict, list[Path]]:
+def write_simulation(record: SimulationRecord, out_dir: str | Path,
+                     half: SimulationRecord | None = None) -> tuple[dict, list[Path]]:
     """Write SIMULATION_FILES into out_dir (made if needed), each atomically: first remove a
     previous run's files, then the plots, the Rerun recording, summary.md and summary.json
     last, so a summary.json always describes complete files. Returns (the summary as written,
-    the paths in the order written)."""
+    the paths in the order written). half: the step check's run (summarize_run)."""
     out = prepare_output_dir(out_dir, "out_dir", SIMULATION_FILES)
-    sig, summary = _review(record)
+    sig, summary = _review(record, half)
     written = write_sim_plots(sig, record.layout.legs, record.params, summary, out)
     written.append(write_recording(out / RECORDING_FILE, sig, record, summary))
     written += write_summary(summary, record.params, out)

@@ -11,7 +11,7 @@ import numpy as np
 from fivebar_drake.analysis.force_capability import (home_capability, max_force, support_available)
 from fivebar_drake.analysis.gear_ratio import GearTrade, RATIO_RANGE, gear_trade
 from fivebar_drake.analysis.joint_loads import JOINT_LINKS, JOINT_NAMES, JointLoads, joint_loads
-from fivebar_drake.analysis.thermal import Thermal, thermal_margin
+from fivebar_drake.analysis.thermal import Thermal, rms_current, thermal_margin
 from fivebar_drake.mechanisms.fivebar import (DynamicsModel, GaitSamples, MOTORS, TorqueBreakdown,
                                               foot_jacobian)
 from fivebar_drake.robots.quadruped.params import Params
@@ -71,11 +71,12 @@ def _home(params: Params) -> dict:
                                        if len(ranked) > 1 else None)}
 
 
-def _thermal_results(params: Params, th: Thermal, rms: np.ndarray) -> dict:
+def _thermal_results(params: Params, th: Thermal, rms: np.ndarray, current: np.ndarray) -> dict:
     m = params.motor
     return {motor: {
         "rms_torque_Nm": float(rms[j]), "continuous_torque_Nm": m.continuous_torque_Nm,
-        "rms_over_continuous": float(rms[j] / m.continuous_torque_Nm),
+        "rms_current_A": float(current[j]), "continuous_current_A": m.rated_continuous_current_A,
+        "rms_over_continuous": float(current[j] / m.rated_continuous_current_A),
         "copper_loss_W": float(th.loss_W[j]), "steady_state_C": float(th.steady_C[j]),
         "margin_K": float(th.margin_K[j]),
         "time_to_limit_s": (float(th.time_to_limit_s[j]) if np.isfinite(th.time_to_limit_s[j])
@@ -106,7 +107,7 @@ def design_metrics(params: Params, samples: GaitSamples, models: dict[str, Dynam
     m = params.motor
     results = {"force_capability": dict(_home(params), gait={}), "joint_loads": {},
                "thermal": {"continuous_torque_Nm": m.continuous_torque_Nm,
-                           "steady_state_continuous_torque_Nm": m.thermal_continuous_torque_Nm,
+                           "thermal_continuous_current_A": m.thermal_continuous_current_A,
                            "winding_limit_C": m.winding_limit_C, "ambient_C": m.ambient_C,
                            "models": {}}}
     for name in PHYSICAL:
@@ -122,8 +123,9 @@ def design_metrics(params: Params, samples: GaitSamples, models: dict[str, Dynam
                 "least_margin_moving": _least(np.where(needed > 0, s.moving / needed, np.inf),
                                               samples)}
         rms = np.sqrt(np.mean(tb.total**2, axis=0))
-        thermal[name] = thermal_margin(params.motor, rms)
-        results["thermal"]["models"][name] = _thermal_results(params, thermal[name], rms)
+        current = rms_current(params.motor, tb.total, samples.qd)
+        thermal[name] = thermal_margin(params.motor, current)
+        results["thermal"]["models"][name] = _thermal_results(params, thermal[name], rms, current)
         loads[name] = joint_loads(params.leg, params.links, model, samples.pose, samples.qd,
                                   samples.qdd)
         results["joint_loads"][name] = _load_results(samples, loads[name])
@@ -133,7 +135,7 @@ def design_metrics(params: Params, samples: GaitSamples, models: dict[str, Dynam
         "model": GEAR_MODEL, "search_range": list(RATIO_RANGE), "current": m.gear_ratio,
         "safety_factor_at_current": gear.current_safety, "best": gear.best_ratio,
         "safety_factor_at_best": gear.best_safety,
-        "motor_side": {"peak_torque_Nm": m.peak_torque_Nm / m.gear_ratio,
+        "motor_side": {"peak_torque_Nm": m.peak_torque_Nm / (m.gear_ratio * m.gear_efficiency),
                        "no_load_speed_rad_s": m.no_load_speed_rad_s * m.gear_ratio,
                        "rotor_inertia_kg_m2": m.rotor_inertia_kg_m2}}
     return DesignMetrics(support=support, thermal=thermal, loads=loads, gear=gear,

@@ -88,9 +88,9 @@ def torque_speed(an: Analysis) -> plt.Figure:
     w = np.linspace(0.0, m.no_load_speed_rad_s, 200)
     line = m.torque_limit(w)
     for j, (ax, motor) in enumerate(zip(axes, MOTORS)):
-        ax.plot(w, line, "r-", lw=1.5, label="torque-speed line")
+        ax.plot(w, line, "r-", lw=1.5, label="actuator envelope (current, then voltage)")
         ax.plot(w, np.minimum(line, m.continuous_torque_Nm), "r--", lw=1,
-                label=f"continuous rating {m.continuous_torque_Nm:g} N·m")
+                label=f"continuous rating {m.continuous_torque_Nm:.2f} N·m")
         for name in PHYSICAL:
             tau, speed = np.abs(an.torques[name].total[:, j]), np.abs(an.samples.qd[:, j])
             dots = ax.plot(speed, tau, "o" if name == "full" else "x", ms=4, label=name)[0]
@@ -114,10 +114,11 @@ def thermal(an: Analysis) -> plt.Figure:
     t = np.linspace(0.0, 5.0 * m.thermal_time_constant_s, 300)
     fig, ax = plt.subplots(figsize=(8, 4.5))
     for name in PHYSICAL:
-        rms = np.array([an.results["results"][name][mo]["rms_torque_Nm"] for mo in MOTORS])
-        for j, motor in enumerate(MOTORS):
-            ax.plot(t / 60.0, winding_temperature(m, rms[j], t), MODEL_STYLE[name],
-                    label=f"{name}, motor {motor}: RMS {rms[j]:.2f} N·m")
+        th = an.results["thermal"]["models"][name]
+        for motor in MOTORS:
+            i, tau = th[motor]["rms_current_A"], th[motor]["rms_torque_Nm"]
+            ax.plot(t / 60.0, winding_temperature(m, i, t), MODEL_STYLE[name],
+                    label=f"{name}, motor {motor}: RMS {tau:.2f} N·m, {i:.2f} A")
     ax.axhline(m.winding_limit_C, color="r", label=f"winding limit {m.winding_limit_C:g} °C")
     ax.axhline(m.ambient_C, color="grey", lw=0.8, label=f"ambient {m.ambient_C:g} °C")
     ax.set(xlabel="time walking (min)", ylabel="winding temperature (°C)",

@@ -11,15 +11,13 @@ column per design), one pass of the mechanism's Jacobians and dynamics.
 from __future__ import annotations
 
 import dataclasses
-from types import SimpleNamespace
-
 import numpy as np
 
-from fivebar_drake.analysis.thermal import thermal_margin
-from fivebar_drake.core.checks import verdict
+from fivebar_drake.analysis.thermal import rms_current, thermal_margin
+from fivebar_drake.core.checks import Checks, motor_checks, verdict
 from fivebar_drake.core.footpath import (TROT_PHASES_RAD, cycle_phase, path_arrays, path_constants,
                                          stance_loads)
-from fivebar_drake.core.motor import THERMAL_FIELDS
+from fivebar_drake.core.motor import Motor
 from fivebar_drake.core.validation import ParameterError, require
 from fivebar_drake.mechanisms.fivebar import (MOTORS, UnreachableError, periodic_derivatives,
                                               track_modes)
@@ -32,9 +30,9 @@ SECTIONS = ("leg", "links", "robot", "gait", "motor", "checks", "body")
 
 def with_changes(params: Params, changes: dict) -> Params:
     """The parameters with fields changed by dotted path (section.field, or links.NAME.field),
-    validated as a parameter file is (ParameterError naming the field). Changing
-    motor.gear_ratio keeps the motor and changes the gearbox: the output's peak torque, continuous
-    torque and no-load speed scale by N / N_before unless they are changed too."""
+    validated as a parameter file is (ParameterError naming the field). The motor is given by
+    its motor-side data, so changing motor.gear_ratio keeps the motor and changes the gearbox
+    (core/motor.py): the same physics as a parameter file with that ratio."""
     sections = {}
     for path, value in changes.items():
         parts = path.split(".")
@@ -42,13 +40,6 @@ def with_changes(params: Params, changes: dict) -> Params:
             raise ParameterError(f"{path}: not a parameter; use section.field with a section of "
                                  f"{list(SECTIONS)} (links.NAME.field for a link)", path)
         sections.setdefault(parts[0], {})[".".join(parts[1:])] = value
-    if "gear_ratio" in sections.get("motor", {}):
-        motor = sections["motor"]
-        scale = float(motor["gear_ratio"]) / params.motor.gear_ratio
-        motor.setdefault("peak_torque_Nm", params.motor.peak_torque_Nm * scale)
-        motor.setdefault("no_load_speed_rad_s", params.motor.no_load_speed_rad_s / scale)
-        if params.motor.has_thermal_model:
-            motor.setdefault("continuous_torque_Nm", params.motor.continuous_torque_Nm * scale)
     new = {}
     for section, fields in sections.items():
         old = getattr(params, section)
@@ -80,17 +71,24 @@ def _replace(obj, section: str, fields: dict):
         raise ParameterError(f"{section}: {err}", section) from None
 
 
-def motor_figures(peak_torque_Nm, no_load_speed_rad_s, torque, speed) -> dict:
-    """Per-motor figures of torques (N*m) and motor speeds (rad/s) sampled over one cycle
-    (N, ...), time first, against motors of peak torque and no-load speed (broadcasting
-    against torque[0]): peak |torque|, RMS torque, safety factor peak_torque / peak, peak
-    |speed|, and the least ratio of the torque-speed line's torque to the demand."""
-    total, speed = np.abs(torque), np.abs(speed)
+def motor_figures(motor: Motor, checks: Checks, torque, speed) -> dict:
+    """Per-motor figures of torques (N*m) at motor speeds (rad/s) sampled over one cycle
+    (N, motors), time first: peak |torque|, RMS torque, safety factor peak_torque / peak, peak
+    |speed|, the least ratio of the envelope's torque to the demand, and the motor's checks
+    (core/checks.motor_checks) as check_* columns."""
+    total = np.abs(torque)
     peak = total.max(0)
-    line = peak_torque_Nm * np.clip(1.0 - speed / no_load_speed_rad_s, 0.0, 1.0)
-    return {"peak_torque_Nm": peak, "rms_torque_Nm": np.sqrt(np.mean(torque**2, 0)),
-            "safety_factor": peak_torque_Nm / peak, "peak_speed_rad_s": speed.max(0),
-            "torque_speed_margin": np.min(line / np.maximum(total, 1e-12), 0)}
+    out = {"peak_torque_Nm": peak, "rms_torque_Nm": np.sqrt(np.mean(torque**2, 0)),
+           "safety_factor": motor.peak_torque_Nm / peak, "peak_speed_rad_s": np.abs(speed).max(0),
+           "torque_speed_margin": np.min(motor.torque_limit(speed) / np.maximum(total, 1e-12), 0)}
+    per_motor = [motor_checks(motor, checks, torque[:, j], speed[:, j], peak[j])
+                 for j in range(torque.shape[1])]
+    out["speed_margin"] = np.array([c["speed"]["least_margin"] if c["speed"]["least_margin"]
+                                    is not None else np.inf for c in per_motor])
+    out["speed_outside_fraction"] = np.array([c["speed"]["outside_fraction"] for c in per_motor])
+    out["thermal_current_margin"] = np.array([c["thermal"]["margin"] or np.inf for c in per_motor])
+    out["checks"] = per_motor
+    return out
 
 
 def _group_key(params: Params):
@@ -104,11 +102,13 @@ def evaluate_designs(designs: list[Params], path: str = "seed_ellipse",
     "full_trot", the robot's weight shared by the feet the trot schedule has in stance, none in
     swing; "full", the seed's weight share on the foot all cycle), each as torques.analyze
     computes them: per motor
-    (MOTORS) peak_torque_Nm, rms_torque_Nm, safety_factor, verdict, peak_speed_rad_s, speed_ok,
-    torque_speed_margin; and stride_speed_m_s (2 a f, the foot's mean ground speed on the
-    stride), and with the motor's thermal model thermal_margin_K and time_to_winding_limit_s
-    (analysis.thermal.thermal_margin at the RMS torque). A design whose path leaves the workspace
-    gets {"error": ...} instead."""
+    (MOTORS) peak_torque_Nm, rms_torque_Nm, safety_factor, peak_speed_rad_s, speed_ok (the
+    seed's check), torque_speed_margin, speed_margin, speed_outside_fraction,
+    thermal_current_margin, verdict (the worst of the torque, speed and thermal checks,
+    core/checks.motor_checks), deciding_check, torque_verdict; and stride_speed_m_s (2 a f, the
+    foot's mean ground speed on the stride), and with the motor's thermal model thermal_margin_K
+    and time_to_winding_limit_s (analysis.thermal.thermal_margin at the RMS current). A design
+    whose path leaves the workspace gets {"error": ...} instead."""
     rows: list[dict | None] = [None] * len(designs)
     groups: dict = {}
     for i, params in enumerate(designs):
@@ -144,21 +144,19 @@ def _evaluate_group(designs: list[Params], path: str, model: str) -> list[dict]:
                                           for p in designs])
     loads = dataclasses.replace(full_model(first), foot_load_N=load)
     total = first.mechanism.torques(loads, pose, qd, qdd).total          # (N, designs, 2)
-    peak = np.array([p.motor.peak_torque_Nm for p in designs])[:, None]
-    no_load = np.array([p.motor.no_load_speed_rad_s for p in designs])[:, None]
-    figures = motor_figures(peak, no_load, total, qd)
-    if first.motor.has_thermal_model:    # the windings at the cycle's RMS torque, every design
-        motors = SimpleNamespace(**{name: np.array([getattr(p.motor, name) for p in designs])[:, None]
-                                    for name in ("gear_ratio", *THERMAL_FIELDS)})
-        heat = thermal_margin(motors, figures["rms_torque_Nm"])
-        figures["thermal_margin_K"] = heat.margin_K
-        figures["time_to_winding_limit_s"] = heat.time_to_limit_s
     rows = []
     for i, p in enumerate(designs):
+        figures = motor_figures(p.motor, p.checks, total[:, i], qd[:, i])
+        checks = figures.pop("checks")
+        if p.motor.has_thermal_model:    # the winding at the cycle's RMS current
+            heat = thermal_margin(p.motor, rms_current(p.motor, total[:, i], qd[:, i]))
+            figures["thermal_margin_K"] = heat.margin_K
+            figures["time_to_winding_limit_s"] = heat.time_to_limit_s
         row = {"stride_speed_m_s": 2.0 * p.gait.a_m * p.gait.frequency_hz}
         for j, motor in enumerate(MOTORS):
-            one = {k: float(v[i, j]) for k, v in figures.items()}
-            one["verdict"] = verdict(p.checks, one["safety_factor"])
+            one = {k: float(v[j]) for k, v in figures.items()}
+            one["verdict"], one["deciding_check"] = checks[j]["verdict"], checks[j]["deciding_check"]
+            one["torque_verdict"] = verdict(p.checks, one["safety_factor"])
             one["speed_ok"] = bool(one["peak_speed_rad_s"] <= p.motor.no_load_speed_rad_s)
             row[motor] = one
         rows.append(row)

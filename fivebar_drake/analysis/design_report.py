@@ -25,8 +25,9 @@ def design_assumptions(params: Params) -> list[str]:
         "Force capability: the foot forces the motor torques |tau_i| <= peak hold through "
         "J_F^-T (link weights aside); 'while moving' takes off the torques the motion and the "
         "link weights already need (full models).",
-        f"Thermal: copper loss (tau_rms / (N k_t))^2 R with k_t = {m.torque_constant_Nm_A:g} "
-        f"N m/A (motor side), R = {m.winding_resistance_ohm:g} ohm constant, one first-order lag "
+        f"Thermal: copper loss 1.5 R i_rms^2, the current i of each sample's torque (k_t = "
+        f"{m.torque_constant_Nm_per_A:.4g} N m/A, motor side, through the gearbox at "
+        f"{m.gear_efficiency:g}), R = {m.winding_resistance_ohm:g} ohm constant, one first-order lag "
         f"(R_th = {m.thermal_resistance_K_W:g} K/W, tau = {m.thermal_time_constant_s:g} s) from "
         f"{m.ambient_C:g} C; friction and iron losses left out; these motor values are "
         "assumptions (parameter file).",
@@ -66,10 +67,11 @@ def design_lines(results: dict, params: Params) -> list[str]:
                      f"{_least(g['least_margin_moving'])} |")
     r = results["results"]
     lines += ["", "## Torque-speed envelope", "",
-              f"Operating points (|tau|, |omega|) against the line {m.peak_torque_Nm:g} N m .. "
-              f"{m.no_load_speed_rad_s:.2f} rad/s and the continuous rating "
-              f"{m.continuous_torque_Nm:g} N m:", "",
-              "| motor | model | least margin to the line | where |", "|---|---|---|---|"]
+              f"Operating points (|tau|, |omega|) against the actuator's envelope (peak "
+              f"{m.peak_torque_Nm:g} N m up to the corner speed, zero at the no-load speed "
+              f"{m.no_load_speed_rad_s:.2f} rad/s) and the continuous rating "
+              f"{m.continuous_torque_Nm:.3g} N m:", "",
+              "| motor | model | least margin to the envelope | where |", "|---|---|---|---|"]
     for motor in MOTORS:
         for name in PHYSICAL:
             v = r[name][motor]
@@ -77,10 +79,10 @@ def design_lines(results: dict, params: Params) -> list[str]:
                          f"{_at(v['torque_speed_margin_at'])} |")
     th = results["thermal"]
     lines += ["", "## Thermal check", "",
-              f"Continuous rating {th['continuous_torque_Nm']:g} N m (the thermal model's "
-              f"steady-state continuous torque: {th['steady_state_continuous_torque_Nm']:.3f} N m);"
+              f"Continuous rating {th['continuous_torque_Nm']:.3f} N m (the thermal model's "
+              f"continuous current {th['thermal_continuous_current_A']:.3f} A);"
               f" winding limit {th['winding_limit_C']:g} C from {th['ambient_C']:g} C.", "",
-              "| motor | model | RMS torque (N m) | RMS / continuous | copper loss (W) | "
+              "| motor | model | RMS torque (N m) | RMS / continuous current | copper loss (W) | "
               "steady winding (C) | margin (K) | time to limit |",
               "|---|---|---|---|---|---|---|---|"]
     for motor in MOTORS:

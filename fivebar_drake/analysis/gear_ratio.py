@@ -1,8 +1,8 @@
-"""Gear-ratio trade for one motor (Stanford Doggo's method): keep the motor (its motor-side peak
-torque tau_m, no-load speed w_m0, rotor inertia J_r) and change the gear ratio N. At the output
-the peak torque is tau_m N, the no-load speed w_m0 / N and the rotor adds N^2 J_r q'' to each
+"""Gear-ratio trade for one motor (Stanford Doggo's method): keep the motor (its motor-side data:
+core/motor.with_gear) and change the gear ratio N. At the output the envelope's torque scales by
+N (times the gearbox efficiency), its speeds by 1 / N, and the rotor adds N^2 J_r q'' to each
 joint's torque. The safety factor at N is the least ratio, over the cycle and the motors, of the
-torque the torque-speed line gives at the joint speed to the torque needed (gearbox lossless)."""
+torque the envelope gives at the joint speed (driving) to the torque needed."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from fivebar_drake.core.motor import Motor, torque_speed_line
+from fivebar_drake.core.motor import Motor, with_gear
 
 
 RATIO_RANGE = (1.0, 100.0)   # gear ratios searched (a direct drive to a two-stage planetary)
@@ -27,10 +27,10 @@ def safety_factors(motor: Motor, load_Nm, qd, qdd, ratios, speed_line: bool = Tr
     min over samples of the available torque (the torque-speed line at |qd| if speed_line,
     else the peak) over |load + N^2 J_r qdd| (the rotor term if rotor)."""
     n = np.asarray(ratios, dtype=float)[:, None, None]
-    tau_m = motor.peak_torque_Nm / motor.gear_ratio
-    w_m0 = motor.no_load_speed_rad_s * motor.gear_ratio
-    peak = tau_m * n
-    available = torque_speed_line(peak, w_m0 / n, np.asarray(qd)) if speed_line else peak
+    geared = [with_gear(motor, r) for r in n.ravel()]
+    available = np.array([m.torque_limit(qd) if speed_line else np.full(np.shape(qd),
+                                                                          m.peak_torque_Nm)
+                          for m in geared])
     need = np.abs(np.asarray(load_Nm) + (n**2 * motor.rotor_inertia_kg_m2 * np.asarray(qdd)
                                           if rotor else 0.0))
     return np.min(available / np.maximum(need, 1e-12), axis=1)

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from fivebar_drake.analysis.design_metrics import DesignMetrics, design_metrics, sample_at
-from fivebar_drake.core.checks import verdict
+from fivebar_drake.core.checks import motor_checks, verdict
 from fivebar_drake.mechanisms.fivebar import (DynamicsModel, GaitSamples, MOTORS,
                                               SingularityMeasures, TorqueBreakdown, sample_gait,
                                               singularity_measures)
@@ -37,7 +37,7 @@ def motor_results(params: Params, samples: GaitSamples, tb: TorqueBreakdown, j: 
     k_peak, k_static, k_speed = (int(np.argmax(v)) for v in (total, static, speed))
     peak = float(total[k_peak])
     sf = motor.peak_torque_Nm / peak
-    # Torque available on the linear torque-speed line at each sample's speed.
+    # Torque the actuator's envelope gives at each sample's speed (driving quadrant).
     margin = motor.torque_limit(speed) / np.maximum(total, 1e-12)
     k_line = int(np.argmin(margin))
     return {
@@ -58,6 +58,7 @@ def motor_results(params: Params, samples: GaitSamples, tb: TorqueBreakdown, j: 
         "peak_acceleration_rad_s2": float(np.max(np.abs(samples.qdd[:, j]))),
         "torque_speed_margin": float(margin[k_line]),
         "torque_speed_margin_at": sample_at(samples, k_line),
+        "checks": motor_checks(motor, params.checks, tb.total[:, j], samples.qd[:, j], peak),
     }
 
 
@@ -87,6 +88,14 @@ def analyze(params: Params, path: str = "seed_ellipse") -> Analysis:
             "max_cond_jf": float(np.max(measures.cond_jf)),
             "min_abs_det_jf_m2": float(np.min(np.abs(measures.det_jf))),
         },
+        "motor": {"model": params.motor.model,
+                  "peak_torque_Nm": params.motor.peak_torque_Nm,
+                  "braking_peak_torque_Nm": params.motor.braking_peak_torque_Nm,
+                  "no_load_speed_rad_s": params.motor.no_load_speed_rad_s,
+                  "continuous_torque_Nm": params.motor.continuous_torque_Nm,
+                  "continuous_current_A": params.motor.rated_continuous_current_A,
+                  "reflected_inertia_kg_m2": params.motor.reflected_inertia_kg_m2,
+                  "envelope": params.motor.envelope()},
         **metrics.results,
         "parameters": dataclasses.asdict(params),
     }

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 from pathlib import Path
 import numpy as np
 
-from fivebar_drake.core.checks import verdict
+from fivebar_drake.core.checks import CHECK_ORDER, SEVERITY, motor_checks
 from fivebar_drake.core.files import write_atomic
 from fivebar_drake.core.footpath import (cycle_phase, evaluate, stance_loads, stance_speed,
                                          stance_start)
@@ -200,7 +200,12 @@ def motor_summary(sig: Signals, params: Params, win, cycle, cycles: int, i: int,
     demand_p99 = _p(demand)
     static_seed, static_trot = _peak(sig.static_seed[win, i, j]), _peak(sig.static_trot[win, i, j])
     sf = _ratio(motor.peak_torque_Nm, demand_p99)
+    checks = motor_checks(motor, params.checks, demand, speed, demand_p99, applied) if \
+        demand.size else None
+    saturated = _mean(sig.clipped_peak[win, i, j] + sig.clipped_line[win, i, j])
+    unsaturated = demand[(sig.clipped_peak[win, i, j] + sig.clipped_line[win, i, j]) == 0]
     return {
+        "checks": checks, "unsaturated_demand_p99_Nm": _p(unsaturated),
         "peak_torque_Nm": _peak(applied), "p99_torque_Nm": _p(applied),
         "rms_torque_Nm": _rms(applied),
         "demand_peak_Nm": _peak(demand), "demand_p99_Nm": demand_p99,
@@ -208,8 +213,9 @@ def motor_summary(sig: Signals, params: Params, win, cycle, cycles: int, i: int,
         "static_contact_Nm": _peak(sig.static_contact[win, i, j]),
         "dynamic_to_seed_static": _ratio(demand_p99, static_seed),
         "dynamic_to_trot_static": _ratio(demand_p99, static_trot),
-        "safety_factor": sf, "verdict": verdict(params.checks, sf),
-        "saturated_fraction": _mean(sig.clipped_peak[win, i, j] + sig.clipped_line[win, i, j]),
+        "safety_factor": sf, "verdict": checks["verdict"] if checks else "insufficient",
+        "deciding_check": checks["deciding_check"] if checks else None,
+        "saturated_fraction": saturated,
         "clipped_peak_fraction": _mean(sig.clipped_peak[win, i, j]),
         "clipped_line_fraction": _mean(sig.clipped_line[win, i, j]),
         "peak_speed_rad_s": _peak(speed), "p99_speed_rad_s": _p(speed),
@@ -251,12 +257,20 @@ def summarize(sig: Signals, record: SimulationRecord, seed_analysis: dict) -> di
                   for j, name in enumerate(MOTORS)} for i, leg in enumerate(leg_names)}
     completed = record.completed
     sufficient = completed and cycles >= MIN_CYCLES
-    motors = [(leg, name, m) for leg, ms in legs.items() for name, m in ms.items()]
-    worst_leg, worst_motor, worst = min(motors, key=lambda x: (
-        x[2]["safety_factor"] if np.isfinite(x[2]["safety_factor"]) else math.inf))
     p = sig.body_p[win]
     tw = sig.t[win]
     speed = float((p[-1, 0] - p[0, 0]) / (tw[-1] - tw[0])) if len(tw) > 1 else math.nan
+    gait_speed = stance_speed(params.gait, scenario.gait)
+    max_tilt = float(np.max(sig.tilt_deg)) if len(sig.t) else math.nan
+    run_why = achievement(params, speed, gait_speed, max_tilt)
+    for ms in legs.values():
+        for m in ms.values():
+            if m["checks"] is not None:
+                m["checks"]["achieved"] = motor_achieved(params, m, run_why)
+                if m["checks"]["achieved"]["verdict"] == "not_achieved":
+                    m["verdict"], m["deciding_check"] = "not_achieved", "achieved"
+    motors = [(leg, name, m) for leg, ms in legs.items() for name, m in ms.items()]
+    worst_leg, worst_motor, worst = max(motors, key=lambda x: _badness(x[2]))
     scheduled_swing = (~sig.stance[win]).sum(0)
     seed_peak = max(seed_analysis[m]["peak_torque_Nm"] for m in MOTORS)
     summary = {
@@ -267,10 +281,11 @@ def summarize(sig: Signals, record: SimulationRecord, seed_analysis: dict) -> di
                                   if record.interrupted else ""),
         "cycles_in_window": cycles, "window_s": [start, end],
         "verdict": worst["verdict"] if sufficient else "insufficient",
+        "deciding_check": worst["deciding_check"] if sufficient else None,
         "worst_motor": f"{worst_leg} {worst_motor}",
-        "max_tilt_deg": float(np.max(sig.tilt_deg)) if len(sig.t) else math.nan,
+        "max_tilt_deg": max_tilt,
         "mean_forward_speed_m_s": speed,
-        "gait_speed_m_s": stance_speed(params.gait, scenario.gait),
+        "gait_speed_m_s": gait_speed,
         "gait_frequency_hz": params.gait.frequency_hz,
         "swing_clear_fraction": {leg: float(1 - sig.swing_contact[win, i].sum()
                                             / max(scheduled_swing[i], 1))
@@ -292,16 +307,69 @@ def summarize(sig: Signals, record: SimulationRecord, seed_analysis: dict) -> di
         "controller_gains": {k: np.asarray(v).tolist() for k, v in
                              record.gains._asdict().items()},
         "seed_peak_torque_Nm": seed_peak,
-        "seed_static_estimate_optimistic": bool(worst["demand_p99_Nm"] > seed_peak),
+        "seed_load_model": seed_analysis_load(params),
         "motor_peak_torque_Nm": params.motor.peak_torque_Nm,
+        "motor": {"model": params.motor.model, "gear_ratio": params.motor.gear_ratio,
+                  "peak_torque_Nm": params.motor.peak_torque_Nm,
+                  "no_load_speed_rad_s": params.motor.no_load_speed_rad_s,
+                  "continuous_torque_Nm": params.motor.continuous_torque_Nm},
+        "step_check": None,
         "legs": legs,
     }
     summary["answer"] = answer(summary, params)
     return summary
 
 
+def seed_analysis_load(params: Params) -> str:
+    """The seed's load model in words (its figure is on the seed's own path)."""
+    return (f"the seed's model on the seed's ellipse: G(q) with its weight share "
+            f"{params.robot.weight_share_kg:.3f} kg at every foot all cycle, swing included")
+
+
+def achievement(params: Params, speed: float, gait_speed: float, max_tilt: float) -> str:
+    """Why the run did not follow its gait ("" if it did): the mean forward speed against
+    checks.achieved_speed_fraction of the gait's, the tilt against achieved_max_tilt_deg."""
+    c, why = params.checks, []
+    if gait_speed > 0 and not speed >= c.achieved_speed_fraction * gait_speed:
+        why.append(f"it walked {speed:.3f} m/s, less than {c.achieved_speed_fraction:.0%} of the "
+                   f"gait's {gait_speed:.3f} m/s")
+    if not max_tilt <= c.achieved_max_tilt_deg:
+        why.append(f"the body tilted {max_tilt:.1f} deg, beyond {c.achieved_max_tilt_deg:g} deg")
+    return "; ".join(why)
+
+
+def motor_achieved(params: Params, m: dict, run_why: str) -> dict:
+    """The motor's achieved check: the run followed its gait (run_why == "") and the motor sat
+    at its torque limit at most checks.achieved_max_limit_fraction of the time."""
+    why = [run_why] if run_why else []
+    limit = params.checks.achieved_max_limit_fraction
+    if m["saturated_fraction"] > limit:
+        why.append(f"the motor sat at its torque limit {m['saturated_fraction']:.1%} of the time "
+                   f"(more than {limit:.0%})")
+    return {"verdict": "not_achieved" if why else "pass", "why": "; ".join(why),
+            "at_limit_fraction": m["saturated_fraction"]}
+
+
+def _badness(m: dict) -> tuple:
+    """Order of motors, worst last: not achieved; then by verdict; among equal verdicts the
+    deciding check (torque before speed before thermal), then its figure (the lower the safety
+    factor, the larger the share outside the envelope or the lower its margin, the worse)."""
+    if m["checks"] is None:
+        return (-1,)
+    if m["verdict"] == "not_achieved":
+        return (3, 0, m["saturated_fraction"], 0.0)
+    c, deciding = m["checks"], m["deciding_check"]
+    big = math.inf
+    figure = {"torque": (0.0, -(c["torque"]["sf"] or big)),
+              "speed": (c["speed"]["outside_fraction"], -(c["speed"]["least_margin"] or big)),
+              "thermal": (0.0, -(c["thermal"]["margin"] or big))}[deciding]
+    return (SEVERITY[m["verdict"]], -CHECK_ORDER.index(deciding), *figure)
+
+
 def answer(s: dict, params: Params) -> str:
-    """The plain sentence that answers 'how much torque does the trot need?' for this run."""
+    """The plain sentence that answers 'how much torque does the gait need?' for this run,
+    naming the check that decided the verdict; the static torque on the same poses with the
+    same load schedule beside it, and the seed's own figure separately with its load model."""
     if s["verdict"] == "insufficient":
         why = (f"the run stopped early ({s['error']})" if not s["completed"] else
                f"it covered {s['cycles_in_window']} whole gait cycles after the ramp, fewer than "
@@ -310,17 +378,83 @@ def answer(s: dict, params: Params) -> str:
                 f"{s['window_s'][0]:g} s of standing and ramp.")
     leg, name = s["worst_motor"].split()
     m = s["legs"][leg][name]
-    ratio = m["demand_p99_Nm"] / s["seed_peak_torque_Nm"]
-    judged = (f"optimistic by {ratio:.1f}x" if ratio > 1 else
-              f"conservative ({ratio:.2f}x of it was needed)")
-    return (f"At {s['gait_frequency_hz']:g} Hz with the {s['gait']} gait the motors need "
-            f"{m['demand_p99_Nm']:.2f} N·m ({PERCENTILE:g}th percentile of the demand over "
-            f"{s['cycles_in_window']} cycles, worst motor {leg} {name}; safety factor "
-            f"{m['safety_factor']:.2f}, {m['verdict'].upper()} against "
-            f"{params.checks.sf_pass:g}). The seed's static {s['seed_peak_torque_Nm']:.2f} N·m "
-            f"was {judged}; the static torque with the trot's stance load on the same poses is "
-            f"{m['static_trot_Nm']:.2f} N·m (the robot's weight shared by the feet in stance, "
-            f"not {params.robot.weight_share_kg:.3f} kg per foot).")
+    c = m["checks"]
+    head = f"At {s['gait_frequency_hz']:g} Hz with the {s['gait']} gait"
+    seed = (f"Separately, {s['seed_load_model']}, gives {s['seed_peak_torque_Nm']:.2f} N·m "
+            "(its peak).")
+    if s["verdict"] == "not_achieved":
+        why = c["achieved"]["why"]
+        if m["saturated_fraction"] > params.checks.achieved_max_limit_fraction:
+            need = (f"the motors need more than their {params.motor.peak_torque_Nm:g} N·m "
+                    f"(worst motor {leg} {name}; below the limit its demand p99 is "
+                    f"{m['unsaturated_demand_p99_Nm']:.2f} N·m)")
+        else:
+            need = (f"its demand p99 of {m['demand_p99_Nm']:.2f} N·m (worst motor {leg} {name}) "
+                    "is not a need")
+        return (f"{head} the motion was NOT ACHIEVED ({why}): {need}; the saturated demand is "
+                f"the controller's error growing, not what the gait takes. {seed}")
+    checks = "; ".join(_check_text(k, c[k]) for k in CHECK_ORDER)
+    verdict_text = (f"{s['verdict'].upper()}, decided by the {s['deciding_check']} check"
+                    if s["verdict"] != "marginal" else
+                    f"MARGINAL: {s['step_check']['why']} (the run again at half the plant "
+                    "step)")
+    static = m["static_trot_Nm"]
+    return (f"{head} the motors need {m['demand_p99_Nm']:.2f} N·m ({PERCENTILE:g}th percentile "
+            f"of the demand over {s['cycles_in_window']} cycles, worst motor {leg} {name}). "
+            f"Verdict {verdict_text} ({checks}). On the same poses with the same load schedule "
+            f"(the robot's weight shared by the feet in stance) the static torque is "
+            f"{static:.2f} N·m: the dynamics add {m['demand_p99_Nm'] / static - 1:+.0%}. {seed}")
+
+
+def _check_text(name: str, c: dict) -> str:
+    if name == "torque":
+        return f"torque: safety factor {c['sf']:.2f}, {c['verdict']}"
+    if name == "speed":
+        least = "none driving" if c["least_margin"] is None else f"{c['least_margin']:.2f}"
+        return (f"speed: least margin {least}, {c['outside_fraction']:.1%} of the time beyond "
+                f"the envelope, {c['verdict']}")
+    if c["margin"] is None:
+        return f"thermal: {c.get('why', 'no model')}"
+    return (f"thermal: continuous / RMS current {c['margin']:.2f}, {c['verdict']}")
+
+
+def apply_step_check(summary: dict, half: dict, params: Params) -> dict:
+    """Put the step check into the summary (summary["step_check"]) from the summary of the same
+    run at half the plant step: per motor the relative change of the demand p99 and RMS and
+    the change of the safety factor; the verdict becomes "marginal" (and the answer says so)
+    when the worst safety factor lies within the largest change of a threshold
+    (checks.sf_pass, sf_warn) or the verdict changes at half the step."""
+    motors, worst_change = {}, 0.0
+    for leg, ms in summary["legs"].items():
+        for name, m in ms.items():
+            h = half["legs"][leg][name]
+            change = h["safety_factor"] - m["safety_factor"]
+            motors[f"{leg} {name}"] = {
+                "demand_p99_change": _ratio(h["demand_p99_Nm"], m["demand_p99_Nm"]) - 1.0,
+                "rms_change": _ratio(h["rms_torque_Nm"], m["rms_torque_Nm"]) - 1.0,
+                "sf_change": change, "sf_at_half_step": h["safety_factor"],
+                "verdict_at_half_step": h["verdict"]}
+            if math.isfinite(change):
+                worst_change = max(worst_change, abs(change))
+    leg, name = summary["worst_motor"].split()
+    worst_sf = summary["legs"][leg][name]["safety_factor"]
+    thresholds = (params.checks.sf_pass, params.checks.sf_warn)
+    near = [t for t in thresholds if abs(worst_sf - t) <= worst_change]
+    changed = half["verdict"] != summary["verdict"]
+    check = {"time_step_s": summary["time_step_s"], "half_time_step_s": half["time_step_s"],
+             "motors": motors, "worst_sf_change": worst_change,
+             "worst_demand_p99_change": max((abs(v["demand_p99_change"]) for v in
+                                             motors.values()), default=math.nan),
+             "verdict_at_half_step": half["verdict"],
+             "marginal": bool(near or changed),
+             "why": (f"the worst safety factor {worst_sf:.3f} is within the step error "
+                     f"{worst_change:.3f} of {near[0]:g}" if near else
+                     f"the verdict at half the step is {half['verdict']}" if changed else "")}
+    summary["step_check"] = check
+    if check["marginal"] and summary["verdict"] not in ("insufficient", "not_achieved"):
+        summary["verdict"] = "marginal"
+    summary["answer"] = answer(summary, params)
+    return check
 
 
 def markdown(s: dict, params: Params) -> str:

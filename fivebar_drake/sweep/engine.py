@@ -183,7 +183,7 @@ def _compute(client, spec, params, scenario, todo, table: Path, header, bar: Pro
     if spec.fidelity == "analysis":     # tasks of ANALYSIS_CHUNK points, one point each else
         task, size, first = analysis_rows, ANALYSIS_CHUNK, (spec.gait, spec.model)
     else:
-        task, size, first = simulation_rows, 1, scenario
+        task, size, first = simulation_rows, 1, (scenario, spec.step_check)
     chunks = [todo[i:i + size] for i in range(0, len(todo), size)]
     futures = {client.submit(task, base, first, chunk, pure=False): chunk for chunk in chunks}
     fresh = not table.exists()

@@ -10,6 +10,7 @@
     gait: seed_ellipse          # foot path of analysis points (default: seed_ellipse)
     model: full_trot            # load model of analysis points (default: full_trot; or full)
     duration_s: 4.5             # simulated time of simulation points (default: the scenario's)
+    step_check: false           # simulation points: run each again at half its plant step
     plot: [gait.frequency_hz, gait.a_m]   # the verdict map's axes (default: the first two)
 
 Relative paths are taken from the spec file's folder. Lists may hold numbers or strings (e.g.
@@ -80,6 +81,7 @@ class SweepSpec:
     gait: str = "seed_ellipse"
     model: str = "full_trot"
     duration_s: float | None = None
+    step_check: bool = False
     plot: tuple[str, ...] = ()
     source: str = field(default="", compare=False)
 
@@ -112,7 +114,7 @@ class SweepSpec:
 
 
 KEYS = {"fidelity", "sampling", "vary", "samples", "seed", "config", "scenario", "gait",
-        "model", "duration_s", "plot"}
+        "model", "duration_s", "step_check", "plot"}
 
 
 def load_spec(path: str | Path) -> SweepSpec:
@@ -170,6 +172,10 @@ def spec_from_dict(data, folder: Path, source: str = "") -> SweepSpec:
     if duration is not None:
         require(fidelity == "simulation", "duration_s", duration, "applies to simulation points")
         check_number("duration_s", duration, 0.0, 3600.0, low_open=True)
+    step_check = data.get("step_check", False)
+    require(isinstance(step_check, bool), "step_check", step_check, "true or false")
+    require(fidelity == "simulation" or not step_check, "step_check", step_check,
+            "applies to simulation points (each is run again at half its plant step)")
     files = {}
     for key in ("config", "scenario"):
         value = data.get(key)
@@ -187,7 +193,8 @@ def spec_from_dict(data, folder: Path, source: str = "") -> SweepSpec:
         require(fidelity == "simulation" or not v.path.startswith("scenario."), v.path, v.path,
                 "scenario fields vary only in simulation sweeps")
     return SweepSpec(fidelity=fidelity, sampling=sampling, vary=varied, samples=samples,
-                     seed=seed, gait=gait, model=model, duration_s=duration, plot=plot, source=source,
+                     seed=seed, gait=gait, model=model, duration_s=duration, step_check=step_check,
+                     plot=plot, source=source,
                      **files)
 
 

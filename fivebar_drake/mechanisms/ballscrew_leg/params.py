@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from fivebar_drake.core.parameter_files import build_section, load_parameter_file, packaged
-from fivebar_drake.core.motor import Motor
+from fivebar_drake.core.motor import LineMotor, build_motor
 from fivebar_drake.core.validation import (MAX_GEAR_RATIO, MAX_GRAVITY_M_S2, MAX_LENGTH_M,
                                            MAX_MASS_KG, MAX_SAMPLES, check_lengths, check_number, require)
 from fivebar_drake.mechanisms.ballscrew_leg.leg import BallScrewLeg
@@ -162,18 +162,19 @@ class Params:
     load: Load
     squat: Squat
     simulation: Simulation
-    motor: Motor
+    motor: LineMotor
 
 
 SECTIONS = {"leg": Leg, "screw": Screw, "geared_knee": GearedKnee, "load": Load,
-            "squat": Squat, "simulation": Simulation, "motor": Motor}
+            "squat": Squat, "simulation": Simulation, "motor": build_motor}
 
 
 def params_from_dict(data: dict) -> Params:
     """Params from a parameter file's tables, validated (ParameterError without the source)."""
     require(isinstance(data, dict) and set(data) == set(SECTIONS), "sections",
             sorted(data) if isinstance(data, dict) else data, f"must be {sorted(SECTIONS)}")
-    params = Params(**{name: build_section(cls, data[name], name) for name, cls in SECTIONS.items()})
+    params = Params(**{name: build_motor(data[name]) if cls is build_motor else
+                       build_section(cls, data[name], name) for name, cls in SECTIONS.items()})
     s = params.simulation
     require(s.lever_m in params.screw.lever_lengths_m, "simulation.lever_m", s.lever_m,
             f"must be one of screw.lever_lengths_m = {list(params.screw.lever_lengths_m)}")

@@ -10,7 +10,7 @@ import numpy as np
 
 from fivebar_drake.core.checks import Checks
 from fivebar_drake.core.footpath import Gait, PATHS, evaluate
-from fivebar_drake.core.motor import Motor
+from fivebar_drake.core.motor import build_motor
 from fivebar_drake.core.parameter_files import build_section, load_parameter_file, packaged
 from fivebar_drake.core.validation import MAX_SAMPLES, ParameterError, require
 from fivebar_drake.mechanisms.fivebar import (KNEES_OUT, LegGeometry, LinkInertia,
@@ -40,7 +40,7 @@ def params_from_dict(data: dict) -> Params:
                for name, table in data["links"].items()},
         robot=build_section(Robot, data["robot"], "robot"),
         gait=build_section(Gait, data["gait"], "gait"),
-        motor=build_section(Motor, data["motor"], "motor"),
+        motor=build_motor(data["motor"]),
         checks=build_section(Checks, data["checks"], "checks"),
         body=build_section(Body, data["body"], "body"),
     )

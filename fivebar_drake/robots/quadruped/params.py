@@ -7,7 +7,7 @@ from dataclasses import dataclass
 
 from fivebar_drake.core.checks import Checks
 from fivebar_drake.core.footpath import Gait
-from fivebar_drake.core.motor import THERMAL_FIELDS, Motor
+from fivebar_drake.core.motor import THERMAL_FIELDS, BldcMotor
 from fivebar_drake.core.validation import (MAX_CONTACT_STIFFNESS_N_M, MAX_FRICTION_COEFFICIENT,
                                            MAX_GRAVITY_M_S2, MAX_LENGTH_M, MAX_MASS_KG,
                                            MAX_RELAXATION_TIME_S, check_lengths, check_number,
@@ -84,7 +84,7 @@ class Params:
     links: dict[str, LinkInertia]
     robot: Robot
     gait: Gait
-    motor: Motor
+    motor: BldcMotor
     checks: Checks
     body: Body
 
@@ -112,9 +112,9 @@ class Params:
                 f"the {LEGS_BUILT} legs' links ({links_kg:.3f} kg) must weigh less than "
                 f"robot.battery_electronics_kg + robot.structure_kg = {carried:.3f} kg, which "
                 "include them")
-        require(self.motor.has_thermal_model, "motor.continuous_torque_Nm", None,
-                f"the analysis needs the motor's thermal model: give all of "
-                f"{list(THERMAL_FIELDS)}")
+        require(isinstance(self.motor, BldcMotor) and self.motor.has_thermal_model, "motor.model",
+                self.motor.model, f"the quadruped's verdict needs a BLDC motor (model = \"bldc\") "
+                f"with its thermal model: give all of {list(THERMAL_FIELDS)}")
         self._check_start_pose()
 
     def _check_start_pose(self) -> None:

@@ -38,7 +38,7 @@ def leg_sdf(params: Params, leg: str, parent: str, hip_xyz, closure: str,
             "</diffuse></material></visual>")
     # The plant clamps actuation at the effort limit; the motor model (core.motor.MotorModel)
     # is the authority on saturation, and its output includes friction, which can add to it.
-    effort = m.peak_torque_Nm + m.coulomb_friction_Nm + m.viscous_friction_Nm_s * m.no_load_speed_rad_s
+    effort = m.max_applied_torque_Nm
     drive = (f"<limit><effort>{effort:.12g}</effort></limit></axis>"
              f"<drake:rotor_inertia>{m.rotor_inertia_kg_m2:.12g}</drake:rotor_inertia>"
              f"<drake:gear_ratio>{m.gear_ratio:.12g}</drake:gear_ratio>")

@@ -17,7 +17,7 @@ from pydrake.systems.primitives import (Demultiplexer, LogVectorOutput, MatrixGa
 from pydrake.trajectories import PiecewisePolynomial
 
 from fivebar_drake.core.files import say
-from fivebar_drake.core.motor import Motor, MotorModel, clip_flags
+from fivebar_drake.core.motor import LineMotor, MotorModel, clip_flags
 from fivebar_drake.core.validation import ParameterError, check_number
 from fivebar_drake.mechanisms.scara import Dynamics, Scara, ScaraParams, seed_inertia
 from fivebar_drake.mechanisms.scara.params import MAX_DURATION_S
@@ -26,7 +26,7 @@ from fivebar_drake.studies.scara.analysis import Motion, screw, seed_motion
 from fivebar_drake.studies.scara.model import add_arm
 
 
-def sized_motors(params: ScaraParams) -> list[Motor]:
+def sized_motors(params: ScaraParams) -> list[LineMotor]:
     """The drives at the joints (values at the joint: N*m and rad/s for joints 1, 2; N and m/s
     for joint 3; "gear ratio" motor rad per joint unit). Joints 1, 2: the seed's peak torques,
     the torque-speed line ending at servo_max_rpm through the reducer (the joint at n1, n2).
@@ -34,15 +34,20 @@ def sized_motors(params: ScaraParams) -> list[Motor]:
     the force), its line ending at the servo's top speed. No friction, no rotor inertia (the
     seed's ideal model)."""
     m, sp = params.motors, params.sizing
-    out = [Motor(peak, m.servo_max_rpm / n_rpm, n_rpm / sz.RPM_PER_RAD_S, 0.0, 0.0, 0.0)
+    out = [_line(peak, m.servo_max_rpm / n_rpm, n_rpm / sz.RPM_PER_RAD_S)
            for peak, n_rpm in ((m.peak1_Nm, sp.n1_rpm), (m.peak2_Nm, sp.n2_rpm))]
     s = screw(params)
     force = sz.screw_force(m.motor3_peak_Nm / m.belt_ratio, s["Dtb_m"], s["gamma_rad"],
                            s["phi_rad"])
     speed = m.motor3_max_rpm * m.belt_ratio / 60.0 * sp.screw_starts * sp.screw_lead_m
     ratio = 2 * math.pi / (sp.screw_starts * sp.screw_lead_m) / m.belt_ratio
-    out.append(Motor(force, ratio, speed, 0.0, 0.0, 0.0))
+    out.append(_line(force, ratio, speed))
     return out
+
+
+def _line(peak, ratio, speed) -> LineMotor:
+    """A lossless torque-speed line with this output peak and no-load speed behind the ratio."""
+    return LineMotor("torque_speed_line", peak / ratio, speed * ratio, ratio, 0.0, 0.0, 0.0)
 
 
 @dataclass
