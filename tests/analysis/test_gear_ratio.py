@@ -1,13 +1,17 @@
-"""The gear-ratio trade against closed-form optima: with the torque-speed line alone the safety
-factor tau_m N (1 - w N / w_m0) / T peaks at N = w_m0 / (2 w); with the rotor alone
-tau_m N / (T + N^2 J a) peaks at N = sqrt(T / (J a))."""
+"""The gear-ratio trade against closed-form optima: with a plain torque-speed line alone the
+safety factor tau_m N (1 - w N / w_m0) / T peaks at N = w_m0 / (2 w); with the BLDC envelope
+N min(I_peak, (V - k_e N w) / R) peaks where the voltage limit meets the peak current when that
+lies beyond V / (2 k_e w); with the rotor alone tau_m N / (T + N^2 J a) peaks at
+N = sqrt(T / (J a))."""
 
 import dataclasses
+import math
 
 import numpy as np
 import pytest
 
 from fivebar_drake.analysis.gear_ratio import gear_trade, safety_factors
+from fivebar_drake.core.motor import LineMotor
 
 
 @pytest.fixture()
@@ -15,20 +19,34 @@ def motor(params):
     return dataclasses.replace(params.motor, rotor_inertia_kg_m2=2e-6)
 
 
-def test_speed_limited_optimum(motor):
-    tau_m, w_m0 = motor.peak_torque_Nm / motor.gear_ratio, motor.no_load_speed_rad_s * 8
+def test_speed_limited_optimum_of_a_line():
+    tau_m, w_m0 = 0.625, 32 * math.pi
+    line = LineMotor("torque_speed_line", tau_m, w_m0, 8.0, 2e-6, 0.0, 0.0)
     n = 50
     load, qd, qdd = np.full((n, 2), 1.0), np.full((n, 2), 2.0), np.zeros((n, 2))
     qd[:, 1] = 1.0                                    # motor B slower: A decides
-    g = gear_trade(motor, load, qd, qdd)
+    g = gear_trade(line, load, qd, qdd)
     assert g.best_ratio == pytest.approx(w_m0 / 4.0, rel=1e-6)
     assert g.best_safety == pytest.approx(tau_m * w_m0 / 8.0, rel=1e-9)
-    assert g.current_safety == pytest.approx(motor.peak_torque_Nm * (1 - 2.0 / 12.566370614359172),
-                                             rel=1e-12)
+    assert g.current_safety == pytest.approx(5.0 * (1 - 2.0 / (4 * math.pi)), rel=1e-12)
+
+
+def test_speed_limited_optimum_of_the_bldc(motor):
+    n = 50
+    load, qd, qdd = np.full((n, 2), 1.0), np.full((n, 2), 2.0), np.zeros((n, 2))
+    qd[:, 1] = 1.0
+    g = gear_trade(motor, load, qd, qdd)
+    v, k_e = motor.bus_voltage_V / math.sqrt(3), motor.torque_constant_Nm_per_A / 1.5
+    r, i = motor.winding_resistance_ohm, motor.peak_current_A
+    corner = (v - r * i) / (k_e * 2.0)
+    assert corner > v / (2 * k_e * 2.0)              # the voltage branch falls beyond it
+    assert g.best_ratio == pytest.approx(corner, rel=1e-6)
+    assert g.best_safety == pytest.approx(corner * motor.gear_efficiency
+                                          * motor.torque_constant_Nm_per_A * i, rel=1e-9)
 
 
 def test_inertia_limited_optimum(motor):
-    tau_m = motor.peak_torque_Nm / motor.gear_ratio
+    tau_m = motor.peak_torque_Nm / motor.gear_ratio       # per unit ratio, through the gearbox
     j, a, t = motor.rotor_inertia_kg_m2, 1000.0, 1.0
     load, qd, qdd = np.full((3, 2), t), np.zeros((3, 2)), np.full((3, 2), a)
     g = gear_trade(motor, load, qd, qdd)

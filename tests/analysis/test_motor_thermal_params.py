@@ -9,14 +9,15 @@ from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.robots.quadruped.config import DEFAULT_PATH, load_params
 
 CASES = {
-    "continuous above peak": ("continuous_torque_Nm = 1.9", "continuous_torque_Nm = 6.0",
-                              "motor.continuous_torque_Nm = 6.0: must be in (0, 5] (at most "
-                              "peak_torque_Nm)"),
-    "no torque constant": ("torque_constant_Nm_A = 0.07", "torque_constant_Nm_A = 0",
-                           "motor.torque_constant_Nm_A = 0.0: must be in (0, 10]"),
-    "milliohms as ohms": ("winding_resistance_ohm = 1.0", "winding_resistance_ohm = 1000.5",
-                          "motor.winding_resistance_ohm = 1000.5: must be in (0, 1000]"),
-    "negative thermal resistance": ("thermal_resistance_K_W = 8.0",
+    "continuous above peak": ("ambient_C = 25.0", "ambient_C = 25.0\ncontinuous_current_A = 6.0",
+                              "motor.continuous_current_A = 6.0: must be in (0, "
+                              "3.35889] (at most peak_current_A)"),
+    "no torque constant": ("torque_constant_Nm_per_A = 0.20674833578317203",
+                           "torque_constant_Nm_per_A = 0",
+                           "motor.torque_constant_Nm_per_A = 0.0: must be in (0, 10]"),
+    "milliohms as ohms": ("winding_resistance_ohm = 2.0", "winding_resistance_ohm = 1000.5",
+                          "motor.winding_resistance_ohm = 1000.5: must be in [0.0001, 1000]"),
+    "negative thermal resistance": ("thermal_resistance_K_W = 15.0",
                                     "thermal_resistance_K_W = -8.0",
                                     "motor.thermal_resistance_K_W = -8.0: must be in (0, 1000]"),
     "time constant not a number": ("thermal_time_constant_s = 400.0",
@@ -48,8 +49,7 @@ def test_missing_thermal_key(tmp_path):
     with pytest.raises(ParameterError, match=r"motor = .*: the thermal model needs all of"):
         load_params(bad)
     none = tmp_path / "none.toml"
-    none.write_text(re.sub(r"^(continuous_torque_Nm|torque_constant_Nm_A|winding_resistance_ohm|"
-                           r"thermal_resistance_K_W|thermal_time_constant_s|winding_limit_C|"
+    none.write_text(re.sub(r"^(thermal_resistance_K_W|thermal_time_constant_s|winding_limit_C|"
                            r"ambient_C) = .*$", "", DEFAULT_PATH.read_text(), flags=re.M))
-    with pytest.raises(ParameterError, match="the analysis needs the motor's thermal model"):
+    with pytest.raises(ParameterError, match="the quadruped's verdict needs a BLDC motor"):
         load_params(none)

@@ -140,8 +140,9 @@ def test_report_and_plots_describe_the_path_analysed(params):
                  f"{speed:.3f} m/s", "trot"):
         assert text in head, text
     assert "ellip" not in md.lower() and "cos(" not in md
-    slow = dataclasses.replace(params, motor=dataclasses.replace(params.motor,
-                                                                 no_load_speed_rad_s=10.0))
+    slow = dataclasses.replace(params, motor=dataclasses.replace(
+        params.motor, bus_voltage_V=params.motor.bus_voltage_V * 10.0 / (4 * np.pi)))
+    assert slow.motor.no_load_speed_rad_s == pytest.approx(10.0, rel=1e-12)
     assert f"({10.0 * 60 / (2 * np.pi):.0f} RPM)" in markdown(analyze(slow, "trot"))
     trot = analyze(params, "trot")
     for name, figure in FIGURES.items():

@@ -13,11 +13,10 @@ import numpy as np
 import pytest
 
 from fivebar_drake.analysis.design_points import evaluate_designs, with_changes
-from fivebar_drake.analysis.thermal import thermal_margin
 from fivebar_drake.analysis.torques import analyze
 from fivebar_drake.cli import main
 from fivebar_drake.core.validation import ParameterError
-from fivebar_drake.robots.quadruped.config import load_params
+from fivebar_drake.robots.quadruped.config import DEFAULT_PATH, load_params
 from fivebar_drake.sweep.engine import run_sweep
 from fivebar_drake.sweep.plots import pareto_front
 from fivebar_drake.sweep.spec import load_spec
@@ -45,7 +44,7 @@ def table_text(result):
 def test_vectorised_designs_match_the_analysis_of_each():
     base = load_params()
     changes = [{"gait.frequency_hz": 0.7, "leg.ce_m": 0.15}, {"gait.a_m": 0.03},
-               {"gait.b_m": 0.02, "motor.peak_torque_Nm": 4.0}, {"leg.ce_m": 0.15},
+               {"gait.b_m": 0.02, "motor.peak_current_A": 3.0}, {"leg.ce_m": 0.15},
                {"motor.gear_ratio": 12.0}]
     designs = [with_changes(base, c) for c in changes]
     for path, model in itertools.product(("seed_ellipse", "trot"), ("full", "full_trot")):
@@ -55,9 +54,27 @@ def test_vectorised_designs_match_the_analysis_of_each():
                 for key in ("peak_torque_Nm", "rms_torque_Nm", "safety_factor",
                             "peak_speed_rad_s", "torque_speed_margin"):
                     assert row[motor][key] == pytest.approx(ref[motor][key], rel=1e-12)
-                assert row[motor]["verdict"] == ref[motor]["verdict"]
-                heat = thermal_margin(design.motor, ref[motor]["rms_torque_Nm"])
-                assert row[motor]["thermal_margin_K"] == pytest.approx(heat.margin_K, rel=1e-12)
+                assert row[motor]["verdict"] == ref[motor]["checks"]["verdict"]
+                assert row[motor]["speed_outside_fraction"] == \
+                    ref[motor]["checks"]["speed"]["outside_fraction"]
+                heat = analyze(design, path).results["thermal"]["models"][model][motor]
+                assert row[motor]["thermal_margin_K"] == pytest.approx(heat["margin_K"],
+                                                                       rel=1e-12)
+
+
+def test_gear_ratio_in_a_file_and_in_a_sweep_is_one_design(tmp_path):
+    """motor.gear_ratio = 11.5 written in a --config file and varied in a sweep gives the same
+    safety factors (the issue: it used to change only the rotor inertia in a file)."""
+    text = DEFAULT_PATH.read_text()
+    assert "\ngear_ratio = 8.0" in text
+    config = tmp_path / "geared.toml"
+    config.write_text(text.replace("\ngear_ratio = 8.0", "\ngear_ratio = 11.5"))
+    from_file = analyze(load_params(config), "seed_ellipse").results["results"]["full_trot"]
+    row = evaluate_designs([with_changes(load_params(), {"motor.gear_ratio": 11.5})])[0]
+    for motor in "AB":
+        assert row[motor]["safety_factor"] == pytest.approx(from_file[motor]["safety_factor"],
+                                                            rel=1e-9)
+        assert row[motor]["verdict"] == from_file[motor]["checks"]["verdict"]
 
 
 def test_gear_ratio_keeps_the_motor():
@@ -67,6 +84,7 @@ def test_gear_ratio_keeps_the_motor():
     assert geared.motor.no_load_speed_rad_s == pytest.approx(base.motor.no_load_speed_rad_s / 2)
     assert geared.motor.continuous_torque_Nm == pytest.approx(
         2 * base.motor.continuous_torque_Nm)
+    assert geared.motor.torque_constant_Nm_per_A == base.motor.torque_constant_Nm_per_A
     # the reflected inertia N^2 J grows with the square
     assert geared.motor.reflected_inertia_kg_m2 == pytest.approx(
         4 * base.motor.reflected_inertia_kg_m2)
