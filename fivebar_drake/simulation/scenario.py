@@ -47,8 +47,11 @@ MAX_DAMPING_RATIO = 2.0           # well past critical (1): more only slows the 
 MAX_CATCH_GAIN = 10.0             # the reflex saturates at the step height long before
 MAX_CATCH_RATE_S = 1.0            # a velocity lead longer than a gait cycle anticipates nothing
 MAX_LOOP_GAP_M = 1e-3             # 1 % of a link: a looser loop is not the 5-bar's kinematics
-MIN_LOOP_GAP_M = 1e-7             # the bushing's stiffness is loop force / gap: beyond ~1e8 N/m
-#                                   SAP's compliant constraint is no longer compliant
+MIN_LOOP_GAP_M = 1e-8             # a floor for any closure and step (the explicit bushing's step
+#                                   ~ sqrt(gap) is ~2 us here, near MIN_TIME_STEP_S); the compliant
+#                                   bushing's own bound, where SAP stops keeping gap = F / k
+#                                   (near-rigid; ~ step^2: 1.7 um at 1 ms for the packaged robot),
+#                                   is checked with the design (closure.min_loop_gap)
 MAX_PHASE_RAD = 2 * math.pi       # a gait phase is an angle of the cycle: one turn either way
 
 

@@ -103,13 +103,16 @@ class FootLegController(LeafSystem):
     - Swing (weight 1 - w per leg): joint PD to the closed-form IK of the target (knees out) with
       the full model's inverse dynamics (M q'' + c + G of the links, reflected rotor inertia) of
       the target's motion as feed-forward.
-    - Stance (weight w): a virtual-model controller. The body's targets follow from the stance
-      feet's targets: height z = foot radius - hip z - y, vertical speed -y', forward speed the
-      feet's x' (leg-plane x points backwards). The wrench on the body, in the body frame,
+    - Stance (weight w): the links' weight at the measured pose, and a virtual-model
+      controller. The body's targets follow from the stance feet's targets: height z = foot
+      radius - hip z - y, vertical speed -y', forward speed the feet's x' (leg-plane x points
+      backwards). The wrench on the body, in the body frame,
       F_x = m dx (v_x* - v_x), F_z = m (g + z*'') + kz (z* - z) + dz (z*' - z'),
       M_roll,pitch = -k_att angle - d_att rate, is shared by the stance feet: the in-plane ground
       forces of least weighted norm (weights w) that produce it, vertical forces >= 0 and
-      horizontal ones inside the friction cone; each motor pair gives -J_F(q)^T F.
+      horizontal ones inside the friction cone. That split already gives each foot its share
+      (none at w = 0), so each motor pair adds -J_F(q)^T F in full, not blended by w: the feet
+      deliver the whole wrench while a foot takes up or gives off its load.
     - Swing legs catch the body (catch_gain > 0): under a hip that the tilt lowers, the swing
       foot's target reaches down (control_law.catch_offset); with touchdown_detection a
       descending swing foot that meets the ground early joins the support

@@ -7,6 +7,13 @@ with dt by symplectic Euler. With a = k dt^2 / m_eff and b = d dt / m_eff = 2 ze
 (zeta = damping ratio), the step is stable iff a + 2 b < 4 (Jury criterion on the 2x2 step
 matrix, trace 2 - a - b, determinant 1 - b). The gap under the loop force F is F / k. So:
 k = F / gap, then the largest dt with a + 4 zeta sqrt(a) = 4 margin, and d = 2 zeta sqrt(k m_eff).
+
+SAP treats the compliant "bushing" (two distance constraints) implicitly, stable at any k, but
+it keeps the law gap = F / k only while a constraint's regularisation 1 / (dt (dt + tau) k)
+(tau = d / k) stays above its near-rigid floor beta^2 w / (4 pi^2) (beta = NEAR_RIGID_BETA; w =
+J diag(A)^-1 J^T, Drake's Delassus estimate with only the diagonal of the tree's mass matrix A).
+Stiffer, SAP clamps the constraint to an effective stiffness 2 pi^2 / (beta^2 w dt^2) whatever k
+is: the loop is softer than designed (min_loop_gap).
 """
 
 from __future__ import annotations
@@ -16,7 +23,7 @@ import math
 import numpy as np
 from pydrake.multibody.plant import MultibodyPlant
 
-from fivebar_drake.core.validation import ParameterError
+from fivebar_drake.core.validation import ParameterError, check_number
 from fivebar_drake.mechanisms.fivebar import sample_gait, tree_positions
 from fivebar_drake.robots.quadruped.inverse_dynamics import loop_jacobian, plane_point_jacobian
 from fivebar_drake.robots.quadruped.leg_loads import trot_model
@@ -27,6 +34,8 @@ from fivebar_drake.mechanisms.base import Bushing
 
 STABILITY_MARGIN = 0.8   # fraction of the explicit stability bound a + 2 b < 4
 DAMPING_RATIO = 0.3
+NEAR_RIGID_BETA = 0.1    # SAP's near-rigid parameter of a distance constraint (drake 1.51,
+#                          SapDistanceConstraint)
 
 
 def fixed_leg(params: Params):
@@ -37,6 +46,30 @@ def fixed_leg(params: Params):
     plant.Finalize()
     context = plant.CreateDefaultContext()
     return plant, context, instance, leg_indices(plant, instance, "leg")
+
+
+def near_rigid_mass(params: Params) -> float:
+    """The least mass (kg) over the gait that SAP sees along the bushing's distance constraints at
+    E (along DE and across it, the directions of plant.add_model's two constraints): 1 / w with
+    w = u^T J_c diag(M)^-1 J_c^T u, Drake's Delassus estimate (the diagonal of the mass matrix
+    only; joint damping, which adds dt D to it, left out: a lighter mass, a safe bound), from
+    the Drake model of one fixed-hip leg with its motors free, as in the robot."""
+    plant, context, instance, idx = fixed_leg(params)
+    plane = plant.GetFrameByName("leg_plane", instance)
+    de = plant.GetBodyByName("leg_DE", instance).body_frame()
+    q = plant.GetPositions(context)
+    w = 0.0
+    for x in tree_positions(sample_gait(params.leg, params.gait).pose):
+        q[idx.q] = x
+        plant.SetPositions(context, q)
+        jc, _ = loop_jacobian(plant, context, instance, params, "leg")
+        delassus = (jc / plant.CalcMassMatrix(context).diagonal()) @ jc.T
+        d, e = plant.CalcPointsPositions(context, de, [[0.0, params.leg.de_m], [0.0, 0.0],
+                                                       [0.0, 0.0]], plane)[:2].T
+        along = (e - d) / np.linalg.norm(e - d)
+        for u in (along, np.array([-along[1], along[0]])):
+            w = max(w, float(u @ delassus @ u))
+    return 1.0 / w
 
 
 def loop_load(params: Params):
@@ -80,6 +113,19 @@ def bushing_parameters(m_eff_kg: float, loop_force_N: float, target_gap_m: float
     return Bushing(stiffness_N_m=float(k), damping_N_s_m=float(d)), dt
 
 
+def min_loop_gap(m_eff_kg: float, sap_mass_kg: float, loop_force_N: float, time_step_s: float,
+                 damping_ratio: float = DAMPING_RATIO, beta: float = NEAR_RIGID_BETA) -> float:
+    """The least target gap (m) at which SAP keeps the compliant bushing's law gap = F / k at
+    plant step time_step_s (s): with the bushing's damping (bushing_parameters, tau = d / k =
+    2 zeta sqrt(m_eff / k)) the constraint stays compliant while 1 / (dt (dt + tau) k) >=
+    beta^2 / (4 pi^2 sap_mass), i.e. k dt^2 + 2 zeta dt sqrt(m_eff k) <= 4 pi^2 sap_mass / beta^2;
+    the gap is loop_force_N / k at the largest such k. Scales with dt^2; sap_mass_kg:
+    near_rigid_mass."""
+    root_k = (math.sqrt(damping_ratio**2 * m_eff_kg + 4.0 * math.pi**2 * sap_mass_kg / beta**2)
+              - damping_ratio * math.sqrt(m_eff_kg)) / time_step_s
+    return loop_force_N / root_k**2
+
+
 IMPLICIT_TIME_STEP_S = 1e-3   # plant step of the closures SAP treats implicitly
 
 
@@ -90,13 +136,22 @@ def design_closure(params: Params, closure: str, target_gap_m: float, time_step_
     compliant "bushing" and the "ball" implicitly, so they run at IMPLICIT_TIME_STEP_S, while the
     explicit "bushing_rpy" needs the step its stability bound allows: the largest stable step
     that divides log_period_s (s), so every log interval has whole steps. time_step_s > 0 asks
-    for a step (ParameterError if the explicit bushing is unstable at it)."""
+    for a step. ParameterError if the explicit bushing is unstable at it, or if the compliant
+    bushing's gap is below min_loop_gap at its step (SAP would regularise it: not F / k)."""
     m_eff, force = loop_load(params)
     if closure == "ball":
         return ClosureDesign(closure, time_step_s or IMPLICIT_TIME_STEP_S, None, m_eff, force)
-    bushing, dt = bushing_parameters(m_eff, force, target_gap_m)
     if closure == "bushing":
-        return ClosureDesign(closure, time_step_s or IMPLICIT_TIME_STEP_S, bushing, m_eff, force)
+        step = time_step_s or IMPLICIT_TIME_STEP_S
+        least = min_loop_gap(m_eff, near_rigid_mass(params), force, step)
+        check_number("scenario.target_loop_gap_m", target_gap_m, least, why=(
+            f"at the plant step {step:g} s SAP regularises a stiffer bushing (k = loop force "
+            f"{force:.3g} N / gap > {force / least:.3g} N/m) as near-rigid, and the gap is no "
+            "longer F / k; the bound scales with the step squared: use a larger gap or a smaller "
+            "scenario.time_step_s"))
+        bushing, _ = bushing_parameters(m_eff, force, target_gap_m)
+        return ClosureDesign(closure, step, bushing, m_eff, force)
+    bushing, dt = bushing_parameters(m_eff, force, target_gap_m)
     if time_step_s > dt:
         raise ParameterError(
             f"scenario.time_step_s = {time_step_s!r}: the explicit bushing (k = "

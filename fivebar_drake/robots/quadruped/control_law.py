@@ -9,7 +9,11 @@ systems.FootLegController for the whole description):
   inertia) as feed-forward;
 - stance: the links' weight plus -J_F^T F with the ground forces F that produce the body wrench
   (height, forward speed, roll, pitch) at least weighted norm, F_z >= 0, inside the friction cone;
-- each leg blends the two with its stance weight (raised by early touchdown).
+- each leg blends the swing command and the links' weight with its stance weight w (raised by
+  early touchdown) and adds the push -J_F^T F in full: the ground forces' least-squares split
+  is already weighted by w (a foot with w -> 0 gets none), so the feet deliver the whole
+  wrench at every w (blending the push by w again lost force mid transfer: 11 % of the weight
+  with one foot leaving a standing robot).
 """
 
 from __future__ import annotations
@@ -231,5 +235,5 @@ def leg_command(k, references, state):
         w = weights[i]
         for j in range(2):
             push = jf_now[i, 0, j] * forces[i, 0] + jf_now[i, 1, j] * forces[i, 1]
-            out[k.state.actuators[i, j]] = w * (stance[i, j] - push) + (1.0 - w) * swing[i, j]
+            out[k.state.actuators[i, j]] = w * stance[i, j] + (1.0 - w) * swing[i, j] - push
     return out, goal, np.all(np.isfinite(out))

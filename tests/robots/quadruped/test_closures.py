@@ -1,15 +1,20 @@
-"""The compliant closure ("bushing"): the bushing's force law at E, treated implicitly by SAP."""
+"""The closures SAP treats implicitly: the compliant "bushing" (the bushing's force law at E) down
+to its least gap at the plant step, and the "ball", which SAP regularises to a spring."""
 
 import numpy as np
 import pytest
 from pydrake.multibody.math import SpatialForce
 from pydrake.multibody.plant import (ExternallyAppliedSpatialForce, MultibodyPlant,
                                      MultibodyPlantConfig, ApplyMultibodyPlantConfig)
+from pydrake.multibody.tree import PdControllerGains
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder
 from pydrake.common.value import AbstractValue
 
-from fivebar_drake.robots.quadruped.closure import bushing_parameters
+from fivebar_drake.core.validation import ParameterError
+from fivebar_drake.robots.quadruped.closure import (IMPLICIT_TIME_STEP_S, bushing_parameters,
+                                                    design_closure, loop_load, min_loop_gap,
+                                                    near_rigid_mass)
 from fivebar_drake.mechanisms.fivebar import inverse, tree_positions
 from fivebar_drake.robots.quadruped.plant import add_model, leg_indices
 from fivebar_drake.mechanisms.base import Bushing
@@ -17,15 +22,21 @@ from fivebar_drake.mechanisms.base import Bushing
 DT = 1e-3
 
 
-def leg_plant(params, bushing, foot_force_N=None, lock_motors=True):
-    """A fixed-hip leg closed by the compliant bushing at the home pose, without gravity;
-    the foot pushed by foot_force_N (leg plane (x, y), N). Returns simulator, plant, context."""
+def leg_plant(params, bushing, foot_force_N=None, motors="locked", dt=DT, closure="bushing"):
+    """A fixed-hip leg closed by the compliant bushing (or the closure) at the home pose, without
+    gravity, plant step dt (s); the foot pushed by foot_force_N (leg plane (x, y), N). Motors
+    "locked", "free", or "held" at home by SAP's implicit PD (free in the mass matrix, as in
+    the robot). Returns simulator, plant, context, instance, LegIndices."""
     builder = DiagramBuilder()
-    plant = builder.AddSystem(MultibodyPlant(DT))
-    ApplyMultibodyPlantConfig(MultibodyPlantConfig(time_step=DT,
+    plant = builder.AddSystem(MultibodyPlant(dt))
+    ApplyMultibodyPlantConfig(MultibodyPlantConfig(time_step=dt,
                                                    discrete_contact_approximation="sap"), plant)
-    instance, _ = add_model(plant, params, "leg", "bushing", bushing)
+    instance, _ = add_model(plant, params, "leg", closure, bushing)
     plant.mutable_gravity_field().set_gravity_vector([0.0, 0.0, 0.0])
+    if motors == "held":
+        for j in ("A", "B"):
+            plant.GetJointActuatorByName(f"leg_{j}", instance).set_controller_gains(
+                PdControllerGains(p=1e4, d=10.0))
     plant.Finalize()
     diagram = builder.Build()
     simulator = Simulator(diagram)
@@ -35,6 +46,8 @@ def leg_plant(params, bushing, foot_force_N=None, lock_motors=True):
     q[idx.q] = tree_positions(inverse(params.leg, [params.gait.x_center_m, params.gait.y_home_m]))
     plant.SetPositions(context, q)
     plant.get_actuation_input_port().FixValue(context, np.zeros(2))
+    if motors == "held":
+        plant.get_desired_state_input_port(instance).FixValue(context, np.r_[q[idx.q[:2]], 0, 0])
     foot = plant.GetBodyByName("leg_DE", instance)
     plane = plant.GetFrameByName("leg_plane", instance)
     force = ExternallyAppliedSpatialForce()
@@ -44,7 +57,7 @@ def leg_plant(params, bushing, foot_force_N=None, lock_motors=True):
     force.F_Bq_W = SpatialForce(np.zeros(3),
                                 plane.CalcRotationMatrixInWorld(context).matrix() @ f_plane)
     plant.get_applied_spatial_force_input_port().FixValue(context, AbstractValue.Make([force]))
-    if lock_motors:
+    if motors == "locked":
         for j in ("A", "B"):
             plant.GetJointByName(f"leg_{j}", instance).Lock(context)
     return simulator, plant, context, instance, idx
@@ -93,7 +106,7 @@ def test_no_torque_about_the_hinge(params):
     stiffness about the hinge would turn kinetic energy into spring energy and back."""
     m_eff, force = 0.006, 34.0
     bushing, _ = bushing_parameters(m_eff, force, 1e-5)
-    simulator, plant, context, instance, idx = leg_plant(params, bushing, lock_motors=False)
+    simulator, plant, context, instance, idx = leg_plant(params, bushing, motors="free")
     home = np.array([params.gait.x_center_m, params.gait.y_home_m])
     h = 1e-6
     x0, x1 = (tree_positions(inverse(params.leg, home + d)) for d in (0.0, h * np.array([1.0, 0.5])))
@@ -106,3 +119,54 @@ def test_no_torque_about_the_hinge(params):
         assert plant.CalcKineticEnergy(context) == pytest.approx(ke0, rel=0.02)
     e_ce, e_de = e_points(plant, context, instance, params)
     assert np.linalg.norm(e_de - e_ce) < 1e-5               # the loop stayed closed
+
+
+def static_gap(params, bushing, foot_force_N, dt, closure="bushing"):
+    """(gap |E on DE - E on CE| m, loop force |lambda| N) of the loaded leg at rest, its motors
+    held as in the robot (free in the mass matrix SAP sees)."""
+    simulator, plant, context, instance, idx = leg_plant(params, bushing, foot_force_N, "held",
+                                                         dt, closure)
+    simulator.AdvanceTo(0.5)                                # settle
+    assert np.max(np.abs(plant.GetVelocities(context))) < 1e-6
+    e_ce, e_de = e_points(plant, context, instance, params)
+    lam = loop_force(plant, context, instance, idx, params, foot_force_N)
+    return np.linalg.norm(e_de - e_ce), np.linalg.norm(lam)
+
+
+@pytest.mark.parametrize("dt", [1e-3, 5e-4])
+def test_gap_is_force_over_stiffness_down_to_the_least_gap(params, dt):
+    """At closure.min_loop_gap for the step (1.7 um at 1 ms, 0.43 um at 0.5 ms) the static gap
+    is F / k; a tenth below it SAP regularises the stiffer constraint (near-rigid) and the gap
+    no longer follows the law."""
+    m_eff, force = loop_load(params)
+    least = min_loop_gap(m_eff, near_rigid_mass(params), force, dt)
+    ratios = []
+    for target in (least, 0.9 * least):
+        bushing, _ = bushing_parameters(m_eff, force, target)
+        gap, lam = static_gap(params, bushing, [0.0, 30.0], dt)
+        ratios.append(gap / (lam / bushing.stiffness_N_m))
+    assert ratios[0] == pytest.approx(1.0, rel=0.01)        # measured 1.0000
+    assert ratios[1] > 1.03                                 # measured 1.049
+
+
+def test_a_gap_below_the_least_gap_is_refused(params):
+    m_eff, force = loop_load(params)
+    least = min_loop_gap(m_eff, near_rigid_mass(params), force, IMPLICIT_TIME_STEP_S)
+    design = design_closure(params, "bushing", least)
+    assert design.bushing.stiffness_N_m == pytest.approx(force / least)
+    double = 2.0 * IMPLICIT_TIME_STEP_S
+    for gap, step in ((0.99 * least, 0.0), (1e-12, 0.0), (3.9 * least, double)):
+        with pytest.raises(ParameterError, match="near-rigid") as err:
+            design_closure(params, "bushing", gap, step)    # the bound grows with step^2
+        assert err.value.field == "scenario.target_loop_gap_m"
+        assert f"scenario.target_loop_gap_m = {gap!r}: must be >= " in str(err.value)
+    assert design_closure(params, "bushing", 0.99 * least, IMPLICIT_TIME_STEP_S / 2).bushing
+    assert design_closure(params, "ball", 1e-12).bushing is None    # nothing designed
+
+
+@pytest.mark.parametrize("dt", [1e-3, 5e-4])
+def test_ball_is_compliant_at_the_step(params, dt):
+    """SAP regularises the 'ball' closure too: under load its gap is that of a spring whose
+    stiffness grows as 1 / dt^2 (measured 2.6e7 N/m at 1 ms, 1.0e8 at 0.5 ms)."""
+    gap, lam = static_gap(params, None, [0.0, 30.0], dt, closure="ball")
+    assert lam / gap == pytest.approx(2.6e7 * (1e-3 / dt) ** 2, rel=0.05)
