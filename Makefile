@@ -16,8 +16,9 @@ $(STAMP): pyproject.toml
 # demo runs: 0.5 s standing, 1 s ramp, 3 whole gait cycles
 DEMO_S ?= 4.5
 
-# simulate exits 1 when a run stops early or has no verdict (it still writes its summary):
-# the seed's ellipse may do that, and the comparison reports it; any other failure stops make.
+# simulate exits 1 when a run stops early, has no verdict or did not achieve its motion (it
+# still writes its summary): the seed's ellipse does that, and the comparison reports it; any
+# other failure stops make. The 8:1 and 11.5:1 designs' verdicts side by side: gear_comparison.md
 demo: $(STAMP)
 	$(BIN)/fivebar-drake analyze --out $(OUT)/analysis
 	$(BIN)/fivebar-drake simulate --gait trot --duration $(DEMO_S) --out $(OUT)/simulation/trot
@@ -25,6 +26,10 @@ demo: $(STAMP)
 		--out $(OUT)/simulation/seed_ellipse || [ $$? -eq 1 ]
 	$(BIN)/fivebar-drake compare $(OUT)/simulation/trot $(OUT)/simulation/seed_ellipse \
 		--out $(OUT)/gait_comparison.md
+	$(BIN)/fivebar-drake simulate --gait trot --duration $(DEMO_S) --set motor.gear_ratio=11.5 \
+		--step-check --out $(OUT)/simulation/trot_gear_11.5
+	$(BIN)/fivebar-drake compare $(OUT)/simulation/trot $(OUT)/simulation/trot_gear_11.5 \
+		--out $(OUT)/gear_comparison.md
 	$(BIN)/fivebar-drake sweep fivebar_drake/data/sweep_example.yaml --out $(OUT)/sweep
 	for m in ballscrew_leg scara parallel4; do \
 		$(BIN)/fivebar-drake analyze --mechanism $$m --out $(OUT)/$$m || exit 1; done

@@ -336,7 +336,7 @@ def parser() -> argparse.ArgumentParser:
                    "cluster, one thread each (default: one per core)")
     w.add_argument("--scheduler", metavar="ADDRESS", help="send the sweep to this Dask "
                    "scheduler (tcp://HOST:PORT) instead of a local cluster")
-    c = command("compare", _compare, "simulated runs side by side: what the foot path costs")
+    c = command("compare", _compare, "simulated runs side by side: each motor's verdict and torques (what a foot path or a design costs)")
     c.add_argument("runs", nargs="+", metavar="RUN_DIR", help="output folders of `simulate` runs")
     c.add_argument("--out", default="out/gait_comparison.md", metavar="FILE",
                    help="markdown file; a PNG is written beside it (default: %(default)s)")

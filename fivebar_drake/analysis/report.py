@@ -125,7 +125,8 @@ def markdown(analysis: Analysis, sampled: dict | None = None) -> str:
                      f"{r['seed'][motor]['torque_speed_margin']:.2f}x / "
                      f"{m['torque_speed_margin']:.2f}x |")
     lines += ["", "Torque-speed margin: the least ratio, over the cycle, of the torque the motor "
-              "can give at that sample's speed (linear torque-speed line) to the torque needed.",
+              "can give at that sample's speed (the actuator's envelope, driving) to the torque "
+              "needed.",
               "", "## Trot loading (the other reading of the weight share)", "",
               "| motor | peak torque (N m) | static (N m) | safety factor | verdict |",
               "|---|---|---|---|---|"]
@@ -133,6 +134,26 @@ def markdown(analysis: Analysis, sampled: dict | None = None) -> str:
         m = r["full_trot"][motor]
         lines.append(f"| {motor} | {m['peak_torque_Nm']:.3f} | {m['static_torque_Nm']:.3f} | "
                      f"{m['safety_factor']:.2f}x | {m['verdict'].upper()} |")
+    mo = analysis.results["motor"]
+    lines += ["", "## Verdict: the actuator's checks", "",
+              f"The {mo['model']} actuator: peak {mo['peak_torque_Nm']:.3g} N m (driving, "
+              f"{mo['braking_peak_torque_Nm']:.3g} braking), no-load "
+              f"{mo['no_load_speed_rad_s']:.2f} rad/s, continuous "
+              f"{_maybe(mo['continuous_torque_Nm'], '.3g')} N m at the output "
+              "(report.json: motor.envelope). Torque: safety factor on the peak demand; speed: "
+              "the least ratio of the speed at which the envelope still gives a sample's torque "
+              "to its speed, and the share of the cycle beyond the envelope; thermal: continuous "
+              "/ RMS current. The worst check decides.", "",
+              "| motor | model | verdict | decided by | SF | speed margin | beyond envelope | "
+              "current margin |", "|---|---|---|---|---|---|---|---|"]
+    for motor in MOTORS:
+        for model in SIDE_BY_SIDE + ("full_trot",):
+            c = r[model][motor]["checks"]
+            lines.append(f"| {motor} | {model} | {c['verdict'].upper()} | {c['deciding_check']} "
+                         f"| {_maybe(c['torque']['sf'], '.2f')} | "
+                         f"{_maybe(c['speed']['least_margin'], '.2f')} | "
+                         f"{c['speed']['outside_fraction']:.1%} | "
+                         f"{_maybe(c['thermal']['margin'], '.2f')} |")
     path = analysis.results["path"]
     angles = ", ".join(f"{j} {a:.1f} deg" for j, a in path["min_transmission_angle_deg"].items())
     lines += ["", "## Along the path", "",
@@ -147,6 +168,10 @@ def markdown(analysis: Analysis, sampled: dict | None = None) -> str:
     lines += ["", "## Plots", ""]
     lines += [f"![{name}]({name}.png)" for name in FIGURE_NAMES]
     return "\n".join(lines) + "\n"
+
+
+def _maybe(value, fmt: str) -> str:
+    return "n/a" if value is None else format(value, fmt)
 
 
 def write_report(analysis: Analysis, out_dir: Path, sampled: dict | None = None) -> list[Path]:

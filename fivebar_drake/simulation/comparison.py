@@ -1,5 +1,6 @@
-"""What the foot path costs: the summaries of simulated runs (summary.json) side by side, as
-markdown and a bar chart of the demand per motor."""
+"""Simulated runs side by side (what a foot path or a design costs): the summaries
+(summary.json) as markdown, with each motor's verdict and the check that decided it, and a bar
+chart of the demand per motor. Each run is labelled by its folder's name."""
 
 from __future__ import annotations
 
@@ -25,7 +26,7 @@ def load_summaries(run_dirs) -> list[dict]:
     for run in run_dirs:
         path = Path(run) / "summary.json"
         try:
-            out.append(_summary(path))
+            out.append({**_summary(path), "label": Path(run).resolve().name})
         except ParameterError as err:
             raise ParameterError(f"{err.message} (a run folder of `fivebar-drake simulate "
                                  f"--out {run}` holds it)", err.field, str(path)) from None
@@ -57,21 +58,51 @@ def _num(value, fmt=".2f") -> str:
     return "n/a" if value is None else format(value, fmt)
 
 
+def _label(s: dict) -> str:
+    return s.get("label") or s["gait"]
+
+
+def _verdict_cell(m: dict) -> str:
+    """A motor's verdict, its deciding check and the checks' figures, in one table cell."""
+    c = m.get("checks")
+    if not isinstance(c, dict):
+        return str(m.get("verdict", "n/a")).upper()
+    torque, speed, thermal = (c.get(k) or {} for k in ("torque", "speed", "thermal"))
+    return (f"{str(m.get('verdict')).upper()} ({m.get('deciding_check')}): SF "
+            f"{_num(torque.get('sf'))}, {_num((speed.get('outside_fraction') or 0) * 100, '.1f')} "
+            f"% beyond the envelope, current margin {_num(thermal.get('margin'))}")
+
+
+def verdict_table(summaries: list[dict]) -> list[str]:
+    """Markdown lines: per motor, each run's verdict with its deciding check and figures."""
+    lines = ["| leg | motor | " + " | ".join(_label(s) for s in summaries) + " |",
+             "|---|---|" + "---|" * len(summaries)]
+    for leg in summaries[0]["legs"]:
+        for motor in MOTORS:
+            lines.append(f"| {leg} | {motor} | " + " | ".join(
+                _verdict_cell(s["legs"][leg][motor]) for s in summaries) + " |")
+    return lines
+
+
 def markdown(summaries: list[dict]) -> str:
-    lines = ["# What the foot path costs", "",
+    lines = ["# Runs side by side", "",
              "Each run's demand (the controller's command before saturation, 99th percentile "
              "over its whole gait cycles) and RMS applied torque per motor, beside the static "
              "estimates for the same poses: the seed's (G(q) with the weight share at the foot) "
              "and the trot's (the robot's weight shared by the feet in stance). N·m.", ""]
     for s in summaries:
-        lines.append(f"- **{s['gait']}** ({s['closure']} closure): {s['answer']} Walking "
+        lines.append(f"- **{_label(s)}** ({s['gait']} gait, {s['closure']} closure, gear "
+                     f"{_num((s.get('motor') or {}).get('gear_ratio'), 'g')}:1): {s['answer']} Walking "
                      f"{_num(s['mean_forward_speed_m_s'], '.3f')} m/s of the path's "
                      f"{s['gait_speed_m_s']:.3f} m/s, largest tilt "
                      f"{_num(s['max_tilt_deg'], '.1f')} deg, verdict {s['verdict'].upper()}.")
+    lines += ["", "## Verdicts", "", "Each motor's verdict, the check that decided it (torque: "
+              "safety factor; speed: the demand beyond the actuator's envelope; thermal: "
+              "continuous / RMS current):", "", *verdict_table(summaries), "", "## Torques", ""]
     header = "| leg | motor | " + " | ".join(
-        f"{s['gait']} demand p99 | {s['gait']} RMS | {s['gait']} seed static | "
-        f"{s['gait']} trot static" for s in summaries) + " |"
-    lines += ["", header, "|---|---|" + "---|" * (4 * len(summaries))]
+        f"{_label(s)} demand p99 | {_label(s)} RMS | {_label(s)} seed static | "
+        f"{_label(s)} trot static" for s in summaries) + " |"
+    lines += [header, "|---|---|" + "---|" * (4 * len(summaries))]
     for leg in summaries[0]["legs"]:
         for motor in MOTORS:
             cells = []
@@ -98,12 +129,12 @@ def figure(summaries: list[dict]):
         demand = [s["legs"][leg][m]["demand_p99_Nm"] or np.nan
                   for leg in s["legs"] for m in MOTORS]
         ax.bar(x + (k - (len(summaries) - 1) / 2) * width, demand, width,
-               label=f"{s['gait']} demand p99 ({s['verdict']})")
+               label=f"{_label(s)} demand p99 ({s['verdict']})")
     seed = summaries[0]["seed_peak_torque_Nm"]
     ax.axhline(seed, color="k", ls="--", lw=1, label=f"seed static {seed:.2f} N·m")
     ax.axhline(summaries[0]["motor_peak_torque_Nm"], color="r", lw=1, label="motor limit")
     ax.set(xticks=x, xticklabels=labels, ylabel="torque (N·m)",
-           title="Torque demand per motor by foot path")
+           title="Torque demand per motor, run by run")
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3, axis="y")
     fig.tight_layout()

@@ -380,7 +380,7 @@ def answer(s: dict, params: Params) -> str:
     m = s["legs"][leg][name]
     c = m["checks"]
     head = f"At {s['gait_frequency_hz']:g} Hz with the {s['gait']} gait"
-    seed = (f"Separately, {s['seed_load_model']}, gives {s['seed_peak_torque_Nm']:.2f} N·m "
+    seed = (f"Separately, {seed_analysis_load(params)}, gives {s['seed_peak_torque_Nm']:.2f} N·m "
             "(its peak).")
     if s["verdict"] == "not_achieved":
         why = c["achieved"]["why"]

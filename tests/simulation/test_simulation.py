@@ -167,7 +167,8 @@ def test_summary_text_follows_the_parameters(runs):
 
     scenario, params, record, sig, summary = runs["ball"]
     other = dataclasses.replace(params, robot=dataclasses.replace(params.robot, structure_kg=2.5),
-                                motor=dataclasses.replace(params.motor, peak_torque_Nm=7.0))
+                                motor=dataclasses.replace(
+                                    params.motor, peak_current_A=params.motor.peak_current_A * 1.4))
     text = markdown(summary, other).split(summary["answer"])[1] + answer(summary, other)
     assert f"{other.robot.weight_share_kg:.3f} kg" in text and "7 N·m" in text
     assert f"{params.robot.weight_share_kg:.3f}" not in text

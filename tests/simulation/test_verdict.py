@@ -1,0 +1,127 @@
+"""The verdict a designer acts on: four checks per motor (torque, speed, thermal, achieved), the
+worst deciding; the step check; a run that did not follow its gait is not_achieved (exit 1),
+its demand never reported as a need."""
+
+import copy
+import json
+import math
+
+import numpy as np
+import pytest
+
+from fivebar_drake.analysis.design_points import with_changes
+from fivebar_drake.cli import main
+from fivebar_drake.core.checks import Checks, speed_check, thermal_check, worst_check
+from fivebar_drake.pipeline import run_simulation, run_step_check, summarize_run
+from fivebar_drake.simulation.scenario import load_scenario
+from fivebar_drake.simulation.summary import apply_step_check, cycle_window, signals
+
+DURATION_S = 4.5
+CHECKS = Checks(sf_pass=2.0, sf_warn=1.5)
+
+
+def test_speed_check_thresholds():
+    assert speed_check(CHECKS, [2.0, np.inf], [False, False])["verdict"] == "pass"
+    assert speed_check(CHECKS, [1.05, 3.0], [False, False])["verdict"] == "warn"
+    one = speed_check(CHECKS, [0.9] + [2.0] * 99, [True] + [False] * 99)
+    assert one["verdict"] == "warn" and one["outside_fraction"] == 0.01
+    two = speed_check(CHECKS, [0.9] * 2 + [2.0] * 98, [True] * 2 + [False] * 98)
+    assert two["verdict"] == "fail" and two["least_margin"] == 0.9
+    assert speed_check(CHECKS, [np.nan, np.inf], [False, False])["least_margin"] is None
+
+
+def test_worst_check_decides():
+    checks = {"torque": {"verdict": "pass"}, "speed": {"verdict": "fail"},
+              "thermal": {"verdict": "warn"}}
+    assert worst_check(checks) == ("fail", "speed")
+    checks["torque"]["verdict"] = "fail"
+    assert worst_check(checks) == ("fail", "torque")         # equals: torque first
+    assert thermal_check(CHECKS, 2.0, 2.5)["verdict"] == "fail"
+    assert thermal_check(CHECKS, 2.0, 1.8)["verdict"] == "warn"
+    assert thermal_check(CHECKS, None, 1.0)["margin"] is None
+
+
+def _summary(sfs, verdict="pass"):
+    legs = {"FL": {m: {"safety_factor": sf, "demand_p99_Nm": 5.0 / sf, "rms_torque_Nm": 1.0,
+                       "verdict": verdict} for m, sf in zip("AB", sfs)}}
+    return {"legs": legs, "worst_motor": "FL A", "verdict": verdict, "time_step_s": 1e-3,
+            "deciding_check": "torque"}
+
+
+def test_step_check_marks_a_verdict_within_the_step_error(params, monkeypatch):
+    """SF 2.03 that moves by 0.04 at half the step lies within the step error of 2: marginal;
+    one that moves by 0.01 does not."""
+    import fivebar_drake.simulation.summary as summary_module
+    monkeypatch.setattr(summary_module, "answer", lambda s, p: "")
+    base = _summary([2.03, 2.5])
+    close = copy.deepcopy(base)
+    apply_step_check(close, {**_summary([1.99, 2.5]), "time_step_s": 5e-4}, params)
+    assert close["verdict"] == "marginal" and close["step_check"]["marginal"]
+    assert close["step_check"]["worst_sf_change"] == pytest.approx(0.04)
+    assert close["step_check"]["motors"]["FL A"]["demand_p99_change"] == pytest.approx(
+        2.03 / 1.99 - 1)
+    far = copy.deepcopy(base)
+    apply_step_check(far, {**_summary([2.02, 2.5]), "time_step_s": 5e-4}, params)
+    assert far["verdict"] == "pass" and not far["step_check"]["marginal"]
+
+
+@pytest.fixture(scope="module")
+def geared(params):
+    """The design study's fix: the same motor behind 11.5:1, a short trot and its step check."""
+    scenario = load_scenario(duration_s=DURATION_S)
+    design = with_changes(params, {"motor.gear_ratio": 11.5})
+    record = run_simulation(scenario, design, progress=False)
+    half = run_step_check(record, progress=False)
+    return design, record, summarize_run(record, half)
+
+
+@pytest.mark.slow
+def test_geared_design_fails_on_speed_not_torque(geared):
+    """11.5:1 passes the torque check (SF >= 2) but its B motors' demand lies beyond the
+    envelope's speed side more than 1 % of the time: the verdict names the speed check. The
+    share is recomputed here from the circuit (R i + (k_t / 1.5) N w > V_bus / sqrt(3) at the
+    demanded current), not from the package's envelope."""
+    design, record, summary = geared
+    assert summary["verdict"] == "fail" and summary["deciding_check"] == "speed"
+    assert "decided by the speed check" in summary["answer"]
+    m = design.motor
+    sig = signals(record)
+    start, end, _ = cycle_window(record.scenario, design, sig.t[-1] + 1e-3)
+    half_row = 0.5 * np.median(np.diff(sig.t))
+    win = (sig.t > start + half_row) & (sig.t <= end + half_row)
+    v_phase = m.bus_voltage_V / math.sqrt(3)
+    for i, leg in enumerate(record.layout.legs):
+        for j, name in enumerate("AB"):
+            checks = summary["legs"][leg][name]["checks"]
+            assert checks["torque"]["sf"] >= 2.0 and checks["torque"]["verdict"] == "pass"
+            tau, w = sig.command[win, i, j], sig.qd[win, i, j]
+            driving = tau * w > 0
+            current = np.abs(tau) / (m.gear_ratio * m.gear_efficiency * m.torque_constant_Nm_per_A)
+            beyond = driving & (current <= m.peak_current_A) & (
+                m.winding_resistance_ohm * current
+                + m.torque_constant_Nm_per_A / 1.5 * m.gear_ratio * np.abs(w) > v_phase)
+            assert checks["speed"]["outside_fraction"] == pytest.approx(np.mean(beyond),
+                                                                        abs=1e-12)
+    worst = summary["legs"][summary["worst_motor"].split()[0]][summary["worst_motor"].split()[1]]
+    assert worst["checks"]["speed"]["outside_fraction"] > 0.01
+    step = summary["step_check"]
+    assert step["half_time_step_s"] == pytest.approx(record.design.time_step_s / 2)
+    assert 0 < step["worst_demand_p99_change"] < 0.05       # the step error is small here
+
+
+@pytest.mark.slow
+def test_seed_ellipse_is_not_achieved(tmp_path, capsys):
+    """The seed's ellipse as a stance path saturates the motors and the robot does not walk:
+    not_achieved, exit 1, its demand reported as 'more than' the limit, never as a need."""
+    out = tmp_path / "ellipse"
+    code = main(["simulate", "--gait", "seed_ellipse", "--duration", str(DURATION_S),
+                 "--out", str(out)])
+    summary = json.loads((out / "summary.json").read_text())
+    assert code == 1 and summary["completed"]
+    assert summary["verdict"] == "not_achieved" and summary["deciding_check"] == "achieved"
+    assert "NOT ACHIEVED" in summary["answer"] and "need more than" in summary["answer"]
+    assert "the motors need 1" not in summary["answer"]
+    worst = summary["legs"][summary["worst_motor"].split()[0]][summary["worst_motor"].split()[1]]
+    assert worst["checks"]["achieved"]["verdict"] == "not_achieved"
+    assert worst["saturated_fraction"] > 0.05
+    assert "not achieved" in capsys.readouterr().err
