@@ -11,7 +11,8 @@ line, one JSON object: rtf (per closure), plant_alone_rtf, diagram_to_plant_rati
 _per_pair), max_loop_gap_m (per closure), rms_torque_agreement (largest per-motor relative RMS
 difference against `ball`), logging_share (the Rerun recording / the whole simulate job),
 output_share (writing the run's files: plots, recording, summary /
-whole simulate job), peak_rss_mb_10s, peak_rss_mb_60s, split_us_per_step."""
+whole simulate job), step_check_ratio (simulate --step-check over simulate, median of --pairs),
+peak_rss_mb_10s, peak_rss_mb_60s, split_us_per_step."""
 
 from __future__ import annotations
 
@@ -30,7 +31,9 @@ from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import TrajectorySource
 from pydrake.trajectories import PiecewisePolynomial
 
-from fivebar_drake.pipeline import run_simulation, summarize_run, write_simulation
+from fivebar_drake.core.motor import MotorModel
+from fivebar_drake.pipeline import (run_simulation, run_step_check, summarize_run,
+                                    write_simulation)
 from fivebar_drake.robots.quadruped.plant import CLOSURES, add_robot, set_standing_pose
 from fivebar_drake.simulation import systems
 from fivebar_drake.simulation.recording import write_recording
@@ -44,7 +47,8 @@ from fivebar_drake.simulation.scenario import load_scenario
 run_simulation(load_scenario(duration_s=float(sys.argv[1])), progress=False)
 print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024)
 """
-PYTHON_BLOCKS = {"gait source": systems.GaitSource, "leg controller": systems.FootLegController}
+PYTHON_BLOCKS = {"gait source": systems.GaitSource, "leg controller": systems.FootLegController,
+                 "motor model": MotorModel}
 
 
 def run_closure(closure: str, duration: float):
@@ -105,6 +109,23 @@ def python_time_per_block(duration: float) -> tuple[dict, float, float]:
     return dict(spent), record.wall_s, duration / record.design.time_step_s
 
 
+def step_check_ratio(duration: float, pairs: int) -> tuple[float, list[float]]:
+    """The simulate job with --step-check over the job without it (run, summary and files, as
+    the command line does), alternating pairs times: (median ratio, the ratios)."""
+    ratios = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for _ in range(pairs):
+            walls = []
+            for check in (False, True):
+                start = time.perf_counter()
+                record = run_simulation(load_scenario(duration_s=duration), progress=False)
+                half = run_step_check(record, progress=False) if check else None
+                write_simulation(record, Path(tmp) / str(check), half)
+                walls.append(time.perf_counter() - start)
+            ratios.append(walls[1] / walls[0])
+    return float(np.median(ratios)), ratios
+
+
 def peak_rss_mb(duration: float) -> float:
     out = subprocess.run([sys.executable, "-c", MEMORY_RUN, str(duration)], check=True,
                          capture_output=True, text=True).stdout
@@ -156,7 +177,7 @@ def main():
     spent, wall, steps = python_time_per_block(args.duration)
     per_step = {"plant (alone)": args.duration / alone / steps * 1e6}
     per_step.update({name: t / steps * 1e6 for name, t in spent.items()})
-    per_step["rest of the Diagram (Drake dispatch, C++ motor model and logs, cache effects)"] = (
+    per_step["rest of the Diagram (Drake dispatch, logs, cache effects)"] = (
         wall / steps * 1e6 - sum(per_step.values()))
     per_step["summary (after the run)"] = post / steps * 1e6
     per_step["output files: plots, recording, summary (after the run)"] = files / steps * 1e6
@@ -170,6 +191,9 @@ def main():
                         for leg in ball for m in ball[leg]) for c in CLOSURES if c != "ball"}
     print("per-motor RMS torque against ball, largest difference: "
           + ", ".join(f"{c} {v * 100:.1f} %" for c, v in agreement.items()))
+    check, checks = step_check_ratio(args.duration, args.pairs)
+    print(f"simulate --step-check / simulate (run, summary, files): "
+          f"{', '.join(f'{r:.2f}' for r in checks)}, median {check:.2f} (target <= 3.2)")
     rss10, rss60 = peak_rss_mb(10.0), peak_rss_mb(60.0)
     print(f"peak memory (fresh process): 10 s run {rss10:.0f} MB, 60 s run {rss60:.0f} MB "
           f"({rss60 / rss10:.2f}x)")
@@ -177,6 +201,7 @@ def main():
                       "diagram_to_plant_ratio": ratio,
                       "diagram_to_plant_ratio_per_pair": ratios,
                       "max_loop_gap_m": gap, "rms_torque_agreement": agreement,
+                      "step_check_ratio": check,
                       "output_share": share["bushing"], "logging_share": logging["bushing"], "peak_rss_mb_10s": rss10,
                       "peak_rss_mb_60s": rss60,
                       "split_us_per_step": {k: round(v, 1) for k, v in per_step.items()}}))

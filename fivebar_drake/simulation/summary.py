@@ -396,12 +396,11 @@ def answer(s: dict, params: Params) -> str:
     checks = "; ".join(_check_text(k, c[k]) for k in CHECK_ORDER)
     verdict_text = (f"{s['verdict'].upper()}, decided by the {s['deciding_check']} check"
                     if s["verdict"] != "marginal" else
-                    f"MARGINAL: {s['step_check']['why']} (the run again at half the plant "
-                    "step)")
+                    f"MARGINAL: {s['step_check']['why']} (step check at half the plant step)")
     static = m["static_trot_Nm"]
     return (f"{head} the motors need {m['demand_p99_Nm']:.2f} N·m ({PERCENTILE:g}th percentile "
             f"of the demand over {s['cycles_in_window']} cycles, worst motor {leg} {name}). "
-            f"Verdict {verdict_text} ({checks}). On the same poses with the same load schedule "
+            f"Verdict {verdict_text}. Checks: {checks}. On the same poses with the same load schedule "
             f"(the robot's weight shared by the feet in stance) the static torque is "
             f"{static:.2f} N·m: the dynamics add {m['demand_p99_Nm'] / static - 1:+.0%}. {seed}")
 
