@@ -227,8 +227,12 @@ def _sweep(args, signals) -> int:
     try:
         result, summary, written = sweep(spec, out, args.workers, args.scheduler)
     except (KeyboardInterrupt, Interrupted):
-        _err(f"the finished points are in {out / 'points.csv'}; run the same command again to "
-             "compute the rest")
+        from fivebar_drake.sweep.engine import finished_points
+
+        done, total = finished_points(spec, out)
+        _err(f"the finished points are in {out / 'points.csv'} ({done} of {total}); run the same "
+             "command again to " + ("compute the rest" if done < total else
+                                    "write the plots and sweep.md (every point is done)"))
         raise
     say(f"{summary['points']} design points ({spec.fidelity}), {result.computed} computed now, "
         f"{result.failed} failed; outcomes: " + ", ".join(

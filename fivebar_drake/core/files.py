@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import stat
 import sys
 import tempfile
 from pathlib import Path
@@ -15,6 +16,8 @@ from fivebar_drake.core.validation import ParameterError
 
 
 TEMP_PREFIX = ".fivebar-tmp-"   # temporary files of an atomic write, named so a later run removes them
+MAX_INPUT_BYTES = 10_000_000    # an input file (parameters, scenario, spec, summary) is a few kB;
+#                                 this bounds what a wrong file (a log, a data dump) costs
 _UMASK = os.umask(0)
 
 os.umask(_UMASK)
@@ -24,13 +27,23 @@ def read_input_text(path, what: str) -> str:
     """The text of an input file (UTF-8); ParameterError naming the file and what is wrong."""
     path = Path(path)
     try:
-        data = path.read_bytes()
+        mode = path.stat().st_mode
+        if stat.S_ISDIR(mode):
+            raise IsADirectoryError
+        if not stat.S_ISREG(mode):         # a FIFO or a device would block or never end
+            raise ParameterError(f"is not a regular file (a pipe, socket or device); the {what} "
+                                 "must be a file", source=str(path))
+        with open(path, "rb") as f:
+            data = f.read(MAX_INPUT_BYTES + 1)
     except FileNotFoundError:
         raise ParameterError(f"{what} not found", source=str(path)) from None
     except IsADirectoryError:
         raise ParameterError(f"is a folder; {what} must be a file", source=str(path)) from None
     except OSError as err:
         raise ParameterError(f"cannot read the {what}: {err.strerror}", source=str(path)) from None
+    if len(data) > MAX_INPUT_BYTES:
+        raise ParameterError(f"the {what} is larger than {MAX_INPUT_BYTES:,} bytes: not a file "
+                             "of this tool", source=str(path))
     try:
         return data.decode("utf-8")
     except UnicodeDecodeError as err:

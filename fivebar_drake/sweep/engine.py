@@ -16,13 +16,15 @@ import io
 import json
 import os
 import sys
+import tempfile
 import time
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
+from urllib.parse import urlsplit
 
 from fivebar_drake.analysis.design_points import with_changes
-from fivebar_drake.core.files import write_atomic
+from fivebar_drake.core.files import read_input_text, say, write_atomic
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.robots.quadruped.config import load_params
 from fivebar_drake.robots.quadruped.params import Params
@@ -34,6 +36,9 @@ from fivebar_drake.sweep.spec import SweepSpec
 TABLE_FILE, SPEC_FILE = "points.csv", "sweep.json"
 ANALYSIS_CHUNK = 500      # analysis points per task: whole groups of the vectorised evaluation
 PROGRESS_EVERY_S = 1.0
+WORKERS_PER_CORE = 4      # process workers beyond a few per core only queue for the cores, and
+#                           each simulation worker holds ~0.6 GB (a Drake plant and its run)
+SCHEDULER_SCHEMES = ("tcp", "tls", "ws", "wss", "ucx")   # Dask's comm protocols
 
 
 @dataclass
@@ -47,6 +52,7 @@ class SweepResult:
     computed: int
     failed: int
     params: Params
+    dropped: int = 0
 
 
 def base_inputs(spec: SweepSpec):
@@ -68,33 +74,100 @@ def base_inputs(spec: SweepSpec):
     return params, scenario
 
 
-def _read_rows(table: Path) -> list[dict]:
-    """The table's complete rows; a last line cut short (the sweep was killed while writing it)
-    is removed from the file, so its point is computed again."""
-    if not table.exists():
-        return []
-    text = table.read_text(encoding="utf-8")
-    if text and not text.endswith("\n"):
-        text = text[:text.rfind("\n") + 1]
-        write_atomic(table, text)
-    return list(csv.DictReader(io.StringIO(text, newline="")))
+def check_workers(workers: int | None) -> None:
+    """ParameterError unless workers is None or 1 .. WORKERS_PER_CORE x the cores."""
+    most = WORKERS_PER_CORE * (os.cpu_count() or 1)
+    if workers is not None and not 1 <= workers <= most:
+        raise ParameterError(f"--workers = {workers}: must be 1 .. {most} ({WORKERS_PER_CORE} "
+                             f"per core of this machine's {os.cpu_count()}: more only queue for "
+                             "the cores, and each simulation worker holds ~0.6 GB)", "--workers",
+                             "command line")
 
 
-def _open_output(spec: SweepSpec, out: Path, header: list[str]) -> list[dict]:
-    """Prepare out for the sweep: a new folder gets sweep.json; a folder of the same sweep
-    keeps its rows (returned); a folder of another sweep is refused (ParameterError)."""
-    out.mkdir(parents=True, exist_ok=True)
-    record = {"fingerprint": spec.fingerprint(), "spec": spec.source, "columns": header}
+def check_scheduler(address: str) -> None:
+    """ParameterError unless address reads as a Dask scheduler's, SCHEME://HOST:PORT."""
+    try:
+        parts = urlsplit(address)
+        port = parts.port
+    except ValueError:
+        parts, port = None, None
+    if parts is None or parts.scheme not in SCHEDULER_SCHEMES or not parts.hostname or not port:
+        raise ParameterError(f"--scheduler = {address!r}: not a Dask scheduler address; write "
+                             f"SCHEME://HOST:PORT with SCHEME one of {list(SCHEDULER_SCHEMES)}, "
+                             "e.g. tcp://127.0.0.1:8786", "--scheduler", "command line")
+
+
+def check_output_folder(out: Path) -> None:
+    """ParameterError unless out is (or can be made as) a folder this process can write in;
+    nothing is left behind by the check (a folder it had to make is removed again)."""
+    where = f"--out {out}"
+    if out.exists() and not out.is_dir():
+        raise ParameterError("is a file; the sweep's output must be a folder", source=where)
+    made = not out.exists()
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+        with tempfile.NamedTemporaryFile(dir=out):
+            pass
+    except OSError as err:
+        raise ParameterError(f"cannot create or write into this folder: "
+                             f"{err.strerror or err}", source=where) from None
+    finally:
+        if made and out.is_dir() and not any(out.iterdir()):
+            out.rmdir()
+
+
+def _refuse(out: Path, name: str, why: str) -> ParameterError:
+    return ParameterError(f"{why}; it is not a file this sweep wrote: remove {name} (or the "
+                          "folder) to compute every point again, or choose another --out",
+                          "--out", str(out / name))
+
+
+def _previous_rows(spec: SweepSpec, out: Path, header: list[str],
+                   points: list[dict]) -> tuple[list[dict] | None, int]:
+    """What out holds of this sweep, read only: (None: no sweep.json, a new sweep; else the
+    rows of points.csv that belong to it, the number of rows dropped). Rows that do not belong
+    (a point the sweep does not have, a repeated point, values that are not the point's, a row
+    with extra cells, a last line cut short by a kill) are dropped and computed again; a
+    sweep.json of another sweep, or files that are not this tool's, are refused
+    (ParameterError naming the file and why)."""
     path = out / SPEC_FILE
-    if path.exists():
-        old = json.loads(path.read_text())
-        if old.get("fingerprint") != record["fingerprint"]:
-            raise ParameterError(f"{out} holds the results of another sweep ({old.get('spec')}); "
-                                 "choose another --out or remove the folder", "--out")
-        return _read_rows(out / TABLE_FILE)
-    (out / TABLE_FILE).unlink(missing_ok=True)
-    write_atomic(path, json.dumps(record, indent=1))
-    return []
+    if not path.exists():
+        return None, 0
+    try:
+        old = json.loads(read_input_text(path, "sweep record"))
+    except json.JSONDecodeError as err:
+        raise _refuse(out, SPEC_FILE, f"not valid JSON ({err.msg} at line {err.lineno})") \
+            from None
+    except RecursionError:
+        raise _refuse(out, SPEC_FILE, "nested too deeply") from None
+    if not isinstance(old, dict) or not isinstance(old.get("fingerprint"), str):
+        raise _refuse(out, SPEC_FILE, "not a sweep record (an object with a fingerprint)")
+    if old["fingerprint"] != spec.fingerprint():
+        raise ParameterError(f"{out} holds the results of another sweep ({old.get('spec')}), or "
+                             "the spec or a file it reads (config, scenario, the scenario's "
+                             "params_file) changed since: choose another --out or remove the "
+                             "folder", "--out")
+    table = out / TABLE_FILE
+    if not table.exists():
+        return [], 0
+    text = read_input_text(table, "sweep table")
+    lines = text.splitlines(keepends=True)
+    if not lines or lines[0].rstrip("\r\n") != ",".join(header):
+        raise _refuse(out, TABLE_FILE, "its header is not this sweep's columns")
+    complete = text if text.endswith("\n") else text[:text.rfind("\n") + 1]
+    rows, seen = [], set()
+    records = list(csv.DictReader(io.StringIO(complete, newline="")))
+    for row in records:
+        try:
+            point = int(row["point"])
+        except (TypeError, ValueError):
+            continue
+        if (None in row or point in seen or not 0 <= point < len(points)
+                or any(row.get(k) != str(v) for k, v in points[point].items())):
+            continue
+        seen.add(point)
+        rows.append(row)
+    return rows, len(records) - len(rows) + (complete != text)
 
 
 class Progress:
@@ -135,9 +208,10 @@ def _client(workers: int | None, scheduler: str | None, client=None):
     if scheduler:
         try:
             client = Client(scheduler, timeout="10s")
-        except (OSError, TimeoutError) as err:
+        except Exception as err:  # noqa: BLE001  (any failure to connect is a bad address)
             raise ParameterError(f"--scheduler = {scheduler}: no Dask scheduler answers there "
-                                 f"({err})", "--scheduler") from None
+                                 f"({type(err).__name__}: {err})"[:500], "--scheduler",
+                                 "command line") from None
     else:
         client = Client(LocalCluster(n_workers=workers or os.cpu_count(), threads_per_worker=1,
                                      processes=True, dashboard_address=":0"))
@@ -157,21 +231,56 @@ def run_sweep(spec: SweepSpec, out: str | Path, workers: int | None = None,
     client: a Dask client to use (and leave open), e.g. one cluster for several sweeps;
     otherwise one of the scheduler, or of a new local cluster of `workers`, for this sweep."""
     out = Path(out)
-    params, scenario = base_inputs(spec)
+    check_workers(workers)
+    if scheduler:
+        check_scheduler(scheduler)
+    try:
+        params, scenario = base_inputs(spec)
+    except ParameterError as err:
+        raise err.located(spec.source or "sweep spec") from None
     header = columns(spec.fidelity, spec.names)
-    rows = _open_output(spec, out, header)
-    done = {int(r["point"]) for r in rows}
-    todo = [(i, p) for i, p in enumerate(spec.points()) if i not in done]
-    bar = Progress(len(done) + len(todo), len(done), progress)
+    check_output_folder(out)
+    points = spec.points()
+    rows, dropped = _previous_rows(spec, out, header, points)
+    if dropped and progress:
+        say(f"{out / TABLE_FILE}: {dropped} row(s) do not belong to this sweep (a point it does "
+            "not have, repeated, other values, or cut short): computing them again", sys.stderr)
+    done = {int(r["point"]) for r in rows or ()}
+    todo = [(i, p) for i, p in enumerate(points) if i not in done]
+    bar = Progress(len(points), len(done), progress)
     computed = 0
-    if todo:
-        with _client(workers, scheduler, client) as dask:
+    with _client(workers, scheduler, client) if todo else _no_client() as dask:
+        out.mkdir(parents=True, exist_ok=True)     # the inputs and the scheduler are good
+        if rows is None:
+            write_atomic(out / SPEC_FILE, json.dumps({"fingerprint": spec.fingerprint(),
+                                                      "spec": spec.source, "columns": header},
+                                                     indent=1))
+        _write_table(out / TABLE_FILE, header, sorted(rows or (), key=lambda r: int(r["point"])))
+        if todo:
             computed = _compute(dask, spec, params, scenario, todo, out / TABLE_FILE, header,
                                 bar)
-    rows = sorted(_read_rows(out / TABLE_FILE), key=lambda r: int(r["point"]))
+    rows, _ = _previous_rows(spec, out, header, points)
+    rows = sorted(rows, key=lambda r: int(r["point"]))
     _write_table(out / TABLE_FILE, header, rows)
     return SweepResult(table=out / TABLE_FILE, rows=rows, computed=computed,
-                       failed=sum(r["status"] == "failed" for r in rows), params=params)
+                       failed=sum(r["status"] == "failed" for r in rows), params=params,
+                       dropped=dropped)
+
+
+@contextmanager
+def _no_client():
+    yield None
+
+
+def finished_points(spec: SweepSpec, out: Path) -> tuple[int, int]:
+    """(points of the sweep in out's table, points of the sweep), for a message after an
+    interruption."""
+    try:
+        rows, _ = _previous_rows(spec, Path(out), columns(spec.fidelity, spec.names),
+                                 spec.points())
+    except ParameterError:
+        rows = None
+    return len(rows or ()), len(spec.points())
 
 
 def _compute(client, spec, params, scenario, todo, table: Path, header, bar: Progress) -> int:

@@ -10,8 +10,10 @@ import numpy as np
 from fivebar_drake.core.files import save_figure
 
 SWEEP_PLOTS = ("verdict_map.png", "pareto.png")
-COLORS = {"pass": "tab:green", "warn": "tab:orange", "fail": "tab:red",
-          "insufficient": "tab:purple", "failed": "0.6"}
+COLORS = {"pass": "tab:green", "warn": "tab:orange", "marginal": "gold", "fail": "tab:red",
+          "not_achieved": "tab:brown", "insufficient": "tab:purple", "failed": "0.6"}
+RANK = {"failed": 0, "pass": 1, "warn": 2, "marginal": 3, "insufficient": 4, "fail": 5,
+        "not_achieved": 6}     # where points share a place, the worse is drawn on top
 SPEED_LABEL = {"analysis": "stride speed 2 a f (m/s)",
                "simulation": "mean forward speed (m/s)"}
 
@@ -47,15 +49,14 @@ def write_sweep_plots(rows: list[dict], axes: tuple[str, ...], fidelity: str, sf
 
     written = []
     fig, ax = plt.subplots(figsize=(7, 5))
-    rank = {"failed": 0, "pass": 1, "warn": 2, "insufficient": 3, "fail": 4}
-    for row in sorted(rows, key=lambda r: rank[_outcome(r)]):
-        x = _value(row[axes[0]])
-        y = _value(row[axes[1]]) if len(axes) > 1 else 0.0
-        outcome = _outcome(row)
-        ax.scatter([x], [y], s=160, marker="x" if outcome == "failed" else "s",
-                   color=COLORS[outcome])
-    for outcome, color in COLORS.items():
-        ax.scatter([], [], marker="s", color=color, label=outcome)
+    outcomes = [_outcome(r) for r in rows]
+    size = 160 if len(rows) <= 400 else max(4, 64000 / len(rows))   # one scatter per outcome
+    for outcome in sorted(set(outcomes), key=lambda o: RANK.get(o, len(RANK))):
+        mine = [r for r, o in zip(rows, outcomes) if o == outcome]
+        x = [_value(r[axes[0]]) for r in mine]
+        y = [_value(r[axes[1]]) for r in mine] if len(axes) > 1 else [0.0] * len(mine)
+        ax.scatter(x, y, s=size, marker="x" if outcome == "failed" else "s",
+                   color=COLORS.get(outcome, "k"), label=outcome)
     ax.set_xlabel(axes[0])
     ax.set_ylabel(axes[1] if len(axes) > 1 else "")
     ax.set_title("worst motor's verdict per design point")
@@ -66,7 +67,7 @@ def write_sweep_plots(rows: list[dict], axes: tuple[str, ...], fidelity: str, sf
     if ok:
         speed = np.array([float(r["speed_m_s"]) for r in ok])
         sf = np.array([float(r["worst_safety_factor"]) for r in ok])
-        ax.scatter(speed, sf, color=[COLORS[_outcome(r)] for r in ok], s=25)
+        ax.scatter(speed, sf, color=[COLORS.get(_outcome(r), "k") for r in ok], s=25)
         front = pareto_front(speed, sf)
         ax.plot(speed[front], sf[front], "k-o", mfc="none", label="Pareto front")
         ax.axhline(sf_pass, color="tab:green", ls="--", lw=1, label=f"SF = {sf_pass:g} (pass)")

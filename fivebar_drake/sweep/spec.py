@@ -29,15 +29,17 @@ import dataclasses
 import hashlib
 import itertools
 import json
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
-import yaml
 
 from fivebar_drake.analysis.design_points import MODELS
 from fivebar_drake.core.footpath import PATHS
+from fivebar_drake.core.files import read_input_text
 from fivebar_drake.core.validation import ParameterError, check_number, require
+from fivebar_drake.core.yaml_files import load_yaml
 
 FIDELITIES = ("analysis", "simulation")
 SAMPLINGS = ("grid", "random", "latin_hypercube")
@@ -104,13 +106,27 @@ class SweepSpec:
         return [dict(zip(self.names, row)) for row in zip(*columns)]
 
     def fingerprint(self) -> str:
-        """A hash of everything that decides the points and their results (not the plot)."""
+        """A hash of everything that decides the points and their results (not the plot): the
+        spec's fields and the text of every file they name, the parameter file a scenario
+        names included (so editing any of them makes another sweep)."""
         data = dataclasses.asdict(dataclasses.replace(self, plot=()))
         data.pop("source")
-        for key in ("config", "scenario"):
-            if data[key]:
-                data[key + "_text"] = Path(data[key]).read_text()
+        for key, path in self.input_files().items():
+            data[key + "_text"] = read_input_text(path, key.replace("_", " "))
         return hashlib.sha256(json.dumps(data, sort_keys=True, default=str).encode()).hexdigest()
+
+    def input_files(self) -> dict[str, Path]:
+        """The files the sweep reads besides the spec: config, scenario and the scenario's
+        params_file (relative to the scenario's folder)."""
+        files = {key: Path(getattr(self, key)) for key in ("config", "scenario")
+                 if getattr(self, key)}
+        if self.scenario:
+            from fivebar_drake.simulation.scenario import read_scenario_file
+
+            named = read_scenario_file(self.scenario).get("params_file")
+            if isinstance(named, str) and named:
+                files["scenario_params_file"] = Path(self.scenario).parent / named
+        return files
 
 
 KEYS = {"fidelity", "sampling", "vary", "samples", "seed", "config", "scenario", "gait",
@@ -120,13 +136,7 @@ KEYS = {"fidelity", "sampling", "vary", "samples", "seed", "config", "scenario",
 def load_spec(path: str | Path) -> SweepSpec:
     """Read and validate SPEC.yaml (ParameterError naming the file and the field)."""
     path = Path(path)
-    try:
-        data = yaml.safe_load(path.read_text())
-    except OSError as err:
-        raise ParameterError(f"cannot read the sweep spec: {err.strerror}", "SPEC").located(
-            str(path)) from None
-    except yaml.YAMLError as err:
-        raise ParameterError(f"not YAML: {err}", "SPEC").located(str(path)) from None
+    data = load_yaml(read_input_text(path, "sweep spec"), str(path))
     try:
         return spec_from_dict(data, path.parent, str(path))
     except ParameterError as err:
@@ -153,7 +163,7 @@ def spec_from_dict(data, folder: Path, source: str = "") -> SweepSpec:
     if sampling == "grid":
         require(samples is None, "samples", samples, "applies to random and latin_hypercube "
                 "sampling; a grid takes every combination")
-        count = int(np.prod([len(v.grid()) for v in varied]))
+        count = math.prod(len(v.values) if v.values else v.num for v in varied)   # exact
     else:
         check_number("samples", samples, 1, MAX_POINTS, integer=True,
                      why=f"{sampling} sampling draws this many points")
@@ -186,9 +196,11 @@ def spec_from_dict(data, folder: Path, source: str = "") -> SweepSpec:
     require(files.get("scenario") is None or fidelity == "simulation", "scenario",
             data.get("scenario"), "applies to simulation points")
     names = [v.path for v in varied]
-    plot = tuple(data.get("plot") or names[:2])
-    require(all(p in names for p in plot) and 1 <= len(plot) <= 2, "plot", list(plot),
-            f"one or two of the varied parameters {names}")
+    plot = data.get("plot") or names[:2]
+    plot = [plot] if isinstance(plot, str) else plot
+    require(isinstance(plot, list) and 1 <= len(plot) <= 2 and all(p in names for p in plot),
+            "plot", data.get("plot"), f"one or two of the varied parameters {names}")
+    plot = tuple(plot)
     for v in varied:
         require(fidelity == "simulation" or not v.path.startswith("scenario."), v.path, v.path,
                 "scenario fields vary only in simulation sweeps")
@@ -215,6 +227,8 @@ def _varied(path: str, value, sampling: str) -> Varied:
     if sampling == "grid":
         check_number(f"{field_}.num", num, 1, MAX_POINTS, integer=True,
                      why="a grid takes num values of a range")
+        require(num == 1 or rng[0] < rng[1], f"{field_}.range", rng,
+                "a range of more than one value needs low < high")
     else:
         require(num is None, f"{field_}.num", num, f"{sampling} sampling draws from the range; "
                 "num applies to grids")
