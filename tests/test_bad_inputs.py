@@ -76,6 +76,26 @@ def broken_run(t, text):
     return str(run)
 
 
+def summary_text(**changes) -> str:
+    """A minimal summary.json of `simulate`, with some top-level values changed."""
+    motor = {"demand_p99_Nm": 3.0, "rms_torque_Nm": 1.5, "static_seed_Nm": 1.9,
+             "static_trot_Nm": 2.9, "verdict": "fail"}
+    data = {"gait": "trot", "closure": "bushing", "answer": "", "verdict": "fail",
+            "mean_forward_speed_m_s": 0.1, "gait_speed_m_s": 0.16, "max_tilt_deg": 2.0,
+            "seed_peak_torque_Nm": 1.95, "motor_peak_torque_Nm": 5.0,
+            "legs": {"FL": {"A": motor, "B": motor}}, **changes}
+    return json.dumps(data)
+
+
+def good_run(t):
+    return broken_run(t, summary_text())
+
+
+def c_png_folder(t):
+    (t / "c.png").mkdir()
+    return ["compare", good_run(t), "--out", str(t / "c.md")]
+
+
 # (argv builder taking tmp_path, what the message names (a file name or option; {t}: tmp_path),
 #  expected parts)
 CASES = {
@@ -229,6 +249,23 @@ CASES = {
     "compare a foreign summary": (lambda t: ["compare", broken_run(t, '{"gait": "trot"}'),
                                              "--out", str(t / "c.md")], "summary.json",
                                   "lacks the keys"),
+    "compare a null verdict": (lambda t: ["compare", broken_run(t, summary_text(verdict=None)),
+                                          "--out", str(t / "c.md")], "summary.json",
+                               "verdict = None: must be text"),
+    "compare a speed in words": (lambda t: ["compare", broken_run(t, summary_text(
+        mean_forward_speed_m_s="fast")), "--out", str(t / "c.md")], "summary.json",
+        "mean_forward_speed_m_s = 'fast': must be a number or null"),
+    "compare a summary nested 100000 deep": (lambda t: ["compare", broken_run(
+        t, "[" * 100_000 + "]" * 100_000), "--out", str(t / "c.md")], "summary.json",
+        "nested too deeply"),
+    "compare into a PNG": (lambda t: ["compare", good_run(t), "--out", str(t / "x.png")],
+                           "--out", "give a .md file name"),
+    "compare over its input": (lambda t: ["compare", good_run(t), "--out",
+                                          str(t / "run" / "summary.json")], "--out",
+                               "give a .md file name"),
+    "compare over an input named .md": (lambda t: ["compare", good_run(t), "--out",
+                                                   str(t / "run")], "--out", "is a folder"),
+    "compare beside a folder named like its PNG": (c_png_folder, "--out", "c.png is a folder"),
 }
 
 

@@ -13,10 +13,12 @@ from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.simulation.summary import MIN_CYCLES
 
 
-TOP_KEYS = ("gait", "closure", "answer", "verdict", "mean_forward_speed_m_s", "gait_speed_m_s",
-            "max_tilt_deg", "seed_peak_torque_Nm", "motor_peak_torque_Nm", "legs")
-
+TEXT_KEYS = ("gait", "closure", "answer", "verdict")
+NUMBER_KEYS = ("mean_forward_speed_m_s", "gait_speed_m_s", "max_tilt_deg", "seed_peak_torque_Nm",
+               "motor_peak_torque_Nm")              # numbers, or null (a run that diverged)
+TOP_KEYS = (*TEXT_KEYS, *NUMBER_KEYS, "legs")
 MOTOR_KEYS = ("demand_p99_Nm", "rms_torque_Nm", "static_seed_Nm", "static_trot_Nm")
+MAX_LEGS = 16
 
 
 def load_summaries(run_dirs) -> list[dict]:
@@ -35,22 +37,46 @@ def load_summaries(run_dirs) -> list[dict]:
     return out
 
 
+def _number(value) -> bool:
+    return value is None or (isinstance(value, (int, float)) and not isinstance(value, bool))
+
+
 def _summary(path: Path) -> dict:
+    """summary.json at path, its types checked: it is untrusted data (ParameterError naming
+    the field)."""
     try:
         data = json.loads(read_input_text(path, "run summary"))
     except json.JSONDecodeError as err:
-        raise ParameterError(f"not valid JSON ({err})") from None
+        raise ParameterError(f"not valid JSON ({err.msg} at line {err.lineno})") from None
+    except RecursionError:
+        raise ParameterError("not a run summary: nested too deeply") from None
     require(isinstance(data, dict), "summary", type(data).__name__, "must be a JSON object")
     missing = [key for key in TOP_KEYS if key not in data]
-    require(not missing, "summary", sorted(data)[:5], f"lacks the keys {missing}")
-    require(isinstance(data["legs"], dict), "legs", data["legs"], "must map legs to motors")
-    for leg, motors in data["legs"].items():
+    require(not missing, "summary", sorted(map(str, data))[:5], f"lacks the keys {missing}")
+    for key in TEXT_KEYS:
+        require(isinstance(data[key], str), key, data[key], "must be text")
+    for key in NUMBER_KEYS:
+        require(_number(data[key]), key, data[key], "must be a number or null")
+    legs = data["legs"]
+    require(isinstance(legs, dict) and 0 < len(legs) <= MAX_LEGS, "legs", type(legs).__name__,
+            f"must map 1 .. {MAX_LEGS} legs to their motors")
+    for leg, motors in legs.items():
+        require(isinstance(motors, dict), f"legs.{leg}", type(motors).__name__,
+                f"must map the motors {list(MOTORS)} to their figures")
         for motor in MOTORS:
+            figures = motors.get(motor)
+            require(isinstance(figures, dict), f"legs.{leg}.{motor}", type(figures).__name__,
+                    "must be the motor's figures")
             for key in MOTOR_KEYS:
-                value = motors.get(motor, {}).get(key, "missing") if isinstance(motors, dict) \
-                    else "missing"
-                require(value is None or isinstance(value, (int, float)),
-                        f"legs.{leg}.{motor}.{key}", value, "must be a number or null")
+                value = figures.get(key, "missing")
+                require(_number(value), f"legs.{leg}.{motor}.{key}", value,
+                        "must be a number or null")
+            require(isinstance(figures.get("verdict", ""), str), f"legs.{leg}.{motor}.verdict",
+                    figures.get("verdict"), "must be text")
+            require(isinstance(figures.get("checks", {}), (dict, type(None))),
+                    f"legs.{leg}.{motor}.checks", figures.get("checks"), "must be an object")
+    motor = data.get("motor")
+    require(motor is None or isinstance(motor, dict), "motor", motor, "must be an object")
     return data
 
 
@@ -141,11 +167,36 @@ def figure(summaries: list[dict]):
     return fig
 
 
-def write_comparison(run_dirs, out_md: Path) -> list[Path]:
-    """Write out_md and a PNG beside it comparing the runs in run_dirs (each atomically)."""
-
-    summaries = load_summaries(run_dirs)
-    out_md.parent.mkdir(parents=True, exist_ok=True)
-    write_atomic(out_md, markdown(summaries))
+def check_outputs(run_dirs, out_md: Path) -> Path:
+    """The PNG's path beside out_md, after checking the outputs (ParameterError naming --out):
+    out_md is a .md file, neither output is a folder or one of the inputs."""
+    out_md = Path(out_md)
+    where = f"--out {out_md}"
+    if out_md.is_dir():
+        raise ParameterError("is a folder; give a file name", "--out", where)
+    if out_md.suffix.lower() != ".md":
+        raise ParameterError(f"the comparison is markdown: give a .md file name (its PNG is "
+                             f"written beside it, {out_md.with_suffix('.png').name})", "--out",
+                             where)
     png = out_md.with_suffix(".png")
-    return [out_md, save_figure(figure(summaries), png)]
+    inputs = {(Path(run) / "summary.json").resolve() for run in run_dirs}
+    for path in (out_md, png):
+        if path.is_dir():
+            raise ParameterError(f"{path} is a folder: the comparison writes {out_md.name} and "
+                                 f"{png.name}", "--out", where)
+        if path.resolve() in inputs or any(path.resolve() == Path(r).resolve()
+                                           for r in run_dirs):
+            raise ParameterError(f"{path} is one of the inputs: the comparison never writes "
+                                 "over a run", "--out", where)
+    return png
+
+
+def write_comparison(run_dirs, out_md: Path) -> list[Path]:
+    """Write out_md and a PNG beside it comparing the runs in run_dirs (each atomically), after
+    every input and output is checked (check_outputs, load_summaries)."""
+    png = check_outputs(run_dirs, out_md)
+    summaries = load_summaries(run_dirs)
+    text, fig = markdown(summaries), figure(summaries)
+    out_md.parent.mkdir(parents=True, exist_ok=True)
+    write_atomic(out_md, text)
+    return [out_md, save_figure(fig, png)]
