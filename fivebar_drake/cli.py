@@ -59,7 +59,7 @@ def _with_sets(params, sets):
     the command line)."""
     if not sets:
         return params
-    from fivebar_drake.analysis.design_points import with_changes
+    from fivebar_drake.robots.quadruped.config import with_changes
 
     changes = {}
     for item in sets:

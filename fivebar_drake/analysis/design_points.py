@@ -3,7 +3,7 @@
 a leg (a sweep's `analysis` fidelity).
 
 A design is the base parameters with some fields changed by dotted path ("gait.frequency_hz",
-"leg.ce_m", ...; with_changes). Designs with the same leg geometry, links, gravity, sample
+"leg.ce_m", ...; robots/quadruped/config.with_changes). Designs with the same leg geometry, links, gravity, sample
 count and duty factor are solved together: one IK with mode tracking over all their cycles (time first, one
 column per design), one pass of the mechanism's Jacobians and dynamics.
 """
@@ -13,64 +13,18 @@ from __future__ import annotations
 import dataclasses
 import numpy as np
 
-from fivebar_drake.analysis.thermal import rms_current, thermal_margin
 from fivebar_drake.core.checks import Checks, motor_checks, verdict
 from fivebar_drake.core.footpath import (TROT_PHASES_RAD, cycle_phase, path_arrays, path_constants,
                                          stance_loads)
 from fivebar_drake.core.motor import Motor
-from fivebar_drake.core.validation import ParameterError, require
+from fivebar_drake.core.thermal import rms_current, thermal_margin
+from fivebar_drake.core.validation import require
 from fivebar_drake.mechanisms.fivebar import (MOTORS, UnreachableError, periodic_derivatives,
                                               track_modes)
 from fivebar_drake.robots.quadruped.leg_loads import full_model
 from fivebar_drake.robots.quadruped.params import Params
 
 MODELS = ("full_trot", "full")   # leg_loads.trot_model, leg_loads.full_model
-SECTIONS = ("leg", "links", "robot", "gait", "motor", "checks", "body")
-
-
-def with_changes(params: Params, changes: dict) -> Params:
-    """The parameters with fields changed by dotted path (section.field, or links.NAME.field),
-    validated as a parameter file is (ParameterError naming the field). The motor is given by
-    its motor-side data, so changing motor.gear_ratio keeps the motor and changes the gearbox
-    (core/motor.py): the same physics as a parameter file with that ratio."""
-    sections = {}
-    for path, value in changes.items():
-        parts = path.split(".")
-        if parts[0] not in SECTIONS or len(parts) != (3 if parts[0] == "links" else 2):
-            raise ParameterError(f"{path}: not a parameter; use section.field with a section of "
-                                 f"{list(SECTIONS)} (links.NAME.field for a link)", path)
-        sections.setdefault(parts[0], {})[".".join(parts[1:])] = value
-    new = {}
-    for section, fields in sections.items():
-        old = getattr(params, section)
-        if section == "links":
-            links = dict(old)
-            for key, value in fields.items():
-                name, field = key.split(".")
-                if name not in links:
-                    raise ParameterError(f"links.{name}: no such link; links are {list(links)}",
-                                         f"links.{name}")
-                links[name] = _replace(links[name], f"links.{name}", {field: value})
-            new[section] = links
-        else:
-            new[section] = _replace(old, section, fields)
-    return dataclasses.replace(params, **new)
-
-
-def _replace(obj, section: str, fields: dict):
-    known = {f.name: f for f in dataclasses.fields(obj)}
-    for name in fields:
-        if name not in known:
-            raise ParameterError(f"{section}.{name}: no such field; {section} has "
-                                 f"{sorted(known)}", f"{section}.{name}")
-    values = {k: float(v) if known[k].type in ("float", "float | None") and isinstance(v, int)
-              and not isinstance(v, bool) else v for k, v in fields.items()}
-    try:
-        return dataclasses.replace(obj, **values)
-    except TypeError as err:
-        raise ParameterError(f"{section}: {err}", section) from None
-
-
 def motor_figures(motor: Motor, checks: Checks, torque, speed) -> dict:
     """Per-motor figures of torques (N*m) at motor speeds (rad/s) sampled over one cycle
     (N, motors), time first: peak |torque|, RMS torque, safety factor peak_torque / peak, peak
@@ -107,7 +61,7 @@ def evaluate_designs(designs: list[Params], path: str = "seed_ellipse",
     thermal_current_margin, verdict (the worst of the torque, speed and thermal checks,
     core/checks.motor_checks), deciding_check, torque_verdict; and stride_speed_m_s (2 a f, the
     foot's mean ground speed on the stride), and with the motor's thermal model thermal_margin_K
-    and time_to_winding_limit_s (analysis.thermal.thermal_margin at the RMS current). A design
+    and time_to_winding_limit_s (core.thermal.thermal_margin at the RMS current). A design
     whose path leaves the workspace gets {"error": ...} instead."""
     rows: list[dict | None] = [None] * len(designs)
     groups: dict = {}

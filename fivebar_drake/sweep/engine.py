@@ -23,10 +23,9 @@ from dataclasses import dataclass
 from pathlib import Path
 from urllib.parse import urlsplit
 
-from fivebar_drake.analysis.design_points import with_changes
 from fivebar_drake.core.files import read_input_text, say, write_atomic
 from fivebar_drake.core.validation import ParameterError
-from fivebar_drake.robots.quadruped.config import load_params
+from fivebar_drake.robots.quadruped.config import load_params, with_changes
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.simulation.scenario import load_scenario
 from fivebar_drake.sweep.points import (SCENARIO, analysis_rows, columns, scenario_with,

@@ -9,7 +9,7 @@ marginal, insufficient), `worst_deciding_check`, `worst_safety_factor`, `worst_d
 (analysis: the peak torque of the worst motor under the spec's load model; simulation: its
 demand p99), `speed_m_s` (analysis: the stride speed 2 a f; simulation: the mean forward
 speed), `worst_thermal_margin_K` (the least margin of a winding's steady temperature below its
-limit at the RMS current, analysis.thermal.thermal_margin; negative: it overheats), for analysis
+limit at the RMS current, core.thermal.thermal_margin; negative: it overheats), for analysis
 points `worst_torque_speed_margin` (the least ratio of the envelope's torque to the demand over
 both motors) and `speed_ok` (the seed's check: no motor beyond its no-load speed), then per
 motor (analysis: A, B; simulation: FL_A ... RR_B) its figures (speed_margin,
@@ -21,17 +21,18 @@ from __future__ import annotations
 
 import dataclasses
 
-from fivebar_drake.analysis.design_points import evaluate_designs, with_changes
-from fivebar_drake.analysis.thermal import thermal_margin
+from fivebar_drake.analysis.design_points import evaluate_designs
+from fivebar_drake.core.thermal import thermal_margin
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.core.checks import SEVERITY
 from fivebar_drake.pipeline import run_simulation, run_step_check, summarize_run
+from fivebar_drake.robots.quadruped.config import with_changes
+from fivebar_drake.robots.quadruped.legs import LEGS
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.simulation.scenario import Scenario
 
 SCENARIO = "scenario."
-LEGS = ("FL", "FR", "RL", "RR")
 ANALYSIS_MOTOR = ("peak_torque_Nm", "rms_torque_Nm", "safety_factor", "verdict",
                   "deciding_check", "peak_speed_rad_s", "speed_ok", "torque_speed_margin",
                   "speed_margin", "speed_outside_fraction", "thermal_current_margin",

@@ -19,7 +19,7 @@ combination of the lists and the ranges' num values (numpy.linspace). random: `s
 points, each value drawn uniformly from a list or a range. latin_hypercube: `samples` points,
 one stratum per point along every varied parameter (scipy.stats.qmc.LatinHypercube; a list is
 split into equal strata). A parameter is a dotted path of the parameter file
-(design_points.with_changes) or, for simulation points, a field of the scenario
+(robots/quadruped/config.with_changes) or, for simulation points, a field of the scenario
 (`scenario.closure`, `scenario.duration_s`, ...).
 """
 

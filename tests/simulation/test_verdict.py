@@ -9,7 +9,7 @@ import math
 import numpy as np
 import pytest
 
-from fivebar_drake.analysis.design_points import with_changes
+from fivebar_drake.robots.quadruped.config import with_changes
 from fivebar_drake.cli import main
 from fivebar_drake.core.checks import Checks, speed_check, thermal_check, worst_check
 from fivebar_drake.pipeline import run_simulation, run_step_check, summarize_run

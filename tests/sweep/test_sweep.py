@@ -12,11 +12,11 @@ import time
 import numpy as np
 import pytest
 
-from fivebar_drake.analysis.design_points import evaluate_designs, with_changes
+from fivebar_drake.analysis.design_points import evaluate_designs
 from fivebar_drake.analysis.torques import analyze
 from fivebar_drake.cli import main
 from fivebar_drake.core.validation import ParameterError
-from fivebar_drake.robots.quadruped.config import DEFAULT_PATH, load_params
+from fivebar_drake.robots.quadruped.config import DEFAULT_PATH, load_params, with_changes
 from fivebar_drake.sweep.engine import run_sweep
 from fivebar_drake.sweep.plots import pareto_front
 from fivebar_drake.sweep.spec import load_spec

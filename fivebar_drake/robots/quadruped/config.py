@@ -24,15 +24,15 @@ from fivebar_drake.robots.quadruped.params import Body, Params, Robot
 # with the analysis.
 REFERENCE_REFINEMENT = 8
 SAMPLING_ERROR_WARN = 0.05   # the speed check and safety factors move visibly beyond this
+SECTIONS = ("leg", "links", "robot", "gait", "motor", "checks", "body")   # the file's sections
 
 
 def params_from_dict(data: dict) -> Params:
     """Build and validate Params from the nested dict of a parameter file."""
-    sections = {"leg", "links", "robot", "gait", "motor", "checks", "body"}
-    unknown, missing = sorted(set(data) - sections), sorted(sections - set(data))
+    unknown, missing = sorted(set(data) - set(SECTIONS)), sorted(set(SECTIONS) - set(data))
     if unknown or missing:
         raise ParameterError(f"parameter file sections: unknown {unknown}, missing {missing}; "
-                             f"expected {sorted(sections)}")
+                             f"expected {sorted(SECTIONS)}")
     require(isinstance(data["links"], dict), "[links]", data["links"], "must hold [links.AC] ...")
     params = Params(
         leg=build_section(LegGeometry, data["leg"], "leg"),
@@ -70,6 +70,49 @@ def with_gait(params: Params, **changes) -> Params:
     params = dataclasses.replace(params, gait=gait)
     check_gait_reachable(params)
     return params
+
+
+def with_changes(params: Params, changes: dict) -> Params:
+    """The parameters with fields changed by dotted path (section.field, or links.NAME.field),
+    validated as a parameter file is (ParameterError naming the field). The motor is given by
+    its motor-side data, so changing motor.gear_ratio keeps the motor and changes the gearbox
+    (core/motor.py): the same physics as a parameter file with that ratio."""
+    sections = {}
+    for path, value in changes.items():
+        parts = path.split(".")
+        if parts[0] not in SECTIONS or len(parts) != (3 if parts[0] == "links" else 2):
+            raise ParameterError(f"{path}: not a parameter; use section.field with a section of "
+                                 f"{list(SECTIONS)} (links.NAME.field for a link)", path)
+        sections.setdefault(parts[0], {})[".".join(parts[1:])] = value
+    new = {}
+    for section, fields in sections.items():
+        old = getattr(params, section)
+        if section == "links":
+            links = dict(old)
+            for key, value in fields.items():
+                name, field = key.split(".")
+                if name not in links:
+                    raise ParameterError(f"links.{name}: no such link; links are {list(links)}",
+                                         f"links.{name}")
+                links[name] = _replace(links[name], f"links.{name}", {field: value})
+            new[section] = links
+        else:
+            new[section] = _replace(old, section, fields)
+    return dataclasses.replace(params, **new)
+
+
+def _replace(obj, section: str, fields: dict):
+    known = {f.name: f for f in dataclasses.fields(obj)}
+    for name in fields:
+        if name not in known:
+            raise ParameterError(f"{section}.{name}: no such field; {section} has "
+                                 f"{sorted(known)}", f"{section}.{name}")
+    values = {k: float(v) if known[k].type in ("float", "float | None") and isinstance(v, int)
+              and not isinstance(v, bool) else v for k, v in fields.items()}
+    try:
+        return dataclasses.replace(obj, **values)
+    except TypeError as err:
+        raise ParameterError(f"{section}: {err}", section) from None
 
 
 def sampling_error(params: Params, path: str) -> dict:
