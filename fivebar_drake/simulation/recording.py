@@ -25,7 +25,7 @@ from fivebar_drake.core.rotation import body_rotation
 from fivebar_drake.mechanisms.fivebar import forward_points
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.plant import RobotLayout
-from fivebar_drake.robots.quadruped.sdf import plane_to_body
+from fivebar_drake.robots.quadruped.legs import plane_to_body
 from fivebar_drake.simulation.runner import SimulationRecord
 from fivebar_drake.simulation.summary import MOTORS, Signals
 

@@ -33,7 +33,7 @@ from fivebar_drake.mechanisms.fivebar import (MOTORS, forward, link_jacobians, s
 from fivebar_drake.robots.quadruped.leg_loads import full_model, seed_model
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.plant import RobotLayout
-from fivebar_drake.robots.quadruped.sdf import plane_rotation
+from fivebar_drake.robots.quadruped.legs import plane_rotation
 from fivebar_drake.simulation.runner import SimulationRecord
 from fivebar_drake.simulation.scenario import Scenario
 

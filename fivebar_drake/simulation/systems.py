@@ -16,7 +16,8 @@ from fivebar_drake.mechanisms.fivebar import (LINK_NAMES, com_fractions, physica
 from fivebar_drake.robots.quadruped.control_law import ControlGains, LawConstants, leg_command
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.plant import RobotLayout
-from fivebar_drake.robots.quadruped.sdf import body_height, plane_rotation
+from fivebar_drake.robots.quadruped.legs import plane_rotation
+from fivebar_drake.robots.quadruped.sdf import body_height
 
 
 @jit

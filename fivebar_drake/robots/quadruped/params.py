@@ -13,9 +13,7 @@ from fivebar_drake.core.validation import (MAX_CONTACT_STIFFNESS_N_M, MAX_FRICTI
                                            MAX_RELAXATION_TIME_S, check_lengths, check_number,
                                            require)
 from fivebar_drake.mechanisms.fivebar import LINK_NAMES, FiveBarLeg, LegGeometry, LinkInertia
-
-
-LEGS_BUILT = 4   # the simulation builds a quadruped (sdf.LEGS): robot.legs must say so
+from fivebar_drake.robots.quadruped.legs import LEGS
 
 
 @dataclass(frozen=True)
@@ -33,7 +31,7 @@ class Robot:
             check_number(f"robot.{name}", getattr(self, name), 0.0, MAX_MASS_KG, low_open=True)
         check_number("robot.gravity_m_s2", self.gravity_m_s2, 0.0, MAX_GRAVITY_M_S2,
                      low_open=True)
-        check_number("robot.legs", self.legs, LEGS_BUILT, LEGS_BUILT, integer=True,
+        check_number("robot.legs", self.legs, len(LEGS), len(LEGS), integer=True,
                      why="the simulation builds a quadruped; the weight share is total / legs")
 
     @property
@@ -106,10 +104,10 @@ class Params:
             bound = link.mass_kg * link.com_m * (length - link.com_m)
             check_number(f"{field}.izz_kg_m2", link.izz_kg_m2, 0.0, bound,
                          why="cannot be physical beyond m*c*(L-c), L the link's length, c its COM")
-        links_kg = LEGS_BUILT * sum(link.mass_kg for link in self.links.values())
+        links_kg = len(LEGS) * sum(link.mass_kg for link in self.links.values())
         carried = self.robot.battery_electronics_kg + self.robot.structure_kg
         require(links_kg < carried, "links.*.mass_kg", links_kg,
-                f"the {LEGS_BUILT} legs' links ({links_kg:.3f} kg) must weigh less than "
+                f"the {len(LEGS)} legs' links ({links_kg:.3f} kg) must weigh less than "
                 f"robot.battery_electronics_kg + robot.structure_kg = {carried:.3f} kg, which "
                 "include them")
         require(isinstance(self.motor, BldcMotor) and self.motor.has_thermal_model, "motor.model",

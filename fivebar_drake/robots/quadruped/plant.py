@@ -17,8 +17,8 @@ from fivebar_drake.mechanisms.fivebar import JOINTS
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.core.drake_configs import config_with
 from fivebar_drake.mechanisms.base import Bushing
-from fivebar_drake.robots.quadruped.sdf import (LEGS, body_height, hip_positions,
-                                                quadruped_sdf, single_leg_sdf)
+from fivebar_drake.robots.quadruped.legs import LEGS, hip_positions
+from fivebar_drake.robots.quadruped.sdf import body_height, quadruped_sdf, single_leg_sdf
 
 
 # Loop closures at E: "bushing", the bushing's force law (a translational spring-damper at E, free

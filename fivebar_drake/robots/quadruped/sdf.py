@@ -13,13 +13,8 @@ import numpy as np
 from fivebar_drake.core.files import write_atomic
 from fivebar_drake.core.sdf import fmt
 from fivebar_drake.mechanisms.base import Bushing, SdfLook
+from fivebar_drake.robots.quadruped.legs import LEGS, PLANE_RPY, hip_positions, motor_positions
 from fivebar_drake.robots.quadruped.params import Params
-
-
-LEGS = ("FL", "FR", "RL", "RR")
-
-# Body frame: x forward, y left, z up. Leg plane: x backwards, y up, z (hinge) to the left.
-PLANE_RPY = (np.pi / 2, 0.0, np.pi)
 
 
 def leg_sdf(params: Params, leg: str, parent: str, hip_xyz, closure: str,
@@ -49,33 +44,9 @@ def leg_sdf(params: Params, leg: str, parent: str, hip_xyz, closure: str,
                                                         bushing, look)
 
 
-def hip_positions(params: Params) -> dict[str, tuple[float, float, float]]:
-    """Leg-plane origins (m) in the body frame, legs FL, FR, RL, RR."""
-    b = params.body
-    return {leg: ((b.hip_x_m if leg[0] == "F" else -b.hip_x_m),
-                  (b.hip_y_m if leg[1] == "L" else -b.hip_y_m), b.hip_z_m) for leg in LEGS}
-
-
 def body_height(params: Params, foot_y):
     """Body height (m) at which feet at leg-plane height foot_y (m) touch flat ground."""
     return params.body.foot_radius_m - params.body.hip_z_m - np.asarray(foot_y)
-
-
-def plane_to_body(hips_m, points_m) -> np.ndarray:
-    """Body-frame positions (m) of leg-plane points (..., 2) m of legs whose plane origins are at
-    hips_m (..., 3) m in the body frame (arrays broadcast): hip + R_body_plane [x, y, 0]."""
-    return np.asarray(hips_m) + np.asarray(points_m) @ plane_rotation()[:, :2].T
-
-
-def motor_positions(params: Params) -> np.ndarray:
-    """Positions (8, 3) in m of the motor axes A and B of every leg in the body frame."""
-    hips = np.array(list(hip_positions(params).values()))[:, None, :]
-    return plane_to_body(hips, np.array([params.leg.motor_a_m, params.leg.motor_b_m])).reshape(-1, 3)
-
-
-def plane_rotation() -> np.ndarray:
-    """R_body_plane: columns are the leg plane's x (backwards), y (up), z (left) in the body."""
-    return np.array([[-1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0]])
 
 
 def body_mass_properties(params: Params):

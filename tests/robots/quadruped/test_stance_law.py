@@ -9,7 +9,7 @@ from pydrake.systems.framework import DiagramBuilder
 from fivebar_drake.mechanisms.fivebar import foot_jacobian, forward, static_torques
 from fivebar_drake.robots.quadruped.leg_loads import full_model
 from fivebar_drake.robots.quadruped.plant import ClosureDesign, add_robot, set_standing_pose
-from fivebar_drake.robots.quadruped.sdf import plane_rotation
+from fivebar_drake.robots.quadruped.legs import plane_rotation
 from fivebar_drake.simulation.builder import controller_gains
 from fivebar_drake.simulation.scenario import load_scenario
 from fivebar_drake.simulation.systems import FootLegController
