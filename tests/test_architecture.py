@@ -1,14 +1,10 @@
 """The package's structure: layers with one-way imports, no import circle, the 5-bar used through
-its package, and the mechanism interface implemented."""
+its package (the mechanisms' parts: tests/mechanisms/test_parts.py)."""
 
 import ast
 from pathlib import Path
 
-import pytest
-
 import fivebar_drake
-from fivebar_drake.mechanisms.base import Mechanism
-from fivebar_drake.robots.quadruped.config import load_params
 
 PACKAGE = Path(fivebar_drake.__file__).parent
 # a module may import from its own layer and the layers before it; analysis and simulation are
@@ -75,11 +71,3 @@ def test_the_five_bar_is_used_through_its_package():
              for d in deps if d.startswith(inside + ".")]
     assert not wrong, wrong
 
-
-def test_the_five_bar_leg_is_a_mechanism():
-    params = load_params()
-    leg = params.mechanism
-    assert isinstance(leg, Mechanism)
-    home = leg.inverse([params.gait.x_center_m, params.gait.y_home_m])
-    assert leg.forward(home.q, home.e_branch).f == pytest.approx(home.f, abs=1e-12)
-    assert leg.loop_gaps(leg.tree_positions(home)) < 1e-12

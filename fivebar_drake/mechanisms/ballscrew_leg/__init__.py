@@ -2,11 +2,10 @@
 comparison with the geared knee over a vertical squat, and the parameters. Code outside this
 folder imports from here, never from its modules.
 
-BallScrewLeg offers the Mechanism interface's forward and inverse kinematics (one assembly mode,
-the knee bent back), the tool Jacobian, static torques for a foot load, the Drake tree's
-coordinates and the loop gap at D. It has no mass matrix, dynamic torques or SDF elements for
-the quadruped's builder: the seed's analysis is massless and static, and the study builds its
-own Drake model (studies/ballscrew_leg)."""
+BallScrewLeg has three parts of mechanisms/base.py: kinematics (one assembly mode, the knee bent
+back; the tool Jacobian), statics (for a foot force) and the Drake model's tree coordinates and
+loop gap at D. It has no dynamics or SDF elements: the seed's analysis is massless and static,
+and the study builds its own Drake model (studies/ballscrew_leg)."""
 
 from fivebar_drake.mechanisms.ballscrew_leg.leg import (KNEE_BACK, MOTORS, TREE_JOINTS,
                                                          BallScrewLeg, Pose, UnreachableError)

@@ -48,7 +48,7 @@ def _unit(angle):
 @dataclass(frozen=True)
 class BallScrewLeg:
     """The leg with its screw knee: thigh l1, shank l2, lever s1 (m), screw lead (m/turn).
-    Implements the Mechanism interface where it fits (see the package docstring)."""
+    Parts (mechanisms/base.py): kinematics, statics (the load: a foot force), drake_model."""
 
     thigh_m: float
     shank_m: float
@@ -56,6 +56,8 @@ class BallScrewLeg:
     lead_m: float
     motors = MOTORS
     modes = (KNEE_BACK,)
+    branches = (None,)
+    parts = ("kinematics", "statics", "drake_model")
 
     # -- knee <-> screw -----------------------------------------------------------------------
     def screw_range(self) -> tuple[float, float]:

@@ -1,5 +1,6 @@
-"""The 5-bar leg as a Mechanism (mechanisms.base): its geometry and link inertias, with the
-kinematics, Jacobians, dynamics, loop and SDF of this folder behind one interface."""
+"""The 5-bar leg with all the parts of mechanisms/base.py: its geometry and link inertias, with
+the kinematics, Jacobians, dynamics, loop and SDF of this folder behind them, and the torque
+breakdown of a DynamicsModel (torques) that the quadruped's analysis reads."""
 
 from __future__ import annotations
 
@@ -19,12 +20,14 @@ class FiveBarLeg:
     """A 5-bar leg: geometry (m) and the mass properties of its links AC, BD, CE, DE. Joint
     coordinates q = (theta_A, theta_B) rad; the tool point is the foot F in the leg plane (m);
     assembly modes (knee C, knee D), +1 out, -1 in; forward branch: the side of line C->D on
-    which E lies (None: the seed's lower E)."""
+    which E lies, +1 left, -1 right (None: the seed's lower E)."""
 
     geometry: LegGeometry
     links: dict[str, LinkInertia]
-    motors: tuple[str, ...] = MOTORS
-    modes: tuple[tuple[int, ...], ...] = kinematics.ALL_MODES
+    motors = MOTORS
+    modes = kinematics.ALL_MODES
+    branches = (1, -1)
+    parts = ("kinematics", "statics", "dynamics", "drake_model", "sdf_elements")
 
     def forward(self, q, branch=None) -> kinematics.LegPose:
         return kinematics.forward(self.geometry, q, branch)
@@ -38,6 +41,10 @@ class FiveBarLeg:
     def mass_matrix(self, pose) -> np.ndarray:
         return dynamics.mass_matrix(self.geometry, self.links,
                                     physical_izz(self.geometry, self.links), pose)
+
+    def bias_torques(self, pose, qd) -> np.ndarray:
+        return dynamics.coriolis(self.geometry, self.links,
+                                 physical_izz(self.geometry, self.links), pose, qd)
 
     def torques(self, model: dynamics.DynamicsModel, pose, qd, qdd) -> dynamics.TorqueBreakdown:
         return dynamics.torques(self.geometry, self.links, model, pose, qd, qdd)

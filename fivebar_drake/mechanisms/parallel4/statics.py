@@ -14,11 +14,12 @@ from fivebar_drake.mechanisms.parallel4.kinematics import (SEED_MODE, inverse, r
                                                            branch_side, velocity_jacobian)
 
 
-def holding_forces(g: Geometry, pose, load, mode=SEED_MODE) -> np.ndarray:
+def holding_forces(g: Geometry, pose, load, mode=SEED_MODE, q=None) -> np.ndarray:
     """Actuator forces tau (..., 4), N, holding the platform at rest against the external
     wrench `load` (..., 4) applied to it: virtual work J^T tau + load = 0 (the seed's
-    F = J^T tau, eq. 2.26, with F = -load the wrench the platform exerts)."""
-    J = velocity_jacobian(g, pose, inverse(g, pose, mode))
+    F = J^T tau, eq. 2.26, with F = -load the wrench the platform exerts). q: the actuator
+    positions (m) of the poses (None: their IK in mode)."""
+    J = velocity_jacobian(g, pose, inverse(g, pose, mode) if q is None else q)
     load = np.asarray(load, dtype=float)[..., None]
     return -np.linalg.solve(np.swapaxes(J, -1, -2), load)[..., 0]
 

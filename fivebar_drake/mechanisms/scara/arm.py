@@ -1,5 +1,5 @@
-"""The SCARA arm as a Mechanism (mechanisms/base.py): the kinematics of Scara with the Lagrange
-dynamics of an Inertia model and its SDF elements. A serial arm has no loop: the tree
+"""The SCARA arm with all the parts of mechanisms/base.py: the kinematics of Scara with the
+Lagrange dynamics of an Inertia model and its SDF elements. A serial arm has no loop: the tree
 coordinates are the joint coordinates and there are no loop gaps."""
 
 from __future__ import annotations
@@ -14,8 +14,10 @@ from fivebar_drake.mechanisms.scara.params import Kinematics
 
 
 class ScaraArm(Scara):
-    """Scara with the physical inertias `inertia` (mass_matrix) and the Mechanism methods; a
-    `model` argument is an Inertia (e.g. with another payload)."""
+    """Scara with the physical inertias `inertia` (mass matrix, bias torques) and the parts of
+    mechanisms/base.py; the load of static_torques is an Inertia (e.g. with another payload)."""
+
+    parts = ("kinematics", "statics", "dynamics", "drake_model", "sdf_elements")
 
     def __init__(self, kin: Kinematics, inertia: Inertia):
         super().__init__(kin)
@@ -24,9 +26,11 @@ class ScaraArm(Scara):
     def mass_matrix(self, pose) -> np.ndarray:
         return Dynamics(self.k, self.inertia).mass_matrix(getattr(pose, "q", pose))
 
-    def torques(self, model: Inertia, pose, qd, qdd) -> dict[str, np.ndarray]:
-        """Dynamics.torques of the model at the poses: inertial, coriolis, gravity, total."""
-        return Dynamics(self.k, model).torques(getattr(pose, "q", pose), qd, qdd)
+    def bias_torques(self, pose, qd) -> np.ndarray:
+        """C(q, qd) qd (..., 3), N*m and N."""
+        q = getattr(pose, "q", pose)
+        return np.einsum("...ij,...j->...i", Dynamics(self.k, self.inertia).coriolis_matrix(q, qd),
+                         np.asarray(qd, dtype=float))
 
     def static_torques(self, model: Inertia, pose) -> np.ndarray:
         return Dynamics(self.k, model).gravity(getattr(pose, "q", pose))

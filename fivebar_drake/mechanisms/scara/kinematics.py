@@ -28,11 +28,13 @@ class ScaraPose:
 
 
 class Scara:
-    """The arm's kinematics for a Kinematics section (the Mechanism interface's kinematic part:
-    motors, modes = the two elbows, forward, inverse, tool_jacobian)."""
+    """The arm's kinematics for a Kinematics section (the Kinematics part of mechanisms/base.py:
+    motors, modes = the two elbows, one forward branch, forward, inverse, tool_jacobian)."""
 
     motors = ("q1", "q2", "q3")
     modes = ((1,), (-1,))
+    branches = (None,)
+    parts = ("kinematics",)
 
     def __init__(self, k: Kinematics):
         self.k = k

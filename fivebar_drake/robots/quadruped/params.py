@@ -88,7 +88,7 @@ class Params:
 
     @property
     def mechanism(self) -> FiveBarLeg:
-        """Each leg as a Mechanism (mechanisms.base)."""
+        """Each leg: the 5-bar (every part of mechanisms/base.py and its torque breakdown)."""
         return FiveBarLeg(self.leg, self.links)
 
     def __post_init__(self):

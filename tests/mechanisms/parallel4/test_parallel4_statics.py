@@ -5,7 +5,6 @@ import numpy as np
 
 from fivebar_drake.mechanisms.parallel4.geometry import Geometry
 from fivebar_drake.mechanisms.parallel4.kinematics import inverse, reach, type2_line_z
-from fivebar_drake.mechanisms.parallel4.mechanism import Parallel4
 from fivebar_drake.mechanisms.parallel4.statics import (
     condition_number, holding_forces, in_workspace, poses_yz, stiffness, translational_block,
     translational_free_rotation, yz_grid)
@@ -87,14 +86,3 @@ def test_workspace_area_of_one_pair_annulus_by_hand():
     area = in_workspace(g, poses_yz(Y, Z, 0.0)).sum() * cell
     assert np.isclose(area, lens / 2, rtol=2e-3)
     assert not in_workspace(g, poses_yz(np.array([0.0]), np.array([0.01]), 0.0))[0]
-
-
-def test_mechanism_interface_tool_jacobian_by_finite_differences_of_forward():
-    mech = Parallel4(G)
-    pose = POSES[0]
-    q = mech.inverse(pose)
-    h = 1e-7
-    fd = np.stack([(mech.forward(q + h * e) - mech.forward(q - h * e))[:3] / (2 * h)
-                   for e in np.eye(4)], axis=-1)
-    assert np.allclose(mech.tool_jacobian(pose), fd, atol=1e-6)
-    assert np.allclose(mech.forward(mech.inverse(pose, mech.modes[1])), pose)
