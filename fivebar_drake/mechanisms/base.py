@@ -32,12 +32,13 @@ class Bushing:
 class SdfLook:
     """How the robot dresses a mechanism's SDF: link cross-section width (m); the tool's
     collision and visual elements, with "{pose}" where the mechanism puts the tool point's
-    <pose>; and what follows an actuated joint's <xyz> (its limit, the closing </axis>, the
-    drive: rotor inertia, gear ratio)."""
+    <pose>; an actuated joint's <limit> (inside its <axis>) and drive (the elements after the
+    <axis>: rotor inertia, gear ratio)."""
 
     link_width_m: float
     tool_xml: str
-    actuated_joint_xml: str
+    limit_xml: str
+    drive_xml: str
 
 
 @runtime_checkable

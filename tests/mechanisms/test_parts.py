@@ -202,8 +202,8 @@ def test_drake_model_closes_its_loops_at_ik_poses(name):
 def test_sdf_elements_parse_into_one_actuator_per_motor(name):
     example = example_of(name)
     m = example.mechanism
-    look = SdfLook(link_width_m=0.01, tool_xml="",
-                   actuated_joint_xml="<limit><effort>1</effort></limit></axis>")
+    look = SdfLook(link_width_m=0.01, tool_xml="", limit_xml="<limit><effort>1</effort></limit>",
+                   drive_xml="")
     text = ("<sdf version='1.9' xmlns:drake='http://drake.mit.edu'><model name='m'>"
             "<link name='base'/><joint name='weld' type='fixed'><parent>world</parent>"
             f"<child>base</child></joint>{m.sdf_elements('m', 'base', 'base', 'ball', None, look)}"

@@ -13,7 +13,8 @@ builder adds (closure "bushing"). Only the foot (the tool) collides.
 
 from __future__ import annotations
 
-from fivebar_drake.core.sdf import fmt, inertial
+from fivebar_drake.core.sdf import (PASSIVE, axis, ball_constraint, box, element, fmt, inertial,
+                                    joint, pose, visual)
 from fivebar_drake.mechanisms.base import Bushing, SdfLook
 from fivebar_drake.mechanisms.fivebar.geometry import (LINK_NAMES, LegGeometry, LinkInertia,
                                                         physical_izz)
@@ -36,31 +37,32 @@ def _link(leg: LegGeometry, links, prefix: str, frame: str, name: str, origin,
           look: SdfLook) -> str:
     link = links[name]
     length = leg.link_length(name)
-    ixx, iyy, izz = link_inertias(leg, links, look.link_width_m)[name]
     w = look.link_width_m
-    tool = look.tool_xml.replace("{pose}", f"<pose>{fmt(length)} 0 0 0 0 0</pose>") \
-        if name == "DE" else ""
-    return (f"<link name='{prefix}_{name}'><pose relative_to='{frame}'>{fmt(*origin)} 0 0 0 0"
-            f"</pose>{inertial(link.mass_kg, link.com_m, ixx, iyy, izz)}<visual name='bar'>"
-            f"<pose>{fmt(length / 2)} 0 0 0 0 0</pose>"
-            f"<geometry><box><size>{fmt(length, w, w)}</size></box></geometry><material>"
-            f"<diffuse>{COLORS[name]}</diffuse></material></visual>{tool}</link>")
+    tool = look.tool_xml.replace("{pose}", pose(length)) if name == "DE" else ""
+    return element("link", pose(*origin, relative_to=frame),
+                   inertial(link.mass_kg, link_inertias(leg, links, w)[name], (link.com_m, 0, 0)),
+                   visual("bar", box(length, w, w), COLORS[name], pose(length / 2)), tool,
+                   name=f"{prefix}_{name}")
 
 
 def _joint(prefix: str, name: str, parent: str, child: str, look: SdfLook | None) -> str:
     """A revolute joint about the hinge; look: actuated (its limit and drive), None: passive."""
-    limit = ("<limit><effort>0</effort></limit></axis>" if look is None
-             else look.actuated_joint_xml)
-    return (f"<joint name='{prefix}_{name}' type='revolute'><parent>{parent}</parent>"
-            f"<child>{prefix}_{child}</child><axis><xyz>0 0 1</xyz>{limit}</joint>")
+    limit, drive = (PASSIVE, "") if look is None else (look.limit_xml, look.drive_xml)
+    return joint(f"{prefix}_{name}", "revolute", parent, f"{prefix}_{child}",
+                 axis("0 0 1", limit), drive)
+
+
+def _loop_frame(prefix: str, link: str, length_m: float) -> str:
+    """The frame at E on a lower link (z along the hinge)."""
+    return element("frame", pose(length_m, relative_to=f"{prefix}_{link}"),
+                   name=f"{prefix}_E_on_{link}", attached_to=f"{prefix}_{link}")
 
 
 def sdf_elements(leg: LegGeometry, links: dict[str, LinkInertia], prefix: str, parent: str,
                  frame: str, closure: str, bushing: Bushing | None, look: SdfLook) -> str:
     """SDF elements of one leg: links placed in the leg-plane frame `frame`, motors A and B on
-    the link `parent`, the loop at E closed by `closure` (bushing: the bushing_rpy's stiffness
-    and damping). look.actuated_joint_xml continues an actuated joint's <axis> after its <xyz>
-    (it closes </axis>)."""
+    the link `parent` (dressed by look), the loop at E closed by `closure` (bushing: the
+    bushing_rpy's stiffness and damping)."""
     ax, ay = leg.motor_a_m
     bx, by = leg.motor_b_m
     parts = [_link(leg, links, prefix, frame, "AC", (ax, ay), look),
@@ -71,26 +73,19 @@ def sdf_elements(leg: LegGeometry, links: dict[str, LinkInertia], prefix: str, p
              _joint(prefix, "B", parent, "BD", look),
              _joint(prefix, "C", f"{prefix}_AC", "CE", None),
              _joint(prefix, "D", f"{prefix}_BD", "DE", None),
-             f"<frame name='{prefix}_E_on_CE' attached_to='{prefix}_CE'><pose "
-             f"relative_to='{prefix}_CE'>{fmt(leg.ce_m)} 0 0 0 0 0</pose></frame>",
-             f"<frame name='{prefix}_E_on_DE' attached_to='{prefix}_DE'><pose "
-             f"relative_to='{prefix}_DE'>{fmt(leg.de_m)} 0 0 0 0 0</pose></frame>"]
+             _loop_frame(prefix, "CE", leg.ce_m),
+             _loop_frame(prefix, "DE", leg.de_m)]
     if closure == "ball":
-        parts.append(
-            f"<drake:ball_constraint><drake:ball_constraint_body_A>{prefix}_CE"
-            f"</drake:ball_constraint_body_A><drake:ball_constraint_p_AP>{fmt(leg.ce_m)} 0 0"
-            f"</drake:ball_constraint_p_AP><drake:ball_constraint_body_B>{prefix}_DE"
-            f"</drake:ball_constraint_body_B><drake:ball_constraint_p_BQ>{fmt(leg.de_m)} 0 0"
-            "</drake:ball_constraint_p_BQ></drake:ball_constraint>")
+        parts.append(ball_constraint(f"{prefix}_CE", (leg.ce_m, 0, 0), f"{prefix}_DE",
+                                     (leg.de_m, 0, 0)))
     if closure == "bushing_rpy":
         k, d = bushing.stiffness_N_m, bushing.damping_N_s_m
-        parts.append(
-            f"<drake:linear_bushing_rpy><drake:bushing_frameA>{prefix}_E_on_CE"
-            f"</drake:bushing_frameA><drake:bushing_frameC>{prefix}_E_on_DE"
-            "</drake:bushing_frameC><drake:bushing_torque_stiffness>0 0 0"
-            "</drake:bushing_torque_stiffness><drake:bushing_torque_damping>0 0 0"
-            "</drake:bushing_torque_damping>"
-            f"<drake:bushing_force_stiffness>{fmt(k, k, k)}</drake:bushing_force_stiffness>"
-            f"<drake:bushing_force_damping>{fmt(d, d, d)}</drake:bushing_force_damping>"
-            "</drake:linear_bushing_rpy>")
+        parts.append(element(
+            "drake:linear_bushing_rpy",
+            element("drake:bushing_frameA", f"{prefix}_E_on_CE"),
+            element("drake:bushing_frameC", f"{prefix}_E_on_DE"),
+            element("drake:bushing_torque_stiffness", "0 0 0"),
+            element("drake:bushing_torque_damping", "0 0 0"),
+            element("drake:bushing_force_stiffness", fmt(k, k, k)),
+            element("drake:bushing_force_damping", fmt(d, d, d))))
     return "\n".join(parts)

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from fivebar_drake.core.sdf import fmt, inertial
+from fivebar_drake.core.sdf import axis, element, fmt, inertial, joint, pose
 from fivebar_drake.mechanisms.base import Bushing, SdfLook
 from fivebar_drake.mechanisms.scara.dynamics import Dynamics, Inertia
 from fivebar_drake.mechanisms.scara.kinematics import Scara
@@ -56,15 +56,13 @@ class ScaraArm(Scara):
         links = (("link1", (0.0, 0.0, k.d1_m), i.m1, i.c1, i.izz1),
                  ("link2", (k.a1_m, 0.0, z2), i.m2, i.c2, i.izz2),
                  ("link3", (k.a1_m + k.a2_m, 0.0, z2), i.m3, 0.0, i.izz3))
-        text = "".join(f'<link name="{prefix}{name}"><pose relative_to="{frame}">'
-                       f"{fmt(*xyz, 0, 0, 0)}</pose>{inertial(m, com, izz, izz, izz)}</link>"
+        text = "".join(element("link", pose(*xyz, relative_to=frame),
+                               inertial(m, (izz, izz, izz), (com, 0, 0)), name=f"{prefix}{name}")
                        for name, xyz, m, com, izz in links)
         axes = (("revolute", "0 0 1"), ("revolute", "0 0 1"),
                 ("prismatic", f"0 0 {k.q3_direction}"))
         parents = (parent, f"{prefix}link1", f"{prefix}link2")
-        for n, ((kind, axis), up, lo, hi) in enumerate(zip(axes, parents, self.lower,
-                                                            self.upper)):
-            text += (f'<joint name="{prefix}q{n + 1}" type="{kind}"><parent>{up}</parent>'
-                     f"<child>{prefix}link{n + 1}</child><axis><xyz>{axis}</xyz><limit>"
-                     f"<lower>{lo:.12g}</lower><upper>{hi:.12g}</upper></limit></axis></joint>")
+        for n, ((kind, xyz), up, lo, hi) in enumerate(zip(axes, parents, self.lower, self.upper)):
+            limit = element("limit", element("lower", fmt(lo)), element("upper", fmt(hi)))
+            text += joint(f"{prefix}q{n + 1}", kind, up, f"{prefix}link{n + 1}", axis(xyz, limit))
         return text

@@ -28,36 +28,30 @@ from pydrake.multibody.plant import (AddMultibodyPlant, MultibodyPlant, Multibod
 from pydrake.multibody.tree import JacobianWrtVariable, MultibodyForces
 from pydrake.systems.framework import DiagramBuilder
 
-from fivebar_drake.core.sdf import fmt, inertial
+from fivebar_drake.core.sdf import (PASSIVE, axis, ball_constraint, document, element, fmt,
+                                    inertial, joint, pose)
 from fivebar_drake.mechanisms.ballscrew_leg import TREE_JOINTS, BallScrewLeg, Params
 
 RIGS = ("bench", "squat")
 MODEL = "ballscrew_leg"
 LINK_RADIUS_M = 0.01            # inertia of the slender links about their own axis
-QUARTER_TURN = -np.pi / 2       # link frames: x along the link, hanging straight down at 0
+QUARTER_TURN = repr(-np.pi / 2)  # rad, every digit: link frames (x along the link) hang down at 0
 
 
 def _rod(mass_kg: float, start_m: float, end_m: float) -> str:
     """<inertial> of a thin rod along x from start_m to end_m (m)."""
     length = end_m - start_m
     across = mass_kg * length**2 / 12.0
-    return inertial(mass_kg, 0.5 * (start_m + end_m), 0.5 * mass_kg * LINK_RADIUS_M**2,
-                    across, across)
+    return inertial(mass_kg, (0.5 * mass_kg * LINK_RADIUS_M**2, across, across),
+                    (0.5 * (start_m + end_m), 0, 0))
 
 
 def _revolute(name: str, parent: str, child: str, actuated: bool) -> str:
-    limit = "" if actuated else "<limit><effort>0</effort></limit>"
-    return (f'<joint name="{name}" type="revolute"><parent>{parent}</parent><child>{child}</child>'
-            f"<axis><xyz>0 0 1</xyz>{limit}</axis></joint>")
+    return joint(name, "revolute", parent, child, axis("0 0 1", *(() if actuated else (PASSIVE,))))
 
 
-def _ball(body_a: str, p_ap, body_b: str) -> str:
-    """A SAP ball constraint: the point p_ap (m) of body_a on the origin of body_b."""
-    return (f"<drake:ball_constraint><drake:ball_constraint_body_A>{body_a}"
-            f"</drake:ball_constraint_body_A><drake:ball_constraint_p_AP>{fmt(*p_ap)}"
-            f"</drake:ball_constraint_p_AP><drake:ball_constraint_body_B>{body_b}"
-            "</drake:ball_constraint_body_B><drake:ball_constraint_p_BQ>0 0 0"
-            "</drake:ball_constraint_p_BQ></drake:ball_constraint>")
+def _link(name: str, at: str, body: str) -> str:
+    return element("link", at, body, name=name)
 
 
 def model_sdf(params: Params, leg: BallScrewLeg, rig: str) -> str:
@@ -65,40 +59,34 @@ def model_sdf(params: Params, leg: BallScrewLeg, rig: str) -> str:
     leg, screw along the thigh, nut at the hip)."""
     s, m = params.simulation, params.motor
     l1, l2, s1 = leg.thigh_m, leg.shank_m, leg.lever_m
-    down = f"0 0 0 0 0 {QUARTER_TURN!r}"
+    down = pose(0, 0, 0, 0, 0, QUARTER_TURN)
     base = "world"
     links = []
     if rig == "squat":
         base = "carriage"
         mass = params.load.foot_force_N / s.gravity_m_s2
-        links.append(f'<link name="carriage">{inertial(mass, 0.0, 0.1, 0.1, 0.1)}</link>'
-                     '<joint name="rail" type="prismatic"><parent>world</parent>'
-                     "<child>carriage</child><axis><xyz>0 1 0</xyz>"
-                     "<limit><effort>0</effort></limit></axis></joint>"
-                     f'<link name="ground">{inertial(1.0, 0.0, 1.0, 1.0, 1.0)}</link>'
-                     '<joint name="ground_weld" type="fixed"><parent>world</parent>'
-                     "<child>ground</child></joint>"
-                     + _ball("shank", (leg.shank_m, 0.0, 0.0), "ground"))
+        links += [element("link", inertial(mass, (0.1, 0.1, 0.1), (0, 0, 0)), name="carriage"),
+                  joint("rail", "prismatic", "world", "carriage", axis("0 1 0", PASSIVE)),
+                  element("link", inertial(1.0, (1.0, 1.0, 1.0), (0, 0, 0)), name="ground"),
+                  joint("ground_weld", "fixed", "world", "ground"),
+                  ball_constraint("shank", (leg.shank_m, 0, 0), "ground")]
     nut_izz = 0.5 * s.nut_mass_kg * LINK_RADIUS_M**2
     links += [
-        f'<link name="thigh"><pose>{down}</pose>{_rod(s.thigh_mass_kg, 0.0, l1)}</link>',
-        f'<link name="shank"><pose>0 {fmt(-l1)} 0 0 0 {QUARTER_TURN!r}</pose>'
-        f"{_rod(s.shank_mass_kg, -s1, l2)}</link>",
-        f'<link name="housing"><pose>{down}</pose>{_rod(s.screw_mass_kg, 0.0, l1 - s1)}</link>',
-        f'<link name="nut"><pose>{down}</pose>'
-        f"{inertial(s.nut_mass_kg, 0.0, 2 * nut_izz, nut_izz, nut_izz)}</link>",
+        _link("thigh", down, _rod(s.thigh_mass_kg, 0.0, l1)),
+        _link("shank", pose(0, -l1, 0, 0, 0, QUARTER_TURN), _rod(s.shank_mass_kg, -s1, l2)),
+        _link("housing", down, _rod(s.screw_mass_kg, 0.0, l1 - s1)),
+        _link("nut", down, inertial(s.nut_mass_kg, (2 * nut_izz, nut_izz, nut_izz), (0, 0, 0))),
         _revolute("hip", base, "thigh", actuated=rig == "bench"),
         _revolute("knee", "thigh", "shank", actuated=False),
         _revolute("screw_pivot", "thigh", "housing", actuated=False),
-        '<joint name="screw" type="screw"><parent>housing</parent><child>nut</child>'
-        f"<axis><xyz>1 0 0</xyz><limit><effort>{fmt(m.peak_torque_Nm)}</effort></limit></axis>"
-        f"<screw_thread_pitch>{fmt(leg.lead_m)}</screw_thread_pitch>"
-        f"<drake:rotor_inertia>{fmt(m.rotor_inertia_kg_m2)}</drake:rotor_inertia>"
-        f"<drake:gear_ratio>{fmt(m.gear_ratio)}</drake:gear_ratio></joint>",
-        _ball("shank", (-s1, 0.0, 0.0), "nut"),
+        joint("screw", "screw", "housing", "nut",
+              axis("1 0 0", element("limit", element("effort", fmt(m.peak_torque_Nm)))),
+              element("screw_thread_pitch", fmt(leg.lead_m)),
+              element("drake:rotor_inertia", fmt(m.rotor_inertia_kg_m2)),
+              element("drake:gear_ratio", fmt(m.gear_ratio))),
+        ball_constraint("shank", (-s1, 0, 0), "nut"),
     ]
-    return (f'<?xml version="1.0"?>\n<sdf version="1.9"><model name="{MODEL}">'
-            + "\n".join(links) + "</model></sdf>\n")
+    return document(MODEL, *links)
 
 
 @dataclass

@@ -21,7 +21,8 @@ from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
 from pydrake.multibody.tree import JacobianWrtVariable, PdControllerGains
 from pydrake.systems.framework import DiagramBuilder
 
-from fivebar_drake.core.sdf import fmt
+from fivebar_drake.core.sdf import (PASSIVE, axis, ball_constraint, box, cylinder, document,
+                                    element, inertial, joint, pose, visual)
 from fivebar_drake.mechanisms.parallel4.geometry import Geometry
 from fivebar_drake.mechanisms.parallel4.kinematics import PAIR, inverse, platform_offsets
 from fivebar_drake.mechanisms.parallel4.params import Model
@@ -32,22 +33,8 @@ GUIDE = (("guide_x", "prismatic", "1 0 0"), ("guide_y", "prismatic", "0 1 0"),
          ("guide_z", "prismatic", "0 0 1"), ("platform", "revolute", "0 1 0"))
 
 
-def _inertial(mass: float, ixx: float, iyy: float, izz: float, z: float = 0.0) -> str:
-    return (f"<inertial><pose>0 0 {fmt(z)} 0 0 0</pose><mass>{fmt(mass)}</mass><inertia>"
-            f"<ixx>{fmt(ixx)}</ixx><iyy>{fmt(iyy)}</iyy><izz>{fmt(izz)}</izz>"
-            "<ixy>0</ixy><ixz>0</ixz><iyz>0</iyz></inertia></inertial>")
-
-
 def _box_inertia(m: float, sx: float, sy: float, sz: float) -> tuple[float, float, float]:
     return m * (sy * sy + sz * sz) / 12, m * (sx * sx + sz * sz) / 12, m * (sx * sx + sy * sy) / 12
-
-
-def _visual(geometry: str, rgba: str, pose: str = "0 0 0 0 0 0") -> str:
-    return (f"<visual name='v'><pose>{pose}</pose><geometry>{geometry}</geometry><material>"
-            f"<diffuse>{rgba}</diffuse></material></visual>")
-
-
-PASSIVE = "<limit><effort>0</effort></limit>"
 
 
 def base_points(g: Geometry) -> np.ndarray:
@@ -60,45 +47,37 @@ def sdf_text(g: Geometry, m: Model) -> str:
     parts = []
     slider = 0.04
     for i, origin in zip(LEGS, base_points(g)):
-        parts.append(
-            f"<link name='slider_{i}'><pose>{fmt(*origin)} 0 0 0</pose>"
-            f"{_inertial(m.slider_mass_kg, *_box_inertia(m.slider_mass_kg, *(slider,) * 3))}"
-            f"{_visual(f'<box><size>{fmt(slider, slider, slider)}</size></box>', '0.3 0.3 0.3 1')}"
-            f"</link><joint name='l{i}' type='prismatic'><parent>world</parent>"
-            f"<child>slider_{i}</child><axis><xyz>1 0 0</xyz></axis></joint>")
         rod = m.leg_mass_kg * g.R ** 2 / 12               # thin rod about its centre
         spin = m.leg_mass_kg * m.leg_radius_m ** 2 / 2
-        parts.append(
-            f"<link name='leg_{i}'><pose>{fmt(*origin)} 0 0 0</pose>"
-            f"{_inertial(m.leg_mass_kg, rod, rod, spin, -g.R / 2)}"
-            + _visual(f"<cylinder><radius>{fmt(m.leg_radius_m)}</radius><length>{fmt(g.R)}"
-                      f"</length></cylinder>", "0.85 0.45 0.2 1" if i < 3 else "0.2 0.45 0.85 1",
-                      f"0 0 {fmt(-g.R / 2)} 0 0 0")
-            + f"</link><joint name='u{i}' type='universal'><parent>slider_{i}</parent>"
-            f"<child>leg_{i}</child><axis><xyz>1 0 0</xyz>{PASSIVE}</axis>"
-            f"<axis2><xyz>0 1 0</xyz>{PASSIVE}</axis2></joint>")
+        colour = "0.85 0.45 0.2 1" if i < 3 else "0.2 0.45 0.85 1"
+        parts += [
+            element("link", pose(*origin),
+                    inertial(m.slider_mass_kg, _box_inertia(m.slider_mass_kg, *(slider,) * 3),
+                             (0, 0, 0)),
+                    visual("v", box(slider, slider, slider), "0.3 0.3 0.3 1", pose()),
+                    name=f"slider_{i}"),
+            joint(f"l{i}", "prismatic", "world", f"slider_{i}", axis("1 0 0")),
+            element("link", pose(*origin),
+                    inertial(m.leg_mass_kg, (rod, rod, spin), (0, 0, -g.R / 2)),
+                    visual("v", cylinder(m.leg_radius_m, g.R), colour, pose(0, 0, -g.R / 2)),
+                    name=f"leg_{i}"),
+            joint(f"u{i}", "universal", f"slider_{i}", f"leg_{i}", axis("1 0 0", PASSIVE),
+                  axis("0 1 0", PASSIVE, tag="axis2"))]
     parent = "world"
-    for name, kind, axis in GUIDE:
+    for name, kind, direction in GUIDE:
         if name == "platform":
             size = (0.05, 2 * g.b + 0.03, 2 * g.c + 0.03)
-            body = (_inertial(m.platform_mass_kg, *_box_inertia(m.platform_mass_kg, *size))
-                    + _visual(f"<box><size>{fmt(*size)}</size></box>", "0.2 0.7 0.3 1"))
+            body = (inertial(m.platform_mass_kg, _box_inertia(m.platform_mass_kg, *size), (0, 0, 0))
+                    + visual("v", box(*size), "0.2 0.7 0.3 1", pose()))
         else:
-            body = _inertial(m.guide_mass_kg, *(m.guide_mass_kg * 1e-4,) * 3)
-        parts.append(f"<link name='{name}'>{body}</link><joint name='{name}_joint' type='{kind}'>"
-                     f"<parent>{parent}</parent><child>{name}</child><axis><xyz>{axis}</xyz>"
-                     f"{PASSIVE}</axis></joint>")
+            body = inertial(m.guide_mass_kg, (m.guide_mass_kg * 1e-4,) * 3, (0, 0, 0))
+        parts += [element("link", body, name=name),
+                  joint(f"{name}_joint", kind, parent, name, axis(direction, PASSIVE))]
         parent = name
     offsets = platform_offsets(g, 0.0)
-    for i, pair in zip(LEGS, PAIR):
-        parts.append(
-            f"<drake:ball_constraint><drake:ball_constraint_body_A>leg_{i}"
-            f"</drake:ball_constraint_body_A><drake:ball_constraint_p_AP>0 0 {fmt(-g.R)}"
-            f"</drake:ball_constraint_p_AP><drake:ball_constraint_body_B>platform"
-            f"</drake:ball_constraint_body_B><drake:ball_constraint_p_BQ>{fmt(*offsets[pair])}"
-            f"</drake:ball_constraint_p_BQ></drake:ball_constraint>")
-    return ("<?xml version='1.0'?><sdf version='1.9' xmlns:drake='http://drake.mit.edu'>"
-            "<model name='parallel4'>" + "".join(parts) + "</model></sdf>")
+    parts += [ball_constraint(f"leg_{i}", (0, 0, -g.R), "platform", offsets[pair])
+              for i, pair in zip(LEGS, PAIR)]
+    return document("parallel4", *parts)
 
 
 class Parallel4Plant:
@@ -139,8 +118,8 @@ class Parallel4Plant:
             start = self.universals[k].position_start()
             x[start] = np.arctan2(u[k, 1], -u[k, 2])
             x[start + 1] = np.arctan2(-u[k, 0], np.hypot(u[k, 1], u[k, 2]))
-        for joint, value in zip(self.guide, pose):
-            x[joint.position_start()] = value
+        for guide, value in zip(self.guide, pose):
+            x[guide.position_start()] = value
         return x
 
     def _constraint_rows(self, context) -> tuple[np.ndarray, np.ndarray]:

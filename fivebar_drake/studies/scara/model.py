@@ -10,6 +10,7 @@ from pydrake.multibody.parsing import Parser
 from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlant, MultibodyPlantConfig
 from pydrake.multibody.tree import MultibodyForces
 
+from fivebar_drake.core.sdf import document, element
 from fivebar_drake.mechanisms.scara import Inertia, ScaraArm, ScaraParams
 
 JOINTS = ("q1", "q2", "q3")
@@ -18,8 +19,7 @@ JOINTS = ("q1", "q2", "q3")
 def sdf_text(params: ScaraParams, inertia: Inertia) -> str:
     """SDF of the arm: a base link and ScaraArm.sdf_elements placed in it."""
     arm = ScaraArm(params.kinematics, inertia)
-    return (f'<?xml version="1.0"?><sdf version="1.9"><model name="scara"><link name="base"/>'
-            f'{arm.sdf_elements("", "base", "base")}</model></sdf>')
+    return document("scara", element("link", name="base"), arm.sdf_elements("", "base", "base"))
 
 
 @dataclass(frozen=True)
