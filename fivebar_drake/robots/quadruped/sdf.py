@@ -85,7 +85,7 @@ def _document(name: str, body: str) -> str:
 
 
 def quadruped_sdf(params: Params, closure: str, bushing: Bushing | None) -> str:
-    """The whole robot: a floating body and four legs (FL, FR, RL, RR)."""
+    """The whole robot: a floating body and a leg per LEGS (legs.py)."""
     legs = [leg_sdf(params, leg, "body", hip, closure, bushing)
             for leg, hip in hip_positions(params).items()]
     return _document("quadruped", "\n".join([_body_link(params)] + legs))
