@@ -1,35 +1,54 @@
 """Study of seed 001: the serial two-link leg with a ball-screw knee against the geared knee
-(`fivebar-drake analyze|simulate --mechanism ballscrew_leg`), the contract of catalog.py."""
+(`fivebar-drake analyze|simulate --mechanism ballscrew_leg`), the Study contract of
+studies/base.py."""
 
 from __future__ import annotations
 
 from pathlib import Path
 
-import numpy as np
-
 from fivebar_drake.mechanisms.ballscrew_leg import Params, load_params
-from fivebar_drake.studies.ballscrew_leg.analysis import analyze
-from fivebar_drake.studies.ballscrew_leg.plots import PLOT_FILES, write_plots
-from fivebar_drake.studies.ballscrew_leg.report import REPORT_FILES, write_report
-from fivebar_drake.studies.ballscrew_leg.simulation import SIMULATION_FILES, write_simulation
+from fivebar_drake.studies.ballscrew_leg import plots, recording, report
+from fivebar_drake.studies.ballscrew_leg.analysis import Analysis, analyze
+from fivebar_drake.studies.ballscrew_leg.simulation import (MAX_DURATION_S, SquatRun, run_squat,
+                                                            signals, summarize)
+from fivebar_drake.studies.base import (Plan, Written, checked_duration, parameters_line,
+                                        parameters_loader)
 
-ANALYSIS_FILES = PLOT_FILES + REPORT_FILES      # report.json last
+NAME = "ballscrew_leg"
+ANALYSIS_FILES = plots.ANALYSIS_FIGURES + report.ANALYSIS_FILES
+SIMULATION_FILES = plots.SIMULATION_FIGURES + (recording.RECORDING_FILE,) + report.SIMULATION_FILES
+ANALYSIS_OUT, SIMULATION_OUT = f"out/{NAME}", f"out/simulation/{NAME}"
+OPTIONS = frozenset()
+load_analysis = parameters_loader(NAME, load_params)
 
-__all__ = ["ANALYSIS_FILES", "SIMULATION_FILES", "load_params", "write_analysis",
-           "write_simulation"]
+__all__ = ["ANALYSIS_FILES", "ANALYSIS_OUT", "OPTIONS", "SIMULATION_FILES", "SIMULATION_OUT",
+           "analyze", "load_analysis", "load_params", "load_simulation", "simulate",
+           "write_analysis", "write_simulation"]
 
 
-def write_analysis(params: Params, out: Path) -> tuple[list[str], list[Path]]:
-    """The analysis's plots and report in out; the headline lines for the console."""
-    a = analyze(params)
-    written = write_plots(a, out) + write_report(a, out)
-    lines = []
-    for s, st in a.statics.items():
-        r = st.ratio["joint", "forward"]
-        i = int(np.argmax(r))
-        lines.append(f"s1 = {s * 1e3:g} mm: equivalent ratio max {r[i]:.2f} at q1 = "
-                     f"{np.degrees(st.q1[i]):.2f} deg, min {np.min(r):.3f} (forward efficiency); "
-                     f"Drake check {a.drake[s]['max_rel_screw']:.1e}")
-    held = sum(c["reproduced"] for c in a.claims)
-    lines.append(f"seed claims: {held} of {len(a.claims)} readings reproduced (report.md)")
-    return lines, written
+def write_analysis(a: Analysis, out: Path) -> Written:
+    return Written(plots.write_analysis(a, out) + report.write_analysis(a, out),
+                   report.analysis_lines(a))
+
+
+def load_simulation(config: str | Path | None, duration_s: float | None) -> Plan:
+    """The parameters and the squat's duration (at most MAX_DURATION_S)."""
+    params = load_params(config)
+    return Plan((params, checked_duration(duration_s, params.simulation.duration_s,
+                                          high=MAX_DURATION_S)), parameters_line(NAME, config))
+
+
+def simulate(inputs: tuple[Params, float], progress: bool, stop) -> SquatRun:
+    """The squat (in one piece: neither progress lines nor an early stop)."""
+    return run_squat(*inputs)
+
+
+def write_simulation(run: SquatRun, out: Path) -> Written:
+    """squat.png, run.rrd, summary.md and summary.json (last)."""
+    sig = signals(run)
+    summary = summarize(run, sig)
+    path = out / recording.RECORDING_FILE
+    return Written([*plots.write_simulation(sig, run.params, out),
+                    recording.write_recording(sig, run.params, path),
+                    *report.write_simulation(summary, out)],
+                   report.simulation_lines(summary, path))
