@@ -19,6 +19,14 @@ def study(name: str) -> Study:
     return importlib.import_module(f"fivebar_drake.studies.{name}")
 
 
+def default_out(name: str, command: str) -> str:
+    """The output folder of `command` (analyze, simulate) when --out is not given: out/analysis
+    and out/simulation for the default mechanism, out/NAME and out/simulation/NAME for another."""
+    if name == FIVEBAR:
+        return "out/analysis" if command == "analyze" else "out/simulation"
+    return f"out/{name}" if command == "analyze" else f"out/simulation/{name}"
+
+
 def can_simulate(name: str) -> bool:
     """Whether `simulate --mechanism name` exists."""
     return bool(study(name).SIMULATION_FILES)

@@ -69,14 +69,18 @@ def _study(args):
 
 
 def _analyze(args, signals) -> int:
+    """The analysis of --mechanism through its study (studies/base.py): every input checked
+    before the folder is touched (exit 2), then run, written and reported."""
     study, options = _study(args)
     start = time.perf_counter()
     plan = study.load_analysis(args.config, **options)          # bad input: exit 2 first
-    out = prepare_output_dir(args.out or study.ANALYSIS_OUT, "--out", study.ANALYSIS_FILES)
+    out = _output_dir(args, study.ANALYSIS_FILES)
     return _finish(study.write_analysis(study.analyze(_begin(plan)), out), out, start, signals)
 
 
 def _simulate(args, signals) -> int:
+    """The simulation of --mechanism through its study, as _analyze; a signal stops a run that
+    can stop early, and what it simulated is written."""
     study, options = _study(args)
     if not study.SIMULATION_FILES:
         raise ParameterError(f"--mechanism = {args.mechanism}: has no simulation; simulate "
@@ -84,9 +88,15 @@ def _simulate(args, signals) -> int:
                              "--mechanism", "command line")
     start = time.perf_counter()
     plan = study.load_simulation(args.config, args.duration, **options)
-    out = prepare_output_dir(args.out or study.SIMULATION_OUT, "--out", study.SIMULATION_FILES)
+    out = _output_dir(args, study.SIMULATION_FILES)
     record = study.simulate(_begin(plan), progress=True, stop=lambda: signals.name)
     return _finish(study.write_simulation(record, out), out, start, signals)
+
+
+def _output_dir(args, files):
+    """--out (default: the mechanism's folder for this command), cleared of the job's files."""
+    return prepare_output_dir(args.out or catalog.default_out(args.mechanism, args.command),
+                              "--out", files)
 
 
 def _begin(plan) -> object:

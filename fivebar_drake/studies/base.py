@@ -62,8 +62,6 @@ class Study(Protocol):
     ANALYSIS_FILES: tuple[str, ...]     # the names write_analysis writes (report.json last)
     SIMULATION_FILES: tuple[str, ...]   # those write_simulation writes (summary.json last); ()
     #                                     without a simulation
-    ANALYSIS_OUT: str                   # the default output folders
-    SIMULATION_OUT: str
     OPTIONS: frozenset[str]             # command-line options of its own (e.g. "--gait")
 
     def load_params(self, config: str | Path | None) -> Any: ...
@@ -87,11 +85,33 @@ def parameters_line(name: str, config: str | Path | None) -> tuple[str]:
     return (f"{name} parameters: {config or 'packaged default'}",)
 
 
-def parameters_loader(name: str, load_params: Callable) -> Callable[[str | Path | None], Plan]:
+def parameters_loader(name: str, load_params: Callable) -> Callable[..., Plan]:
     """load_analysis of a study whose analysis takes its parameter file alone."""
     def load_analysis(config: str | Path | None) -> Plan:
         return Plan(load_params(config), parameters_line(name, config))
     return load_analysis
+
+
+def simulation_loader(name: str, load_params: Callable,
+                      duration_limits: Callable[[Any], dict]) -> Callable[..., Plan]:
+    """load_simulation of a study whose simulation takes its parameter file and --duration:
+    inputs (params, duration in s), the duration checked within duration_limits(params)
+    (checked_duration's default, low, high, why)."""
+    def load_simulation(config: str | Path | None, duration_s: float | None) -> Plan:
+        params = load_params(config)
+        return Plan((params, checked_duration(duration_s, **duration_limits(params))),
+                    parameters_line(name, config))
+    return load_simulation
+
+
+def analysis_writer(plots, report) -> Callable[[Any, Path], Written]:
+    """write_analysis of a study whose plots module writes the analysis's figures
+    (plots.write_analysis) and whose report module its report.md and report.json
+    (report.write_analysis) and the lines about it (report.analysis_lines)."""
+    def write_analysis(record, out: Path) -> Written:
+        return Written(plots.write_analysis(record, out) + report.write_analysis(record, out),
+                       report.analysis_lines(record))
+    return write_analysis
 
 
 def checked_duration(duration_s: float | None, default: float, low: float = 0.0,

@@ -48,6 +48,11 @@ def reference(params: Params, t) -> tuple[np.ndarray, np.ndarray]:
     return q1, q1d
 
 
+def duration_limits(params: Params) -> dict:
+    """A run's duration: the whole squat by default, at most MAX_DURATION_S."""
+    return {"default": params.simulation.duration_s, "high": MAX_DURATION_S}
+
+
 def _positions(model: LegModel, q1):
     pose = model.leg.points(q1, -2.0 * np.asarray(q1))
     return pose, model.positions(pose, -pose.f[..., 1])

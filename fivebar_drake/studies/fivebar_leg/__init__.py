@@ -19,13 +19,7 @@ from fivebar_drake.studies.fivebar_leg import report
 
 ANALYSIS_FILES = pipeline.ANALYSIS_FILES
 SIMULATION_FILES = pipeline.SIMULATION_FILES
-ANALYSIS_OUT = "out/analysis"
-SIMULATION_OUT = "out/simulation"
 OPTIONS = frozenset({"--gait", "--set", "--scenario", "--closure", "--step-check"})
-
-__all__ = ["ANALYSIS_FILES", "ANALYSIS_OUT", "OPTIONS", "SIMULATION_FILES", "SIMULATION_OUT",
-           "analyze", "load_analysis", "load_params", "load_simulation", "simulate",
-           "write_analysis", "write_simulation"]
 
 
 class Simulated(NamedTuple):

@@ -9,22 +9,14 @@ from pathlib import Path
 
 from fivebar_drake.core.parameter_files import load_parameter_file
 from fivebar_drake.mechanisms.parallel4.params import Params, params_from_dict
-from fivebar_drake.studies.base import (Plan, Written, checked_duration, parameters_line,
-                                        parameters_loader)
-from fivebar_drake.studies.parallel4 import plots, recording, report
-from fivebar_drake.studies.parallel4.analysis import Analysis, analyze
-from fivebar_drake.studies.parallel4.simulation import Run, run_summary, simulate as run
+from fivebar_drake.studies import base
+from fivebar_drake.studies.parallel4 import analysis, plots, recording, report, simulation
 
 NAME = "parallel4"
 PACKAGED = "parallel4.toml"
 ANALYSIS_FILES = plots.ANALYSIS_FIGURES + report.ANALYSIS_FILES
 SIMULATION_FILES = (recording.RECORDING_FILE,) + report.SIMULATION_FILES
-ANALYSIS_OUT, SIMULATION_OUT = f"out/{NAME}", f"out/simulation/{NAME}"
 OPTIONS = frozenset()
-
-__all__ = ["ANALYSIS_FILES", "ANALYSIS_OUT", "OPTIONS", "SIMULATION_FILES", "SIMULATION_OUT",
-           "analyze", "load_analysis", "load_params", "load_simulation", "simulate",
-           "write_analysis", "write_simulation"]
 
 
 def load_params(config: str | Path | None) -> Params:
@@ -33,31 +25,23 @@ def load_params(config: str | Path | None) -> Params:
     return load_parameter_file(config, PACKAGED, params_from_dict)
 
 
-load_analysis = parameters_loader(NAME, load_params)
+load_analysis = base.parameters_loader(NAME, load_params)
+analyze = analysis.analyze
+write_analysis = base.analysis_writer(plots, report)
+load_simulation = base.simulation_loader(NAME, load_params, simulation.duration_limits)
 
 
-def write_analysis(a: Analysis, out: Path) -> Written:
-    return Written(plots.write_analysis(a, out) + report.write_analysis(a, out),
-                   report.analysis_lines(a))
-
-
-def load_simulation(config: str | Path | None, duration_s: float | None) -> Plan:
-    """The parameters and the run's duration (default: the file's)."""
-    params = load_params(config)
-    return Plan((params, checked_duration(duration_s, params.simulation.duration_s)),
-                parameters_line(NAME, config))
-
-
-def simulate(inputs: tuple[Params, float], progress: bool, stop) -> tuple[Params, Run]:
+def simulate(inputs: tuple[Params, float], progress: bool,
+             stop) -> tuple[Params, simulation.Run]:
     """The run (about a second: neither progress lines nor an early stop)."""
     params, duration = inputs
-    return params, run(params, duration)
+    return params, simulation.simulate(params, duration)
 
 
-def write_simulation(record: tuple[Params, Run], out: Path) -> Written:
+def write_simulation(record: tuple[Params, simulation.Run], out: Path) -> base.Written:
     """run.rrd, then summary.json (last)."""
-    params, r = record
-    summary = run_summary(r)
-    path = recording.write_recording(out / recording.RECORDING_FILE, params, r)
-    return Written([path, *report.write_simulation(summary, out)],
-                   report.simulation_lines(summary, path))
+    params, run = record
+    summary = simulation.run_summary(run)
+    path = recording.write_recording(out / recording.RECORDING_FILE, params, run)
+    return base.Written([path, *report.write_simulation(summary, out)],
+                        report.simulation_lines(summary, path))

@@ -36,6 +36,11 @@ class Run:
     fk: np.ndarray
 
 
+def duration_limits(params: Params) -> dict:
+    """A run's duration: the file's by default."""
+    return {"default": params.simulation.duration_s}
+
+
 def _velocities(params: Params, t) -> np.ndarray:
     """Path velocity (..., 4) by central differences of the path (m/s, rad/s; h = 1e-6 s)."""
     h = 1e-6

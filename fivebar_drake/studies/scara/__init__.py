@@ -7,50 +7,34 @@ from __future__ import annotations
 from pathlib import Path
 
 from fivebar_drake.mechanisms.scara import ScaraParams, load_params
-from fivebar_drake.studies.base import (Plan, Written, checked_duration, parameters_line,
-                                        parameters_loader)
-from fivebar_drake.studies.scara import plots, recording, report
-from fivebar_drake.studies.scara.analysis import Analysis, analyze
-from fivebar_drake.studies.scara.simulation import Run, duration_limits, run, summarize
+from fivebar_drake.studies import base
+from fivebar_drake.studies.scara import analysis, plots, recording, report, simulation
 
 NAME = "scara"
 ANALYSIS_FILES = plots.ANALYSIS_FIGURES + report.ANALYSIS_FILES
 SIMULATION_FILES = plots.SIMULATION_FIGURES + (recording.RECORDING_FILE,) + report.SIMULATION_FILES
-ANALYSIS_OUT, SIMULATION_OUT = f"out/{NAME}", f"out/simulation/{NAME}"
 OPTIONS = frozenset()
-load_analysis = parameters_loader(NAME, load_params)
 
-__all__ = ["ANALYSIS_FILES", "ANALYSIS_OUT", "OPTIONS", "SIMULATION_FILES", "SIMULATION_OUT",
-           "analyze", "load_analysis", "load_params", "load_simulation", "simulate",
-           "write_analysis", "write_simulation"]
-
-
-def write_analysis(a: Analysis, out: Path) -> Written:
-    return Written(plots.write_analysis(a, out) + report.write_analysis(a, out),
-                   report.analysis_lines(a))
+load_analysis = base.parameters_loader(NAME, load_params)
+analyze = analysis.analyze
+write_analysis = base.analysis_writer(plots, report)
+load_simulation = base.simulation_loader(NAME, load_params, simulation.duration_limits)
 
 
-def load_simulation(config: str | Path | None, duration_s: float | None) -> Plan:
-    """The parameters and the run's duration (default: the trajectory's)."""
-    params = load_params(config)
-    duration = checked_duration(duration_s, params.trajectory.duration_s,
-                                **duration_limits(params))
-    return Plan((params, duration), parameters_line(NAME, config))
-
-
-def simulate(inputs: tuple[ScaraParams, float], progress: bool, stop) -> tuple[ScaraParams, Run]:
+def simulate(inputs: tuple[ScaraParams, float], progress: bool,
+             stop) -> tuple[ScaraParams, simulation.Run]:
     """The run, a progress line every simulated second (it does not stop early)."""
     params, duration = inputs
-    return params, run(params, duration, progress)
+    return params, simulation.run(params, duration, progress)
 
 
-def write_simulation(record: tuple[ScaraParams, Run], out: Path) -> Written:
+def write_simulation(record: tuple[ScaraParams, simulation.Run], out: Path) -> base.Written:
     """sim_tracking.png, run.rrd, summary.md and summary.json (last)."""
-    params, r = record
-    summary = summarize(params, r)
+    params, run = record
+    summary = simulation.summarize(params, run)
     error = summary.pop("error_series")
     path = out / recording.RECORDING_FILE
-    return Written([*plots.write_simulation(r, summary, error, out),
-                    recording.write_recording(path, params, r, error),
-                    *report.write_simulation(summary, out)],
-                   report.simulation_lines(summary, path))
+    return base.Written([*plots.write_simulation(run, summary, error, out),
+                         recording.write_recording(path, params, run, error),
+                         *report.write_simulation(summary, out)],
+                        report.simulation_lines(summary, path))

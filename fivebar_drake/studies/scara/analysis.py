@@ -1,6 +1,7 @@
-"""The SCARA study's analysis (everything report.json holds): the seed's trajectory through the kinematics and the Lagrange
-model (checked against Drake), the drive demand along it, and the seed's drive-sizing numbers
-recomputed under every reading its text allows (seed_claims)."""
+"""The SCARA study's analysis (everything report.json holds): the seed's trajectory through
+the kinematics and the Lagrange model (checked against Drake), the drive demand along it, and
+the seed's drive-sizing numbers recomputed under every reading its text allows
+(seed_claims)."""
 
 from __future__ import annotations
 

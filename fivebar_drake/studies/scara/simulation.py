@@ -45,9 +45,10 @@ def sized_motors(params: ScaraParams) -> list[LineMotor]:
 
 
 def duration_limits(params: ScaraParams) -> dict:
-    """The bounds of a run's duration (checked_duration's low, high, why)."""
-    return {"low": 10 * params.simulation.time_step_s, "high": MAX_DURATION_S,
-            "why": "at least 10 plant steps"}
+    """A run's duration: the trajectory's by default, at least 10 plant steps, at most
+    MAX_DURATION_S."""
+    return {"default": params.trajectory.duration_s, "low": 10 * params.simulation.time_step_s,
+            "high": MAX_DURATION_S, "why": "at least 10 plant steps"}
 
 
 def _line(peak, ratio, speed) -> LineMotor:
