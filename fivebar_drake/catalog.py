@@ -5,15 +5,15 @@ for. A new mechanism is a folder under mechanisms/, one under studies/ and an en
 from __future__ import annotations
 
 import importlib
-
-from fivebar_drake.studies.base import Study
+from types import ModuleType
 
 FIVEBAR = "fivebar_leg"          # the default: the quadruped's 5-bar leg
 MECHANISMS = (FIVEBAR, "ballscrew_leg", "scara", "parallel4")
 
 
-def study(name: str) -> Study:
-    """The study of a mechanism (KeyError names the choices)."""
+def study(name: str) -> ModuleType:
+    """The study of a mechanism, a module keeping studies/base.py's Study contract (KeyError
+    names the choices)."""
     if name not in MECHANISMS:
         raise KeyError(f"no study for mechanism {name!r}; known: {list(MECHANISMS)}")
     return importlib.import_module(f"fivebar_drake.studies.{name}")

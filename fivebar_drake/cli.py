@@ -37,13 +37,11 @@ EXIT_CODES = """exit codes:
 
 EXIT_INTERNAL = 3
 DEFAULTS = Scenario()
+COMMON = {"help", "mechanism", "config", "duration", "out"}   # options every study takes
 
 
 def _err(text: str) -> None:
     say(f"fivebar-drake: {text}", sys.stderr)
-
-
-COMMON = {"help", "mechanism", "config", "duration", "out"}   # options every study takes
 
 
 def _study(args):
