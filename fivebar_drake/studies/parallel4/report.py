@@ -212,7 +212,7 @@ def _condition_tables(rows: list[dict]) -> list[str]:
     return lines
 
 
-def markdown(params: Params, results: dict, seed_claims: list[dict], figures) -> str:
+def markdown(params: Params, results: dict, seed_claims: list[dict]) -> str:
     g, ck, ds = params.geometry, results["checks"], results["drake_statics"]
     lines = [
         "# parallel4: the 4-DOF parallel manipulator after Pierrot (seed 004)", "",
@@ -268,7 +268,7 @@ def markdown(params: Params, results: dict, seed_claims: list[dict], figures) ->
               "cancel. Readings computed: " + "; ".join(READINGS) + ".", "",
               "## Assumptions", ""]
     lines += [f"- {a}" for a in ASSUMPTIONS]
-    lines += ["", "## Figures", ""] + [f"- `{f}`" for f in figures]
+    lines += ["", "## Figures", ""] + [f"- `{f}`" for f in ANALYSIS_FIGURES]
     return "\n".join(lines) + "\n"
 
 
@@ -294,8 +294,7 @@ def write_analysis(a: Analysis, out: Path) -> list[Path]:
     public["maps"] = [{k: v for k, v in m.items() if k != "maps"} for m in results["maps"]]
     public["geometry"] = vars(params.geometry)
     public["seed_claims"] = seed_claims
-    return [write_atomic(out / "report.md", markdown(params, results, seed_claims,
-                                                     ANALYSIS_FIGURES)),
+    return [write_atomic(out / "report.md", markdown(params, results, seed_claims)),
             write_atomic(out / "report.json",
                          json.dumps(_plain(public), indent=1, allow_nan=False) + "\n")]
 
