@@ -1,41 +1,32 @@
-"""The mechanisms the command line knows, by name, and the study module of each.
-
-`fivebar_leg` is the quadruped's 5-bar leg (pipeline.py); every other name is a package under
-`fivebar_drake.studies`, imported only when asked for, that offers:
-
-    ANALYSIS_FILES: tuple[str, ...]          the files write_analysis writes (the last one last)
-    load_params(config: str | Path | None)   its validated parameters (ParameterError naming the
-                                             file and field), None for the packaged file
-    write_analysis(params, out: Path) -> (lines: list[str], written: list[Path])
-        the analysis, its report and plots written into out; lines: what the command line
-        prints about it (the headline numbers)
-and, if it can be simulated:
-    SIMULATION_FILES: tuple[str, ...]
-    write_simulation(params, out: Path, duration_s: float | None, progress: bool)
-        -> (lines, written)
-"""
+"""The mechanisms the command line knows, by name, and the study of each: a package under
+`fivebar_drake.studies` keeping the Study contract (studies/base.py), imported only when asked
+for. A new mechanism is a folder under mechanisms/, one under studies/ and an entry here."""
 
 from __future__ import annotations
 
 import importlib
 from types import ModuleType
 
-FIVEBAR = "fivebar_leg"
-STUDIES = {
-    "ballscrew_leg": "fivebar_drake.studies.ballscrew_leg",
-    "scara": "fivebar_drake.studies.scara",
-    "parallel4": "fivebar_drake.studies.parallel4",
-}
-MECHANISMS = (FIVEBAR, *STUDIES)
+FIVEBAR = "fivebar_leg"          # the default: the quadruped's 5-bar leg
+MECHANISMS = (FIVEBAR, "ballscrew_leg", "scara", "parallel4")
 
 
 def study(name: str) -> ModuleType:
-    """The study module of a mechanism other than the 5-bar leg (KeyError names the choices)."""
-    if name not in STUDIES:
-        raise KeyError(f"no study for mechanism {name!r}; known: {list(STUDIES)}")
-    return importlib.import_module(STUDIES[name])
+    """The study of a mechanism, a module keeping studies/base.py's Study contract (KeyError
+    names the choices)."""
+    if name not in MECHANISMS:
+        raise KeyError(f"no study for mechanism {name!r}; known: {list(MECHANISMS)}")
+    return importlib.import_module(f"fivebar_drake.studies.{name}")
+
+
+def default_out(name: str, command: str) -> str:
+    """The output folder of `command` (analyze, simulate) when --out is not given: out/analysis
+    and out/simulation for the default mechanism, out/NAME and out/simulation/NAME for another."""
+    if name == FIVEBAR:
+        return "out/analysis" if command == "analyze" else "out/simulation"
+    return f"out/{name}" if command == "analyze" else f"out/simulation/{name}"
 
 
 def can_simulate(name: str) -> bool:
     """Whether `simulate --mechanism name` exists."""
-    return name == FIVEBAR or hasattr(study(name), "write_simulation")
+    return bool(study(name).SIMULATION_FILES)

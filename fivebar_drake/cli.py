@@ -12,7 +12,6 @@
 from __future__ import annotations
 
 import argparse
-import shlex
 import sys
 import tempfile
 import time
@@ -23,8 +22,7 @@ from fivebar_drake import catalog
 from fivebar_drake.core.files import check_output_file, prepare_output_dir, say
 from fivebar_drake.core.footpath import PATHS
 from fivebar_drake.core.interrupts import Interrupted, Signals
-from fivebar_drake.core.validation import ParameterError, check_number
-from fivebar_drake.robots.quadruped.config import load_params, sampling_error
+from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.robots.quadruped.plant import CLOSURES
 from fivebar_drake.simulation.scenario import Scenario
 
@@ -39,173 +37,91 @@ EXIT_CODES = """exit codes:
 
 EXIT_INTERNAL = 3
 DEFAULTS = Scenario()
+COMMON = {"help", "mechanism", "config", "duration", "out"}   # options every study takes
 
 
 def _err(text: str) -> None:
     say(f"fivebar-drake: {text}", sys.stderr)
 
 
-def _only_for_fivebar(args, *options) -> None:
-    """ParameterError for an option of the quadruped's 5-bar leg given with another mechanism."""
-    for option in options:
-        value = getattr(args, option.lstrip("-").replace("-", "_"))
-        if value is not None:
-            raise ParameterError(f"{option} = {value}: applies to --mechanism {catalog.FIVEBAR} "
-                                 f"only, not to {args.mechanism}", option, "command line")
-
-
-def _with_sets(params, sets):
-    """The parameters with the command line's --set FIELD=VALUE edits (ParameterError naming
-    the command line)."""
-    if not sets:
-        return params
-    from fivebar_drake.robots.quadruped.config import with_changes
-
-    changes = {}
-    for item in sets:
-        field, sep, text = item.partition("=")
-        if not sep or not field:
-            raise ParameterError(f"--set {item}: write FIELD=VALUE, e.g. motor.gear_ratio=11.5",
-                                 "--set", "command line")
-        try:
-            changes[field.strip()] = float(text)
-        except ValueError:
-            changes[field.strip()] = text.strip()
-    try:
-        return with_changes(params, changes)
-    except ParameterError as err:
-        raise err.located("command line (--set)") from None
-
-
-def _study(args, signals, job: str) -> int:
-    """analyze or simulate a mechanism of catalog.STUDIES: its parameters first (bad input:
-    exit 2 before the folder is touched), then its files."""
+def _study(args):
+    """The study of --mechanism and the values of its own options given to this command
+    (ParameterError for one it does not take)."""
     import matplotlib
 
-    matplotlib.use("Agg")
+    matplotlib.use("Agg")  # files only, never a window
     study = catalog.study(args.mechanism)
-    if job == "simulate" and not catalog.can_simulate(args.mechanism):
+    options = {}
+    for action in _commands()[args.command]._actions:
+        if action.dest in COMMON:
+            continue
+        value, flag = getattr(args, action.dest), action.option_strings[0]
+        if flag in study.OPTIONS:
+            options[action.dest] = value
+        elif value is not None:
+            takers = [m for m in catalog.MECHANISMS if flag in catalog.study(m).OPTIONS]
+            raise ParameterError(f"{flag} = {value}: applies to --mechanism "
+                                 f"{', '.join(takers)} only, not to {args.mechanism}", flag,
+                                 "command line")
+    return study, options
+
+
+def _analyze(args, signals) -> int:
+    """The analysis of --mechanism through its study (studies/base.py): every input checked
+    before the folder is touched (exit 2), then run, written and reported."""
+    study, options = _study(args)
+    start = time.perf_counter()
+    plan = study.load_analysis(args.config, **options)          # bad input: exit 2 first
+    out = _output_dir(args, study.ANALYSIS_FILES)
+    return _finish(study.write_analysis(study.analyze(_begin(plan)), out), out, start, signals)
+
+
+def _simulate(args, signals) -> int:
+    """The simulation of --mechanism through its study, as _analyze; a signal stops a run that
+    can stop early, and what it simulated is written."""
+    study, options = _study(args)
+    if not study.SIMULATION_FILES:
         raise ParameterError(f"--mechanism = {args.mechanism}: has no simulation; simulate "
                              f"takes {[m for m in catalog.MECHANISMS if catalog.can_simulate(m)]}",
                              "--mechanism", "command line")
     start = time.perf_counter()
-    params = study.load_params(args.config)
-    if job == "simulate" and args.duration is not None:
-        try:
-            check_number("--duration", args.duration, 0.0, low_open=True)
-        except ParameterError as err:
-            raise err.located("command line") from None
-    files = study.ANALYSIS_FILES if job == "analyze" else study.SIMULATION_FILES
-    default = f"out/{args.mechanism}" if job == "analyze" else f"out/simulation/{args.mechanism}"
-    out = prepare_output_dir(args.out or default, "--out", files)
-    say(f"{args.mechanism} parameters: {args.config or 'packaged default'}")
-    if job == "analyze":
-        lines, written = study.write_analysis(params, out)
-    else:
-        lines, written = study.write_simulation(params, out, args.duration, progress=True)
-    for line in lines:
+    plan = study.load_simulation(args.config, args.duration, **options)
+    out = _output_dir(args, study.SIMULATION_FILES)
+    record = study.simulate(_begin(plan), progress=True, stop=lambda: signals.name)
+    return _finish(study.write_simulation(record, out), out, start, signals)
+
+
+def _output_dir(args, files):
+    """--out (default: the mechanism's folder for this command), cleared of the job's files."""
+    return prepare_output_dir(args.out or catalog.default_out(args.mechanism, args.command),
+                              "--out", files)
+
+
+def _begin(plan) -> object:
+    """Print the plan's heading; its inputs."""
+    for line in plan.heading:
         say(line)
-    say(f"wrote {len(written)} files to {out.resolve()} in {time.perf_counter() - start:.1f} s:")
-    for path in written:
+    return plan.inputs
+
+
+def _finish(written, out, start: float, signals) -> int:
+    """Print what the job wrote and says; its exit code (see EXIT_CODES)."""
+    for line in written.lines:
+        say(line)
+    took = f" in {time.perf_counter() - start:.1f} s" if written.timed else ""
+    say(f"wrote {len(written.files)} files to {out.resolve()}{took}:")
+    for path in written.files:
         say(f"  {path}")
-    return 0
-
-
-def _analyze(args, signals) -> int:
-    if args.mechanism != catalog.FIVEBAR:
-        _only_for_fivebar(args, "--gait", "--set")
-        return _study(args, signals, "analyze")
-    import matplotlib
-
-    matplotlib.use("Agg")  # files only, never a window
-    from fivebar_drake import pipeline
-
-    args.gait = args.gait or "seed_ellipse"
-    start = time.perf_counter()
-    params = _with_sets(load_params(args.config), args.set)   # bad input: exit 2 first
-    out = prepare_output_dir(args.out or "out/analysis", "--out", pipeline.ANALYSIS_FILES)
-    say(f"parameters: {args.config or 'packaged default'}")
-    record = pipeline.run_analysis(params, gait=args.gait)
-    written = pipeline.write_analysis(record, out)
-    readings = [(model, motor, m) for model, motors in record.results.items()
-                for motor, m in motors.items()]
-    say(f"foot path: {args.gait}; every reading, the lowest safety factor first:")
-    for model, motor, m in sorted(readings, key=lambda r: r[2]["safety_factor"]):
-        say(f"  {model:>9} motor {motor}: peak {m['peak_torque_Nm']:.3f} N m, "
-            f"static {m['static_torque_Nm']:.3f} N m, SF {m['safety_factor']:.2f} "
-            f"({m['verdict'].upper()}), peak speed {m['peak_speed_rad_s']:.2f} rad/s; verdict "
-            f"{m['checks']['verdict'].upper()} ({m['checks']['deciding_check']} check)")
-    say(f"wrote {len(written)} files to {out.resolve()} in {time.perf_counter() - start:.1f} s:")
-    for path in written:
-        say(f"  {path}")
-    if record.sampling_error["warning"]:
-        _err(f"warning: {record.sampling_error['warning']}")
-    return 0
-
-
-def _simulate(args, signals) -> int:
-    if args.mechanism != catalog.FIVEBAR:
-        _only_for_fivebar(args, "--scenario", "--gait", "--closure", "--set", "--step-check")
-        return _study(args, signals, "simulate")
-    import matplotlib
-
-    matplotlib.use("Agg")
-    from fivebar_drake import pipeline
-    from fivebar_drake.simulation.runner import load_run
-
-    scenario, params = load_run(args.scenario, duration_s=args.duration, closure=args.closure,
-                                gait=args.gait, params_file=args.config)
-    params = _with_sets(params, args.set)
-    if args.set:
-        from fivebar_drake.simulation.builder import check_run
-        check_run(scenario, params)         # the edited robot, before the folder is touched
-    out = prepare_output_dir(args.out or "out/simulation", "--out", pipeline.SIMULATION_FILES)
-    record = pipeline.run_simulation(scenario, params, progress=True, stop=lambda: signals.name)
-    half = None
-    if args.step_check and not record.error and not record.interrupted and not signals.signum:
-        say(f"step check: the same run at half the plant step "
-            f"({record.design.time_step_s / 2:g} s)")
-        half = pipeline.run_step_check(record, progress=True, stop=lambda: signals.name)
-        if half.interrupted:
-            half = None
-    summary, written = pipeline.write_simulation(record, out, half)   # summary.json last
-    say(f"{summary['gait']} gait, {summary['closure']} closure: {summary['duration_s']:.2f} s "
-        f"simulated, {summary['real_time_factor']:.2f}x real time, worst loop gap "
-        f"{summary['max_loop_gap_m'] * 1e3:.4f} mm, {summary['cycles_in_window']} whole cycles, "
-        f"walking {summary['mean_forward_speed_m_s']:.3f} m/s (gait "
-        f"{summary['gait_speed_m_s']:.3f} m/s), largest tilt {summary['max_tilt_deg']:.1f} deg")
-    for leg, motors in summary["legs"].items():
-        say("  " + leg + ": " + ", ".join(
-            f"{m} demand p99 {v['demand_p99_Nm']:.2f} N m (RMS {v['rms_torque_Nm']:.2f}, "
-            f"SF {v['safety_factor']:.2f}, {v['verdict']})" for m, v in motors.items()))
-    say(f"verdict: {summary['verdict'].upper()} (worst motor {summary['worst_motor']}, "
-        f"{summary['deciding_check']} check)")
-    if summary["step_check"]:
-        sc = summary["step_check"]
-        say(f"step check at {sc['half_time_step_s']:g} s: worst demand p99 change "
-            f"{sc['worst_demand_p99_change']:+.2%}, worst SF change {sc['worst_sf_change']:.3f}"
-            + (f"; MARGINAL: {sc['why']}" if sc["marginal"] else ""))
-    say(summary["answer"])
-    say(f"wrote {len(written)} files to {out.resolve()}:")
-    for path in written:
-        say(f"  {path}")
-    say(f"open the recording with: rerun {shlex.quote(str(out / pipeline.RECORDING_FILE))}")
-    warning = sampling_error(params, "seed_ellipse")["warning"]
-    if warning:
-        _err(f"warning: the seed's reference figures: {warning}")
+    for line in written.closing:
+        say(line)
+    for line in written.warnings:
+        _err(line)
     if signals.signum:
-        _err(f"{summary['error']}: wrote what was simulated (summary.json: completed false, "
-             "interrupted true)" if record.interrupted else
-             f"interrupted by {signals.name} after the run: its files are complete")
+        _err(written.interrupted or f"interrupted by {signals.name} after the run: its files "
+             "are complete")
         return 128 + signals.signum
-    if record.error:
-        _err(f"error: the run stopped early: {record.error}")
-        return 1
-    if summary["verdict"] == "insufficient":
-        _err(f"error: no verdict: {summary['answer']}")
-        return 1
-    if summary["verdict"] == "not_achieved":
-        _err(f"error: the motion was not achieved: {summary['answer']}")
+    if written.failure:
+        _err(written.failure)
         return 1
     return 0
 
@@ -299,7 +215,7 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--config", **{**config, "help": "parameter file (TOML, the layout of the "
                                   "mechanism's file in fivebar_drake/data/: default.toml for the "
                                   "5-bar leg, NAME.toml for another); default: the packaged one"})
-    sets = dict(action="append", metavar="FIELD=VALUE",
+    sets = dict(action="append", metavar="FIELD=VALUE", dest="sets",
                 help="change a parameter by its dotted path (as a sweep does), e.g. "
                      "motor.gear_ratio=11.5; repeatable, 5-bar quadruped only")
     p.add_argument("--set", **sets)
@@ -355,11 +271,16 @@ def parser() -> argparse.ArgumentParser:
     return top
 
 
+def _commands() -> dict[str, argparse.ArgumentParser]:
+    """The parser of each subcommand, by name."""
+    return next(a for a in parser()._actions
+                if isinstance(a, argparse._SubParsersAction)).choices
+
+
 def options_markdown() -> str:
     """The README's table of every subcommand's options, from the parser."""
     rows = ["| command | option | default | meaning |", "|---|---|---|---|"]
-    sub = next(a for a in parser()._actions if isinstance(a, argparse._SubParsersAction))
-    for name, command in sub.choices.items():
+    for name, command in _commands().items():
         for action in command._actions:
             if isinstance(action, argparse._HelpAction):
                 continue

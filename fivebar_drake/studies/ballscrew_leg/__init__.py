@@ -1,35 +1,37 @@
 """Study of seed 001: the serial two-link leg with a ball-screw knee against the geared knee
-(`fivebar-drake analyze|simulate --mechanism ballscrew_leg`), the contract of catalog.py."""
+(`fivebar-drake analyze|simulate --mechanism ballscrew_leg`), the Study contract of
+studies/base.py."""
 
 from __future__ import annotations
 
 from pathlib import Path
 
-import numpy as np
-
 from fivebar_drake.mechanisms.ballscrew_leg import Params, load_params
-from fivebar_drake.studies.ballscrew_leg.analysis import analyze
-from fivebar_drake.studies.ballscrew_leg.plots import PLOT_FILES, write_plots
-from fivebar_drake.studies.ballscrew_leg.report import REPORT_FILES, write_report
-from fivebar_drake.studies.ballscrew_leg.simulation import SIMULATION_FILES, write_simulation
+from fivebar_drake.studies import base
+from fivebar_drake.studies.ballscrew_leg import analysis, plots, recording, report, simulation
 
-ANALYSIS_FILES = PLOT_FILES + REPORT_FILES      # report.json last
+NAME = "ballscrew_leg"
+ANALYSIS_FILES = plots.ANALYSIS_FIGURES + report.ANALYSIS_FILES
+SIMULATION_FILES = plots.SIMULATION_FIGURES + (recording.RECORDING_FILE,) + report.SIMULATION_FILES
+OPTIONS = frozenset()
 
-__all__ = ["ANALYSIS_FILES", "SIMULATION_FILES", "load_params", "write_analysis",
-           "write_simulation"]
+load_analysis = base.parameters_loader(NAME, load_params)
+analyze = analysis.analyze
+write_analysis = base.analysis_writer(plots, report)
+load_simulation = base.simulation_loader(NAME, load_params, simulation.duration_limits)
 
 
-def write_analysis(params: Params, out: Path) -> tuple[list[str], list[Path]]:
-    """The analysis's plots and report in out; the headline lines for the console."""
-    a = analyze(params)
-    written = write_plots(a, out) + write_report(a, out)
-    lines = []
-    for s, st in a.statics.items():
-        r = st.ratio["joint", "forward"]
-        i = int(np.argmax(r))
-        lines.append(f"s1 = {s * 1e3:g} mm: equivalent ratio max {r[i]:.2f} at q1 = "
-                     f"{np.degrees(st.q1[i]):.2f} deg, min {np.min(r):.3f} (forward efficiency); "
-                     f"Drake check {a.drake[s]['max_rel_screw']:.1e}")
-    held = sum(c["reproduced"] for c in a.claims)
-    lines.append(f"seed claims: {held} of {len(a.claims)} readings reproduced (report.md)")
-    return lines, written
+def simulate(inputs: tuple[Params, float], progress: bool, stop) -> simulation.SquatRun:
+    """The squat (in one piece: neither progress lines nor an early stop)."""
+    return simulation.run_squat(*inputs)
+
+
+def write_simulation(run: simulation.SquatRun, out: Path) -> base.Written:
+    """squat.png, run.rrd, summary.md and summary.json (last)."""
+    sig = simulation.signals(run)
+    summary = simulation.summarize(run, sig)
+    path = out / recording.RECORDING_FILE
+    return base.Written([*plots.write_simulation(sig, run.params, out),
+                         recording.write_recording(sig, run.params, path),
+                         *report.write_simulation(summary, out)],
+                        report.simulation_lines(summary, path))

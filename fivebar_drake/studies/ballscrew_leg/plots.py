@@ -1,5 +1,6 @@
-"""The analysis plots: motor torques of both designs per lever, the equivalent reduction ratio
-with its extremes marked, and the knee range the screw's stroke allows."""
+"""The figures: of the analysis, the motor torques of both designs per lever, the equivalent
+reduction ratio with its extremes marked and the knee range the screw's stroke allows; of the
+simulation, the squat."""
 
 from __future__ import annotations
 
@@ -9,10 +10,12 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from fivebar_drake.core.files import save_figure
-from fivebar_drake.mechanisms.ballscrew_leg import ball_screw_leg
+from fivebar_drake.mechanisms.ballscrew_leg import Params, ball_screw_leg
 from fivebar_drake.studies.ballscrew_leg.analysis import Analysis
+from fivebar_drake.studies.ballscrew_leg.simulation import Signals
 
-PLOT_FILES = ("motor_torques.png", "equivalent_ratio.png", "knee_range.png")
+ANALYSIS_FIGURES = ("motor_torques.png", "equivalent_ratio.png", "knee_range.png")
+SIMULATION_FIGURES = ("squat.png",)
 
 
 def motor_torques(a: Analysis, path: Path) -> Path:
@@ -93,6 +96,32 @@ def knee_range(a: Analysis, path: Path) -> Path:
     return save_figure(fig, path, dpi=120)
 
 
-def write_plots(a: Analysis, out: Path) -> list[Path]:
+def squat(sig: Signals, p: Params, path: Path) -> Path:
+    """The simulated squat: q1 against its reference, the screw motor's torques, the loop gaps."""
+    fig, axes = plt.subplots(3, 1, figsize=(8, 8), sharex=True)
+    axes[0].plot(sig.t, np.degrees(sig.q1_ref), "--", label="reference")
+    axes[0].plot(sig.t, np.degrees(sig.q1), label="simulated")
+    axes[0].set_ylabel("q1 (deg)")
+    axes[1].plot(sig.t, sig.command, label="commanded")
+    axes[1].plot(sig.t, sig.applied, label="applied")
+    axes[1].plot(sig.t, sig.static, "--", label="closed-form static (700 N, lossless)")
+    axes[1].axhline(-p.motor.peak_torque_Nm, color="gray", lw=0.8, label="motor limit")
+    axes[1].set_ylabel("screw motor torque (N m)")
+    axes[2].semilogy(sig.t, np.maximum(sig.gap_d, 1e-12), label="at D")
+    axes[2].semilogy(sig.t, np.maximum(sig.gap_foot, 1e-12), label="at the foot")
+    axes[2].set_ylabel("loop gap (m)")
+    axes[2].set_xlabel("time (s)")
+    for ax in axes:
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    return save_figure(fig, path)
+
+
+def write_analysis(a: Analysis, out: Path) -> list[Path]:
     return [f(a, out / name) for f, name in zip((motor_torques, equivalent_ratio, knee_range),
-                                                PLOT_FILES)]
+                                                ANALYSIS_FIGURES)]
+
+
+def write_simulation(sig: Signals, p: Params, out: Path) -> list[Path]:
+    return [squat(sig, p, out / SIMULATION_FIGURES[0])]

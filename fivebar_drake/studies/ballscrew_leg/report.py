@@ -1,4 +1,5 @@
-"""report.md and report.json of the ball-screw leg's analysis."""
+"""The text of the ball-screw leg's jobs: the analysis's report.md and report.json, the squat's
+summary.md and summary.json, and the lines the command line prints about each."""
 
 from __future__ import annotations
 
@@ -12,9 +13,11 @@ from fivebar_drake.core.files import write_atomic
 from fivebar_drake.mechanisms.ballscrew_leg import EFFICIENCY_READINGS, RATIO_READINGS
 from fivebar_drake.studies.ballscrew_leg.analysis import (REPRODUCED_WITHIN, Analysis,
                                                           lever_summary, ratio_crossings)
-from fivebar_drake.studies.ballscrew_leg.plots import PLOT_FILES
+from fivebar_drake.studies.ballscrew_leg.plots import ANALYSIS_FIGURES
+from fivebar_drake.studies.ballscrew_leg.simulation import STANDING_SETTLE_S
 
-REPORT_FILES = ("report.md", "report.json")
+ANALYSIS_FILES = ("report.md", "report.json")          # report.json last
+SIMULATION_FILES = ("summary.md", "summary.json")      # summary.json last
 TABLE_Q1_DEG = (10.0, 20.0, 30.0, 40.0, 50.0, 60.0, 70.0, 80.0)
 
 GEOMETRY = (
@@ -170,11 +173,63 @@ def _markdown(a: Analysis) -> str:
     for s, d in a.drake.items():
         lines.append(f"| {s * 1e3:g} | {d['poses']} | {d['max_rel_screw']:.2e} | "
                      f"{d['max_abs_hip_Nm']:.2e} |")
-    lines += ["", "## Figures", "", *[f"- `{name}`" for name in PLOT_FILES], ""]
+    lines += ["", "## Figures", "", *[f"- `{name}`" for name in ANALYSIS_FIGURES], ""]
     return "\n".join(lines)
 
 
-def write_report(a: Analysis, out: Path) -> list[Path]:
+def write_analysis(a: Analysis, out: Path) -> list[Path]:
     """report.md, then report.json (last)."""
     return [write_atomic(out / "report.md", _markdown(a)),
             write_atomic(out / "report.json", json.dumps(_json(a), indent=2) + "\n")]
+
+
+def analysis_lines(a: Analysis) -> list[str]:
+    """Each lever's ratio extremes and Drake check, and how many claims hold."""
+    lines = []
+    for s, st in a.statics.items():
+        r = st.ratio["joint", "forward"]
+        i = int(np.argmax(r))
+        lines.append(f"s1 = {s * 1e3:g} mm: equivalent ratio max {r[i]:.2f} at q1 = "
+                     f"{np.degrees(st.q1[i]):.2f} deg, min {np.min(r):.3f} (forward efficiency); "
+                     f"Drake check {a.drake[s]['max_rel_screw']:.1e}")
+    held = sum(c["reproduced"] for c in a.claims)
+    lines.append(f"seed claims: {held} of {len(a.claims)} readings reproduced (report.md)")
+    return lines
+
+
+def _summary_markdown(summary: dict) -> str:
+    s = summary
+    return "\n".join([
+        f"# Ball-screw leg: simulated squat (s1 = {s['lever_m'] * 1e3:g} mm)", "",
+        f"- simulated {s['duration_s']:.3f} s in {s['wall_time_s']:.2f} s "
+        f"({s['real_time_factor']:.2f}x real time)",
+        f"- hip angle tracking error: RMS {s['q1_tracking_error_deg']['rms']:.3f} deg, max "
+        f"{s['q1_tracking_error_deg']['max']:.3f} deg",
+        f"- loop gaps: at D {s['max_loop_gap_m']['D'] * 1e6:.2f} um, at the foot "
+        f"{s['max_loop_gap_m']['foot'] * 1e6:.2f} um",
+        f"- screw motor: peak applied {s['peak_applied_torque_Nm']:.3f} N m (closed-form static "
+        f"peak {s['peak_static_closed_form_Nm']:.3f} N m, lossless screw; with the 90 % screw "
+        f"{s['peak_applied_with_screw_efficiency_Nm']['forward']:.3f} N m forward), limit "
+        f"{s['motor_peak_torque_Nm']:g} N m; peak speed {s['peak_motor_speed_rad_s']:.1f} rad/s "
+        f"of {s['motor_no_load_speed_rad_s']:g}; clipped {s['clipped_share']['peak']:.1%} at the "
+        f"peak, {s['clipped_share']['torque_speed_line']:.1%} on the torque-speed line",
+        f"- standing still (after {STANDING_SETTLE_S:g} s): applied torque / static torque - 1 "
+        f"= {_pct(s['standing_applied_vs_static']['drake'])} against Drake's projected static "
+        f"torque (links included), {_pct(s['standing_applied_vs_static']['closed_form'])} "
+        "against the closed form (700 N only, no link weights)", ""])
+
+
+def _pct(value) -> str:
+    return "n/a (no standing samples)" if value is None else f"{value:+.2%}"
+
+
+def write_simulation(summary: dict, out: Path) -> list[Path]:
+    """summary.md, then summary.json (last)."""
+    return [write_atomic(out / "summary.md", _summary_markdown(summary)),
+            write_atomic(out / "summary.json", json.dumps(summary, indent=2) + "\n")]
+
+
+def simulation_lines(summary: dict, recording: Path) -> list[str]:
+    """summary.md's points, and how to open the recording."""
+    return [line[2:] for line in _summary_markdown(summary).splitlines() if line.startswith("- ")
+            ] + [f"open the recording with: rerun {recording}"]

@@ -1,7 +1,7 @@
 """A short squat of the ball-screw leg in Drake: the squat rig (hip on a carriage of mass
 foot_force / g on a vertical rail, foot pinned to the ground, hip free) driven by the screw
 motor alone through the motor model (peak torque and torque-speed line of the parameter file),
-recorded to Rerun.
+its summary.
 
 Diagram, C++ systems only: reference motor angle and speed (TrajectorySource, the closed-form
 squat q1(t) -> q2 = -2 q1 -> q2l -> 2 pi q2l / lead) -> PidController (PD on the motor angle,
@@ -12,29 +12,20 @@ those of a 100 % screw; the report gives what the seed's 90 % makes of them."""
 
 from __future__ import annotations
 
-import json
 import time
 from dataclasses import dataclass
-from pathlib import Path
 
-import matplotlib.pyplot as plt
 import numpy as np
-import rerun as rr
-import rerun.blueprint as rrb
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.controllers import PidController
 from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import Adder, LogVectorOutput, TrajectorySource
 from pydrake.trajectories import PiecewisePolynomial
 
-from fivebar_drake.core.files import save_figure, write_atomic
 from fivebar_drake.core.motor import MotorModel, clip_flags
-from fivebar_drake.core.validation import check_number
 from fivebar_drake.mechanisms.ballscrew_leg import TREE_JOINTS, Params, ball_screw_leg
-from fivebar_drake.core.rerun_files import TIMELINE, pose_frames, recording_file, scalars
 from fivebar_drake.studies.ballscrew_leg.model import LegModel, build_model
 
-SIMULATION_FILES = ("squat.png", "run.rrd", "summary.md", "summary.json")   # summary.json last
 FEEDFORWARD_STEP_S = 0.005       # the feed-forward's samples along the reference
 MAX_DURATION_S = 60.0
 STANDING_SETTLE_S = 0.1          # the start's transient (the loop and the PD settle) is left out
@@ -55,6 +46,11 @@ def reference(params: Params, t) -> tuple[np.ndarray, np.ndarray]:
     q1d = np.where(moving, sign * (bottom - top) * 0.5 * np.pi / s.down_s * np.sin(np.pi * phase),
                    0.0)
     return q1, q1d
+
+
+def duration_limits(params: Params) -> dict:
+    """A run's duration: the whole squat by default, at most MAX_DURATION_S."""
+    return {"default": params.simulation.duration_s, "high": MAX_DURATION_S}
 
 
 def _positions(model: LegModel, q1):
@@ -81,10 +77,10 @@ class SquatRun:
 
 
 def run_squat(params: Params, duration_s: float | None = None) -> SquatRun:
-    """Simulate the squat (duration_s: None for the whole squat, hold-down-up-hold)."""
+    """Simulate the squat for duration_s (None: the whole squat, hold-down-up-hold; at most
+    MAX_DURATION_S)."""
     s = params.simulation
-    duration = s.duration_s if duration_s is None else check_number(
-        "--duration", duration_s, 0.0, MAX_DURATION_S, low_open=True)
+    duration = s.duration_s if duration_s is None else duration_s
     builder = DiagramBuilder()
     model = build_model(params, s.lever_m, "squat", builder)
     plant, leg = model.plant, model.leg
@@ -214,94 +210,3 @@ def summarize(run: SquatRun, sig: Signals) -> dict:
 def _relative(values, reference):
     """mean(values) / mean(reference) - 1, None without samples."""
     return float(np.mean(values) / np.mean(reference) - 1.0) if len(values) else None
-
-
-def _markdown(summary: dict) -> str:
-    s = summary
-    return "\n".join([
-        f"# Ball-screw leg: simulated squat (s1 = {s['lever_m'] * 1e3:g} mm)", "",
-        f"- simulated {s['duration_s']:.3f} s in {s['wall_time_s']:.2f} s "
-        f"({s['real_time_factor']:.2f}x real time)",
-        f"- hip angle tracking error: RMS {s['q1_tracking_error_deg']['rms']:.3f} deg, max "
-        f"{s['q1_tracking_error_deg']['max']:.3f} deg",
-        f"- loop gaps: at D {s['max_loop_gap_m']['D'] * 1e6:.2f} um, at the foot "
-        f"{s['max_loop_gap_m']['foot'] * 1e6:.2f} um",
-        f"- screw motor: peak applied {s['peak_applied_torque_Nm']:.3f} N m (closed-form static "
-        f"peak {s['peak_static_closed_form_Nm']:.3f} N m, lossless screw; with the 90 % screw "
-        f"{s['peak_applied_with_screw_efficiency_Nm']['forward']:.3f} N m forward), limit "
-        f"{s['motor_peak_torque_Nm']:g} N m; peak speed {s['peak_motor_speed_rad_s']:.1f} rad/s "
-        f"of {s['motor_no_load_speed_rad_s']:g}; clipped {s['clipped_share']['peak']:.1%} at the "
-        f"peak, {s['clipped_share']['torque_speed_line']:.1%} on the torque-speed line",
-        f"- standing still (after {STANDING_SETTLE_S:g} s): applied torque / static torque - 1 "
-        f"= {_pct(s['standing_applied_vs_static']['drake'])} against Drake's projected static "
-        f"torque (links included), {_pct(s['standing_applied_vs_static']['closed_form'])} "
-        "against the closed form (700 N only, no link weights)", ""])
-
-
-def _pct(value) -> str:
-    return "n/a (no standing samples)" if value is None else f"{value:+.2%}"
-
-
-def _plot(sig: Signals, p: Params, path: Path) -> Path:
-    fig, axes = plt.subplots(3, 1, figsize=(8, 8), sharex=True)
-    axes[0].plot(sig.t, np.degrees(sig.q1_ref), "--", label="reference")
-    axes[0].plot(sig.t, np.degrees(sig.q1), label="simulated")
-    axes[0].set_ylabel("q1 (deg)")
-    axes[1].plot(sig.t, sig.command, label="commanded")
-    axes[1].plot(sig.t, sig.applied, label="applied")
-    axes[1].plot(sig.t, sig.static, "--", label="closed-form static (700 N, lossless)")
-    axes[1].axhline(-p.motor.peak_torque_Nm, color="gray", lw=0.8, label="motor limit")
-    axes[1].set_ylabel("screw motor torque (N m)")
-    axes[2].semilogy(sig.t, np.maximum(sig.gap_d, 1e-12), label="at D")
-    axes[2].semilogy(sig.t, np.maximum(sig.gap_foot, 1e-12), label="at the foot")
-    axes[2].set_ylabel("loop gap (m)")
-    axes[2].set_xlabel("time (s)")
-    for ax in axes:
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=8)
-    fig.tight_layout()
-    return save_figure(fig, path)
-
-
-def write_recording(sig: Signals, p: Params, path: Path) -> Path:
-    """The run's .rrd (blueprint inside, footer written, then renamed into place)."""
-    view = rrb.Blueprint(rrb.Horizontal(
-        rrb.Spatial3DView(origin="world", name="leg"),
-        rrb.Vertical(rrb.TimeSeriesView(origin="torque", name="screw motor torque (N·m)"),
-                     rrb.TimeSeriesView(origin="joints", name="q1 (deg)"),
-                     rrb.TimeSeriesView(origin="loop_gap", name="loop gaps (m)"))),
-        collapse_panels=True)
-    frames = pose_frames(sig.t, p.simulation.pose_rate_hz)
-    pts = np.concatenate([sig.points, np.zeros(sig.points.shape[:2] + (1,))], -1)[frames]
-    strips = [s for f in pts for s in (f[[0, 1, 3]], f[[2, 1]], f[[0, 4]])]
-    with recording_file(path, "ballscrew_leg", view) as rec:
-        rec.send_columns("world/leg", indexes=[rr.TimeColumn(TIMELINE, duration=sig.t[frames])],
-                         columns=rr.LineStrips3D.columns(strips=strips).partition(
-                             [3] * len(frames)))
-        rec.log("world/leg", rr.LineStrips3D.from_fields(radii=0.004), static=True)
-        for name, values in (("commanded", sig.command), ("applied", sig.applied),
-                             ("static_closed_form", sig.static)):
-            scalars(rec, f"torque/{name}", sig.t, values, name)
-        scalars(rec, "torque/limit", sig.t, np.full(len(sig.t), -p.motor.peak_torque_Nm),
-                "-limit")
-        scalars(rec, "joints/q1", sig.t, np.degrees(sig.q1), "q1")
-        scalars(rec, "joints/q1_reference", sig.t, np.degrees(sig.q1_ref), "reference")
-        scalars(rec, "loop_gap/D", sig.t, sig.gap_d, "D")
-        scalars(rec, "loop_gap/foot", sig.t, sig.gap_foot, "foot")
-        scalars(rec, "motor/speed", sig.t, sig.motor_speed, "motor speed (rad/s)")
-        scalars(rec, "carriage/height", sig.t, sig.height, "hip height (m)")
-    return path
-
-
-def write_simulation(params: Params, out: Path, duration_s: float | None,
-                     progress: bool) -> tuple[list[str], list[Path]]:
-    """Run the squat and write squat.png, run.rrd, summary.md and summary.json (last)."""
-    run = run_squat(params, duration_s)
-    sig = signals(run)
-    summary = summarize(run, sig)
-    written = [_plot(sig, params, out / "squat.png"), write_recording(sig, params, out / "run.rrd"),
-               write_atomic(out / "summary.md", _markdown(summary)),
-               write_atomic(out / "summary.json", json.dumps(summary, indent=2) + "\n")]
-    lines = [line[2:] for line in _markdown(summary).splitlines() if line.startswith("- ")]
-    lines.append(f"open the recording with: rerun {out / 'run.rrd'}")
-    return lines, written

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from typing import NamedTuple
 
 import numpy as np
 
@@ -214,3 +215,22 @@ def mobility() -> dict:
     F, L = grubler(SEED_LINKS, SEED_JOINT_FREEDOMS)
     return {"links": SEED_LINKS, "joints": len(SEED_JOINT_FREEDOMS),
             "joint_freedoms": sum(SEED_JOINT_FREEDOMS), "F": F, "L": L}
+
+
+class Analysis(NamedTuple):
+    """The analysis as plain data: the parameters and every computed result (by name)."""
+
+    params: Params
+    results: dict
+
+
+def analyze(params: Params) -> Analysis:
+    """Every computed result: the closed forms' checks, mobility, singularities, Drake's
+    statics, the workspace studies, the condition maps and the seed's point."""
+    return Analysis(params, {"checks": checks(params.geometry),
+                             "mobility": mobility(),
+                             "singularities": singularities(params.geometry),
+                             "drake_statics": drake_statics(params),
+                             "workspace": workspace_studies(params),
+                             "maps": condition_maps(params),
+                             "seed_point": seed_point_conditions(params)})

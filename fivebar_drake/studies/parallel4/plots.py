@@ -14,9 +14,9 @@ from fivebar_drake.core.files import save_figure
 from fivebar_drake.mechanisms.parallel4.kinematics import type2_line_z
 from fivebar_drake.mechanisms.parallel4.params import Params
 from fivebar_drake.mechanisms.parallel4.statics import in_workspace, poses_yz, yz_grid
-from fivebar_drake.studies.parallel4.analysis import MAP_READINGS
+from fivebar_drake.studies.parallel4.analysis import MAP_READINGS, Analysis
 
-FIGURES = ("workspace_sections.png", "workspace_area.png", "singularities.png",
+ANALYSIS_FIGURES = ("workspace_sections.png", "workspace_area.png", "singularities.png",
            "condition_maps.png", "condition_maps_translational.png")
 
 
@@ -104,9 +104,10 @@ def condition_maps(params: Params, results: dict, reading: str, path: Path) -> P
     return save_figure(fig, path, dpi=120)
 
 
-def write(out: Path, params: Params, results: dict) -> list[Path]:
-    return [workspace_sections(params, results, out / FIGURES[0]),
-            workspace_area(results, out / FIGURES[1]),
-            singularities(params, out / FIGURES[2]),
-            condition_maps(params, results, MAP_READINGS[0], out / FIGURES[3]),
-            condition_maps(params, results, MAP_READINGS[1], out / FIGURES[4])]
+def write_analysis(a: Analysis, out: Path) -> list[Path]:
+    params, results = a
+    return [workspace_sections(params, results, out / ANALYSIS_FIGURES[0]),
+            workspace_area(results, out / ANALYSIS_FIGURES[1]),
+            singularities(params, out / ANALYSIS_FIGURES[2]),
+            condition_maps(params, results, MAP_READINGS[0], out / ANALYSIS_FIGURES[3]),
+            condition_maps(params, results, MAP_READINGS[1], out / ANALYSIS_FIGURES[4])]

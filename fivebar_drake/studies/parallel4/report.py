@@ -1,5 +1,6 @@
-"""report.md and report.json of the parallel4 analysis, with the table of the seed's claims:
-each claim once per reading the text allows, "reproduced" within 5 % for numbers."""
+"""The text of the parallel4 jobs: the analysis's report.md and report.json, with the table of
+the seed's claims (each claim once per reading the text allows, "reproduced" within 5 % for
+numbers), the run's summary.json, and the lines the command line prints about each."""
 
 from __future__ import annotations
 
@@ -11,9 +12,11 @@ import numpy as np
 
 from fivebar_drake.core.files import write_atomic
 from fivebar_drake.mechanisms.parallel4.params import Params
-from fivebar_drake.studies.parallel4.analysis import READINGS, SEED_COND
+from fivebar_drake.studies.parallel4.analysis import READINGS, SEED_COND, Analysis
+from fivebar_drake.studies.parallel4.plots import ANALYSIS_FIGURES
 
-REPORT_FILES = ("report.md", "report.json")
+ANALYSIS_FILES = ("report.md", "report.json")          # report.json last
+SIMULATION_FILES = ("summary.json",)
 
 
 def _claim(id_, claim, seed_value, computed_value, unit, reading, reproduced, why="") -> dict:
@@ -209,7 +212,7 @@ def _condition_tables(rows: list[dict]) -> list[str]:
     return lines
 
 
-def markdown(params: Params, results: dict, seed_claims: list[dict], figures) -> str:
+def markdown(params: Params, results: dict, seed_claims: list[dict]) -> str:
     g, ck, ds = params.geometry, results["checks"], results["drake_statics"]
     lines = [
         "# parallel4: the 4-DOF parallel manipulator after Pierrot (seed 004)", "",
@@ -265,7 +268,7 @@ def markdown(params: Params, results: dict, seed_claims: list[dict], figures) ->
               "cancel. Readings computed: " + "; ".join(READINGS) + ".", "",
               "## Assumptions", ""]
     lines += [f"- {a}" for a in ASSUMPTIONS]
-    lines += ["", "## Figures", ""] + [f"- `{f}`" for f in figures]
+    lines += ["", "## Figures", ""] + [f"- `{f}`" for f in ANALYSIS_FIGURES]
     return "\n".join(lines) + "\n"
 
 
@@ -281,7 +284,9 @@ ASSUMPTIONS = (
 )
 
 
-def write(out: Path, params: Params, results: dict, figures) -> list[Path]:
+def write_analysis(a: Analysis, out: Path) -> list[Path]:
+    """report.md, then report.json (last)."""
+    params, results = a
     seed_claims = claims(params, results)
     public = {k: v for k, v in results.items() if k not in ("workspace", "maps")}
     public["workspace"] = [{**s, "rows": [{k: v for k, v in r.items() if k != "mask"}
@@ -289,7 +294,7 @@ def write(out: Path, params: Params, results: dict, figures) -> list[Path]:
     public["maps"] = [{k: v for k, v in m.items() if k != "maps"} for m in results["maps"]]
     public["geometry"] = vars(params.geometry)
     public["seed_claims"] = seed_claims
-    return [write_atomic(out / "report.md", markdown(params, results, seed_claims, figures)),
+    return [write_atomic(out / "report.md", markdown(params, results, seed_claims)),
             write_atomic(out / "report.json",
                          json.dumps(_plain(public), indent=1, allow_nan=False) + "\n")]
 
@@ -305,3 +310,47 @@ def _plain(value):
     if isinstance(value, (float, np.floating)):
         return None if math.isnan(value) else float(value)
     return value
+
+
+def analysis_lines(a: Analysis) -> list[str]:
+    """The closed forms' checks, Drake's statics, how many claims hold (per claim), and the
+    reading closest to each of the seed's condition numbers."""
+    results = a.results
+    seed_claims = _plain(claims(*a))
+    ds = results["drake_statics"]
+    lines = [f"FK(IK) round trip {results['checks']['fk_ik_round_trip_max']:.1e} m; Jacobian "
+             f"vs finite differences {results['checks']['jacobian_vs_finite_differences_max']:.1e}"
+             f"; Grübler F = {results['mobility']['F']}",
+             f"Drake projected static forces vs closed form: {ds['max_relative_difference']:.1e} "
+             f"(relative, {ds['poses']} poses)",
+             f"seed claims: {sum(c['reproduced'] for c in seed_claims)} of {len(seed_claims)} "
+             "readings reproduced"]
+    for id_ in dict.fromkeys(c["id"] for c in seed_claims if c["id"] not in SEED_COND):
+        mine = [c["reproduced"] for c in seed_claims if c["id"] == id_]
+        lines.append(f"  {id_}: {sum(mine)} of {len(mine)} readings reproduced")
+    best = {}
+    for c in seed_claims:
+        if c["id"] in SEED_COND and c["computed_value"] is not None:
+            err = abs(c["computed_value"] - c["seed_value"])
+            if c["id"] not in best or err < best[c["id"]][0]:
+                best[c["id"]] = (err, c)
+    for id_, (_, c) in best.items():
+        lines.append(f"  {id_}: seed {c['seed_value']:g}, closest {c['computed_value']:.3g} "
+                     f"({c['reading']})")
+    return lines
+
+
+def write_simulation(summary: dict, out: Path) -> list[Path]:
+    return [write_atomic(out / SIMULATION_FILES[0], json.dumps(summary, indent=1) + "\n")]
+
+
+def simulation_lines(summary: dict, recording: Path) -> list[str]:
+    """The tracking error and loop gap, Drake's statics along the run, how to open the
+    recording."""
+    return [f"simulated {summary['duration_s']:g} s: tracking error max "
+            f"{summary['tracking_error_max_m'] * 1e3:.3g} mm, "
+            f"{summary['tracking_error_max_deg']:.3g} deg; loop gap max "
+            f"{summary['loop_gap_max_m']:.2g} m",
+            f"Drake projected static forces vs closed form along the run: "
+            f"{summary['static_drake_vs_closed_form_max_relative']:.1e} (relative)",
+            f"open it with: .venv/bin/rerun '{recording}'"]

@@ -1,10 +1,40 @@
-"""The SCARA arm of seed 002 as a study of the command line (see catalog.py for the contract):
-`analyze --mechanism scara` (report.md, report.json, plots) and `simulate --mechanism scara`
-(a Drake Diagram following the seed's trajectory with the sized motors, summary, Rerun)."""
+"""The SCARA arm of seed 002 as a study (`fivebar-drake analyze|simulate --mechanism scara`),
+the Study contract of studies/base.py: the analysis (report.md, report.json, plots) and a Drake
+Diagram following the seed's trajectory with the sized motors (summary, plot, Rerun)."""
 
-from fivebar_drake.mechanisms.scara import load_params
-from fivebar_drake.studies.scara.report import ANALYSIS_FILES, write_analysis
-from fivebar_drake.studies.scara.simulate import SIMULATION_FILES, write_simulation
+from __future__ import annotations
 
-__all__ = ["ANALYSIS_FILES", "SIMULATION_FILES", "load_params", "write_analysis",
-           "write_simulation"]
+from pathlib import Path
+
+from fivebar_drake.mechanisms.scara import ScaraParams, load_params
+from fivebar_drake.studies import base
+from fivebar_drake.studies.scara import analysis, plots, recording, report, simulation
+
+NAME = "scara"
+ANALYSIS_FILES = plots.ANALYSIS_FIGURES + report.ANALYSIS_FILES
+SIMULATION_FILES = plots.SIMULATION_FIGURES + (recording.RECORDING_FILE,) + report.SIMULATION_FILES
+OPTIONS = frozenset()
+
+load_analysis = base.parameters_loader(NAME, load_params)
+analyze = analysis.analyze
+write_analysis = base.analysis_writer(plots, report)
+load_simulation = base.simulation_loader(NAME, load_params, simulation.duration_limits)
+
+
+def simulate(inputs: tuple[ScaraParams, float], progress: bool,
+             stop) -> tuple[ScaraParams, simulation.Run]:
+    """The run, a progress line every simulated second (it does not stop early)."""
+    params, duration = inputs
+    return params, simulation.run(params, duration, progress)
+
+
+def write_simulation(record: tuple[ScaraParams, simulation.Run], out: Path) -> base.Written:
+    """sim_tracking.png, run.rrd, summary.md and summary.json (last)."""
+    params, run = record
+    summary = simulation.summarize(params, run)
+    error = summary.pop("error_series")
+    path = out / recording.RECORDING_FILE
+    return base.Written([*plots.write_simulation(run, summary, error, out),
+                         recording.write_recording(path, params, run, error),
+                         *report.write_simulation(summary, out)],
+                        report.simulation_lines(summary, path))

@@ -1,15 +1,19 @@
-"""The SCARA study's analysis: the seed's trajectory through the kinematics and the Lagrange
-model (checked against Drake), the drive demand along it, and the seed's drive-sizing numbers
-recomputed under every reading its text allows (seed_claims)."""
+"""The SCARA study's analysis (everything report.json holds): the seed's trajectory through
+the kinematics and the Lagrange model (checked against Drake), the drive demand along it, and
+the seed's drive-sizing numbers recomputed under every reading its text allows
+(seed_claims)."""
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 import math
+from typing import NamedTuple
+
 import numpy as np
 
-from fivebar_drake.mechanisms.scara import (Dynamics, Scara, ScaraParams, seed_inertia,
-                                            seed_path)
+from fivebar_drake.mechanisms.scara import (Dynamics, OutOfReach, Scara, ScaraParams,
+                                            seed_inertia, seed_path)
 from fivebar_drake.mechanisms.scara import sizing as sz
 from fivebar_drake.studies.scara.model import drake_terms
 
@@ -285,3 +289,108 @@ def drake_check(params: ScaraParams, motion: Motion, payload_kg: float, every: i
             "bias_max_abs": float(np.abs(drake["bias"] - mine["coriolis"]).max()),
             "gravity_max_abs": float(np.abs(drake["gravity"] - mine["gravity"]).max()),
             "agrees": bool(rel.max() <= DRAKE_TOLERANCE)}
+
+
+def assumptions(params: ScaraParams) -> list[str]:
+    k, links = params.kinematics, params.links
+    return [
+        f"The prismatic joint moves the tool {'down' if k.q3_direction < 0 else 'up'} "
+        f"(q3_direction = {k.q3_direction}): z_E = d1 + d2 {'-' if k.q3_direction < 0 else '+'} "
+        "q3. Eq. 2.20 as written (+) puts the tool at z in [0.45, 0.85] m, where the seed's own "
+        "trajectory (z = 0.3 .. 0.4 m) cannot go; the seed's Matlab workspace code has ze = -i.",
+        f"Elbow {k.elbow:+d} along the trajectory (the seed's IK takes q2 = +arccos); both elbows "
+        "are reported at A.",
+        "Link 3 (screw + gripper, and the payload) is a mass on the axis of joint 3 turning with "
+        "link 2 (the seed's J_T3, J_R2), so only joint 3 feels gravity.",
+        "Inertias as the seed writes them: Izz1 = m_khau1 l1^2/12, Izz2 = m_khau2 l2^2/12 with "
+        "l = a/2 and the bare link masses (8.2, 11.8 kg), Izz3 = m_vit r^2/2; the Drake model "
+        "takes Ixx = Iyy = Izz (they never enter the motion: every joint axis is vertical).",
+        f"Payload {links.payload_kg:g} kg at the tool in the loaded readings; the seed sizes "
+        "joints 1 and 2 without it (section 2.3.2 b).",
+        "No friction, ideal model (the seed's section 2.3.1 c); the reducer and screw "
+        "efficiencies enter the powers only.",
+        f"A computed value reproduces the seed's when within {REPRODUCED_WITHIN:.0%} of it.",
+    ]
+
+
+def _demand_rows(params, motion: Motion, payload: float) -> dict:
+    dyn = Dynamics(params.kinematics, seed_inertia(params.links, payload))
+    tau = dyn.torques(motion.q, motion.qd, motion.qdd)
+    d = sz.demand(motion.t, tau["total"], motion.qd, params.sizing.reducer_efficiency)
+    return {"payload_kg": payload, "peak": d["peak"].tolist(), "rms": d["rms"].tolist(),
+            "peak_time_s": d["peak_time_s"].tolist(), "peak_speed": d["peak_speed"].tolist(),
+            "peak_power_W": d["peak_power_W"].tolist(),
+            "input_power_W": d["input_power_W"].tolist(),
+            "parts_peak": {k: np.abs(v).max(axis=0).tolist() for k, v in tau.items()}}
+
+
+def _elbows(params: ScaraParams) -> list[dict]:
+    """The trajectory with each elbow: peak joint speeds and forces with the payload."""
+    out = []
+    dyn = Dynamics(params.kinematics, seed_inertia(params.links, params.links.payload_kg))
+    for elbow in (1, -1):
+        try:
+            m = seed_motion(params, elbow=elbow)
+        except OutOfReach as err:
+            out.append({"elbow": elbow, "reachable": False, "why": str(err)})
+            continue
+        tau = dyn.torques(m.q, m.qd, m.qdd)["total"]
+        out.append({"elbow": elbow, "reachable": True,
+                    "peak_joint_speed": np.abs(m.qd).max(axis=0).tolist(),
+                    "peak_force": np.abs(tau).max(axis=0).tolist()})
+    return out
+
+
+def analysis_data(params: ScaraParams) -> tuple[dict, Motion]:
+    """Everything report.json holds, and the sampled trajectory."""
+    k, sp, links = params.kinematics, params.sizing, params.links
+    scara = Scara(k)
+    motion = seed_motion(params)
+    dyn0 = Dynamics(k, seed_inertia(links))
+    qdd3 = k.q3_direction * sp.qdd3_m_s2           # the tool accelerating upwards
+    tau3 = abs(float(dyn0.torques(np.zeros(3), np.zeros(3), np.array([0.0, 0.0, qdd3]))
+                     ["total"][2]))
+    a = np.asarray(params.trajectory.a_m)
+    elbows = {f"{e:+d}": scara.inverse(a, e, strict=False).q.tolist() for e in (1, -1)}
+    inner, outer = scara.radial_extent()
+    z = sorted(scara.z0 + k.q3_direction * np.array(k.q3_limits_m))
+    boundary = scara.workspace_boundary()
+    data = {
+        "mechanism": "scara",
+        "source": params.source,
+        "parameters": {f.name: (dataclasses.asdict(getattr(params, f.name))
+                                if dataclasses.is_dataclass(getattr(params, f.name))
+                                else getattr(params, f.name))
+                       for f in dataclasses.fields(params)},
+        "kinematics": {"ik_at_A": elbows, "cardan_at_A_rad": scara.cardan_angles(
+            np.asarray(elbows[f"{k.elbow:+d}"])).tolist()},
+        "workspace": {"inner_radius_m": inner, "outer_radius_m": outer, "z_range_m": z,
+                      "boundary_pieces": len(boundary),
+                      "trajectory_inside": bool(scara.reachable_xy(motion.p[:, :2]).all())},
+        "trajectory": {"duration_s": params.trajectory.duration_s,
+                       "samples": len(motion.t),
+                       "peak_joint_speed": np.abs(motion.qd).max(axis=0).tolist(),
+                       "peak_joint_acceleration": np.abs(motion.qdd).max(axis=0).tolist(),
+                       "peak_tool_speed_m_s": float(np.linalg.norm(motion.v, axis=1).max()),
+                       "joint_units": ["rad", "rad", "m"]},
+        "demand": [_demand_rows(params, motion, w) for w in (0.0, links.payload_kg)],
+        "elbows": _elbows(params),
+        "drake_check": [drake_check(params, motion, w) for w in (0.0, links.payload_kg)],
+        "seed_claims": seed_claims(params, motion, tau3),
+        "seed_notes": seed_notes(params),
+        "assumptions": assumptions(params),
+    }
+    return data, motion
+
+
+class Analysis(NamedTuple):
+    """The analysis as plain data: the parameters, report.json's dictionary, the sampled
+    trajectory."""
+
+    params: ScaraParams
+    data: dict
+    motion: Motion
+
+
+def analyze(params: ScaraParams) -> Analysis:
+    return Analysis(params, *analysis_data(params))

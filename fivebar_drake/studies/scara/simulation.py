@@ -18,7 +18,6 @@ from pydrake.trajectories import PiecewisePolynomial
 
 from fivebar_drake.core.files import say
 from fivebar_drake.core.motor import LineMotor, MotorModel, clip_flags
-from fivebar_drake.core.validation import ParameterError, check_number
 from fivebar_drake.mechanisms.scara import Dynamics, Scara, ScaraParams, seed_inertia
 from fivebar_drake.mechanisms.scara.params import MAX_DURATION_S
 from fivebar_drake.mechanisms.scara import sizing as sz
@@ -45,6 +44,13 @@ def sized_motors(params: ScaraParams) -> list[LineMotor]:
     return out
 
 
+def duration_limits(params: ScaraParams) -> dict:
+    """A run's duration: the trajectory's by default, at least 10 plant steps, at most
+    MAX_DURATION_S."""
+    return {"default": params.trajectory.duration_s, "low": 10 * params.simulation.time_step_s,
+            "high": MAX_DURATION_S, "why": "at least 10 plant steps"}
+
+
 def _line(peak, ratio, speed) -> LineMotor:
     """A lossless torque-speed line with this output peak and no-load speed behind the ratio."""
     return LineMotor("torque_speed_line", peak / ratio, speed * ratio, ratio, 0.0, 0.0, 0.0)
@@ -66,14 +72,9 @@ class Run:
 
 def run(params: ScaraParams, duration_s: float | None = None, progress: bool = False) -> Run:
     """Simulate the arm following the seed's trajectory for duration_s (default: the
-    trajectory's duration)."""
+    trajectory's duration; see duration_limits)."""
     sim = params.simulation
     duration = params.trajectory.duration_s if duration_s is None else duration_s
-    try:
-        check_number("--duration", duration, 10 * sim.time_step_s, MAX_DURATION_S,
-                     why="at least 10 plant steps")
-    except ParameterError as err:
-        raise err.located("command line") from None
     desired = seed_motion(params, duration)
     inertia = seed_inertia(params.links, sim.payload_kg)
     builder = DiagramBuilder()

@@ -1,0 +1,112 @@
+"""The quadruped's 5-bar leg as a study (`fivebar-drake analyze|simulate`, the default
+mechanism): the seed's torque analysis of one leg over a foot path and the Drake simulation of
+the trotting robot, through fivebar_drake.pipeline (the Study contract of studies/base.py)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Callable, NamedTuple
+
+from fivebar_drake import pipeline
+from fivebar_drake.core.files import say
+from fivebar_drake.core.validation import ParameterError
+from fivebar_drake.robots.quadruped.config import load_params
+from fivebar_drake.robots.quadruped.params import Params
+from fivebar_drake.simulation.builder import check_run
+from fivebar_drake.simulation.runner import SimulationRecord, load_run
+from fivebar_drake.studies.base import Plan, Written
+from fivebar_drake.studies.fivebar_leg import report
+
+ANALYSIS_FILES = pipeline.ANALYSIS_FILES
+SIMULATION_FILES = pipeline.SIMULATION_FILES
+OPTIONS = frozenset({"--gait", "--set", "--scenario", "--closure", "--step-check"})
+
+
+class Simulated(NamedTuple):
+    """A simulation's record and, with --step-check, the same run at half the plant step."""
+
+    record: SimulationRecord
+    half: SimulationRecord | None
+
+
+def with_sets(params: Params, sets: list[str] | None) -> Params:
+    """The parameters with the command line's --set FIELD=VALUE edits (ParameterError naming
+    the command line)."""
+    if not sets:
+        return params
+    from fivebar_drake.robots.quadruped.config import with_changes
+
+    changes = {}
+    for item in sets:
+        field, sep, text = item.partition("=")
+        if not sep or not field:
+            raise ParameterError(f"--set {item}: write FIELD=VALUE, e.g. motor.gear_ratio=11.5",
+                                 "--set", "command line")
+        try:
+            changes[field.strip()] = float(text)
+        except ValueError:
+            changes[field.strip()] = text.strip()
+    try:
+        return with_changes(params, changes)
+    except ParameterError as err:
+        raise err.located("command line (--set)") from None
+
+
+def load_analysis(config: str | Path | None, gait: str | None = None,
+                  sets: list[str] | None = None) -> Plan:
+    """The parameters with their --set edits and the foot path (default: the seed's ellipse)."""
+    return Plan((with_sets(load_params(config), sets), gait or "seed_ellipse"),
+                (f"parameters: {config or 'packaged default'}",))
+
+
+def analyze(inputs: tuple[Params, str]) -> pipeline.AnalysisRecord:
+    return pipeline.run_analysis(*inputs)
+
+
+def write_analysis(record: pipeline.AnalysisRecord, out: Path) -> Written:
+    warning = record.sampling_error["warning"]
+    return Written(pipeline.write_analysis(record, out), report.analysis_lines(record),
+                   warnings=[f"warning: {warning}"] if warning else [])
+
+
+def load_simulation(config: str | Path | None, duration_s: float | None,
+                    scenario: str | None = None, gait: str | None = None,
+                    closure: str | None = None, sets: list[str] | None = None,
+                    step_check: bool | None = None) -> Plan:
+    """The scenario (its file, or the built-in one) with the command line's overrides, its
+    parameters (--config overrides the scenario's params_file) with their --set edits, every
+    check before a run; and whether to run the step check."""
+    scenario_, params = load_run(scenario, duration_s=duration_s, closure=closure, gait=gait,
+                                 params_file=config)
+    params = with_sets(params, sets)
+    if sets:
+        check_run(scenario_, params)         # the edited robot, before the folder is touched
+    return Plan((scenario_, params, bool(step_check)))
+
+
+def simulate(inputs, progress: bool, stop: Callable[[], str]) -> Simulated:
+    """The run, and with the step check (unless the run failed or was stopped) the same run at
+    half the plant step."""
+    scenario, params, step_check = inputs
+    record = pipeline.run_simulation(scenario, params, progress=progress, stop=stop)
+    if not step_check or record.error or record.interrupted or stop():
+        return Simulated(record, None)
+    if progress:
+        say(f"step check: the same run at half the plant step "
+            f"({record.design.time_step_s / 2:g} s)")
+    half = pipeline.run_step_check(record, progress=progress, stop=stop)
+    return Simulated(record, None if half.interrupted else half)
+
+
+def write_simulation(run: Simulated, out: Path) -> Written:
+    """The plots, recording and summary (summary.json last); exit 1 for a run that stopped
+    early, has no verdict or did not achieve its motion."""
+    summary, files = pipeline.write_simulation(run.record, out, run.half)
+    return Written(files, report.simulation_lines(summary),
+                   closing=[report.recording_line(out / pipeline.RECORDING_FILE)],
+                   warnings=report.simulation_warnings(run.record.params),
+                   failure=report.failure(run.record, summary),
+                   interrupted=(f"{summary['error']}: wrote what was simulated (summary.json: "
+                                "completed false, interrupted true)"
+                                if run.record.interrupted else ""),
+                   timed=False)

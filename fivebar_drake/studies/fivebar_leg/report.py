@@ -1,0 +1,72 @@
+"""What the command line says about the 5-bar leg's jobs (their files are written by
+fivebar_drake.pipeline: analysis/report.py, simulation/summary.py)."""
+
+from __future__ import annotations
+
+import shlex
+from pathlib import Path
+
+from fivebar_drake.pipeline import AnalysisRecord
+from fivebar_drake.robots.quadruped.config import sampling_error
+from fivebar_drake.robots.quadruped.params import Params
+from fivebar_drake.simulation.runner import SimulationRecord
+
+
+def analysis_lines(record: AnalysisRecord) -> list[str]:
+    """Every reading (model, motor), the lowest safety factor first."""
+    readings = [(model, motor, m) for model, motors in record.results.items()
+                for motor, m in motors.items()]
+    lines = [f"foot path: {record.analysis.results['path']['gait']}; every reading, the lowest "
+             "safety factor first:"]
+    for model, motor, m in sorted(readings, key=lambda r: r[2]["safety_factor"]):
+        lines.append(
+            f"  {model:>9} motor {motor}: peak {m['peak_torque_Nm']:.3f} N m, "
+            f"static {m['static_torque_Nm']:.3f} N m, SF {m['safety_factor']:.2f} "
+            f"({m['verdict'].upper()}), peak speed {m['peak_speed_rad_s']:.2f} rad/s; verdict "
+            f"{m['checks']['verdict'].upper()} ({m['checks']['deciding_check']} check)")
+    return lines
+
+
+def simulation_lines(summary: dict) -> list[str]:
+    """The run in one line, each leg's motors, the verdict, the step check, the answer."""
+    s = summary
+    lines = [f"{s['gait']} gait, {s['closure']} closure: {s['duration_s']:.2f} s simulated, "
+             f"{s['real_time_factor']:.2f}x real time, worst loop gap "
+             f"{s['max_loop_gap_m'] * 1e3:.4f} mm, {s['cycles_in_window']} whole cycles, walking "
+             f"{s['mean_forward_speed_m_s']:.3f} m/s (gait {s['gait_speed_m_s']:.3f} m/s), "
+             f"largest tilt {s['max_tilt_deg']:.1f} deg"]
+    for leg, motors in s["legs"].items():
+        lines.append("  " + leg + ": " + ", ".join(
+            f"{m} demand p99 {v['demand_p99_Nm']:.2f} N m (RMS {v['rms_torque_Nm']:.2f}, "
+            f"SF {v['safety_factor']:.2f}, {v['verdict']})" for m, v in motors.items()))
+    lines.append(f"verdict: {s['verdict'].upper()} (worst motor {s['worst_motor']}, "
+                 f"{s['deciding_check']} check)")
+    if s["step_check"]:
+        sc = s["step_check"]
+        lines.append(f"step check at {sc['half_time_step_s']:g} s: worst demand p99 change "
+                     f"{sc['worst_demand_p99_change']:+.2%}, worst SF change "
+                     f"{sc['worst_sf_change']:.3f}" + (f"; MARGINAL: {sc['why']}"
+                                                       if sc["marginal"] else ""))
+    return lines + [s["answer"]]
+
+
+def recording_line(path: Path) -> str:
+    return f"open the recording with: rerun {shlex.quote(str(path))}"
+
+
+def simulation_warnings(params: Params) -> list[str]:
+    """The sampling error of the seed's reference figures every summary compares with."""
+    warning = sampling_error(params, "seed_ellipse")["warning"]
+    return [f"warning: the seed's reference figures: {warning}"] if warning else []
+
+
+def failure(record: SimulationRecord, summary: dict) -> str:
+    """Why the run failed (exit 1), or "": it stopped early, has no verdict or did not achieve
+    its motion."""
+    if record.error:
+        return f"error: the run stopped early: {record.error}"
+    if summary["verdict"] == "insufficient":
+        return f"error: no verdict: {summary['answer']}"
+    if summary["verdict"] == "not_achieved":
+        return f"error: the motion was not achieved: {summary['answer']}"
+    return ""
