@@ -31,10 +31,12 @@ from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import TrajectorySource
 from pydrake.trajectories import PiecewisePolynomial
 
+from fivebar_drake.core.footpath import GaitSource
 from fivebar_drake.core.motor import MotorModel
 from fivebar_drake.pipeline import (run_simulation, run_step_check, summarize_run,
                                     write_simulation)
-from fivebar_drake.robots.quadruped.plant import CLOSURES, add_robot, set_standing_pose
+from fivebar_drake.robots.quadruped.closure import CLOSURES
+from fivebar_drake.robots.quadruped.plant import add_robot, set_standing_pose
 from fivebar_drake.simulation import systems
 from fivebar_drake.simulation.recording import write_recording
 from fivebar_drake.simulation.scenario import load_scenario
@@ -47,7 +49,7 @@ from fivebar_drake.simulation.scenario import load_scenario
 run_simulation(load_scenario(duration_s=float(sys.argv[1])), progress=False)
 print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024)
 """
-PYTHON_BLOCKS = {"gait source": systems.GaitSource, "leg controller": systems.FootLegController,
+PYTHON_BLOCKS = {"gait source": GaitSource, "leg controller": systems.FootLegController,
                  "motor model": MotorModel}
 
 

@@ -23,7 +23,7 @@ from fivebar_drake.core.files import check_output_file, prepare_output_dir, say
 from fivebar_drake.core.footpath import PATHS
 from fivebar_drake.core.interrupts import Interrupted, Signals
 from fivebar_drake.core.validation import ParameterError
-from fivebar_drake.robots.quadruped.plant import CLOSURES
+from fivebar_drake.robots.quadruped.closure import CLOSURES
 from fivebar_drake.simulation.scenario import Scenario
 
 

@@ -14,14 +14,14 @@ import dataclasses
 import numpy as np
 
 from fivebar_drake.core.checks import Checks, motor_checks, verdict
-from fivebar_drake.core.footpath import (TROT_PHASES_RAD, cycle_phase, path_arrays, path_constants,
-                                         stance_loads)
+from fivebar_drake.core.footpath import cycle_phase, foot_path, path_arrays, stance_loads
 from fivebar_drake.core.motor import Motor
 from fivebar_drake.core.thermal import rms_current, thermal_margin
 from fivebar_drake.core.validation import require
 from fivebar_drake.mechanisms.fivebar import (MOTORS, UnreachableError, periodic_derivatives,
                                               track_modes)
 from fivebar_drake.robots.quadruped.leg_loads import full_model
+from fivebar_drake.robots.quadruped.legs import TROT_PHASES_RAD
 from fivebar_drake.robots.quadruped.params import Params
 
 MODELS = ("full_trot", "full")   # leg_loads.trot_model, leg_loads.full_model
@@ -79,8 +79,9 @@ def _evaluate_group(designs: list[Params], path: str, model: str) -> list[dict]:
     n = first.gait.samples
     u = cycle_phase(first.gait, np.arange(n) * (first.gait.period_s / n))  # the same for all
     feet = np.empty((n, len(designs), 2))                                   # (N, designs, 2)
+    kind = foot_path(path)
     for i, p in enumerate(designs):
-        feet[:, i, 0], feet[:, i, 1] = path_arrays(*path_constants(p.gait, path), u)[:2]
+        feet[:, i, 0], feet[:, i, 1] = path_arrays(kind.point, kind.constants(p.gait), u)[:2]
     try:
         pose, _ = track_modes(first.leg, feet)
     except UnreachableError as err:    # some designs out of reach: each alone, to name them

@@ -13,3 +13,11 @@ import numba
 def jit(function):
     """Compile function in nopython mode (cached; numpy's floating-point error semantics)."""
     return numba.njit(cache=True, error_model="numpy")(function)
+
+
+def jit_uncached(function):
+    """jit without the disk cache, for a kernel that takes its callers' compiled functions and
+    NamedTuples (a foot path's point function and constants): the cache's index would name their
+    types, and every later process would have to import their modules (a gait defined in a script
+    or a test would break the cache for all). Compiled once per process and path (0.2-0.6 s)."""
+    return numba.njit(error_model="numpy")(function)

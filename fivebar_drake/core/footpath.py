@@ -13,29 +13,32 @@ u = (f t + phase / 2 pi) mod 1, u in [0, 1); u = 0 is lift-off at the back of th
   touches down without slipping; y = y_home + b 64 s^3 (1 - s)^3 (s = swing fraction) lifts the foot
   by b with zero vertical speed and acceleration at lift-off and touchdown. Position, velocity and
   acceleration are continuous over the whole cycle.
+
+Each path is a FootPath registered by its kind in PATHS (register_path): its constants (a
+NamedTuple, as the compiled code takes it), its compiled point function, where its stance starts;
+GaitSource, the Diagram's block, evaluates any of them.
 """
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
+from typing import ClassVar, NamedTuple, Optional
 import numpy as np
+from pydrake.systems.framework import LeafSystem
 
-from fivebar_drake.core.compiled import jit
+from fivebar_drake.core.compiled import jit, jit_uncached
 from fivebar_drake.core.validation import (MAX_GAIT_FREQUENCY_HZ, MAX_LENGTH_M, MAX_SAMPLES,
                                            check_lengths, check_number)
+from fivebar_drake.core.variants import Variant, by_kind, registrar
 
 
-PATHS = ("seed_ellipse", "trot")
-
-# Gait phase (rad) of the legs FL, FR, RL, RR: a trot, diagonal pairs in phase, pairs half a
-# cycle apart.
-TROT_PHASES_RAD = (0.0, math.pi, math.pi, 0.0)
+PATHS: dict[str, type["FootPath"]] = {}   # the foot paths by kind, in registration order
+register_path = registrar(PATHS)
 
 
-def check_path(path: str) -> None:
-    if path not in PATHS:
-        raise ValueError(f"gait = {path!r}: allowed {list(PATHS)}")
+def foot_path(path: "FootPath | str") -> "FootPath":
+    """A foot path, or the registered one of that kind with its defaults."""
+    return by_kind(PATHS, path, "gait")
 
 
 @dataclass(frozen=True)
@@ -61,22 +64,69 @@ def phase_of(frequency_hz, t, phase_rad):
     return np.mod(frequency_hz * t + phase_rad / (2.0 * np.pi), 1.0)
 
 
-def stance_speed(gait: Gait, path: str) -> float:
-    """Mean foot speed (m/s) relative to the hip in stance: the stride 2a over the stance time;
-    the robot's kinematic walking speed."""
-    check_path(path)
-    beta = 0.5 if path == "seed_ellipse" else gait.duty_factor
-    return 2.0 * gait.a_m / (beta * gait.period_s)
+@dataclass(frozen=True)
+class FootPath(Variant):
+    """A foot path of the gait parameters (Gait): subclasses set `kind`, `point` (a compiled
+    function (constants, u) -> (x, y, vx, vy, ax, ay) in m, m/s, m/s^2 and the stance flag at
+    cycle phase u) and `constants` (the NamedTuple `point` takes), and where the stance starts;
+    register them with register_path."""
+
+    point: ClassVar = None
+
+    def constants(self, gait: Gait) -> tuple:
+        """The NamedTuple of constants `point` takes."""
+        raise NotImplementedError
+
+    def stance_start(self, gait: Gait) -> float:
+        """Cycle phase u at which the stance begins (it ends at u = 1; 0: no swing)."""
+        raise NotImplementedError
+
+    def stance_speed(self, gait: Gait) -> float:
+        """Mean foot speed (m/s) relative to the hip in stance: the stride 2a over the stance
+        time; the robot's kinematic walking speed."""
+        return 2.0 * gait.a_m / ((1.0 - self.stance_start(gait)) * gait.period_s)
+
+    def add_to(self, builder, gait: Gait, phases_rad, start_s: float, ramp_s: float,
+               transfer_s: float, period_s: float) -> GaitSource:
+        """Add this path's GaitSource (named "gait_source") to the DiagramBuilder."""
+        return builder.AddNamedSystem("gait_source", GaitSource(
+            gait, self, phases_rad, start_s, ramp_s, transfer_s, period_s))
+
+
+class EllipseConstants(NamedTuple):
+    """The seed ellipse's semi-axes a, b and centre (x_center, y_home) in m, frequency in Hz."""
+
+    a: float
+    b: float
+    x_center: float
+    y_home: float
+    frequency: float
 
 
 @jit
-def ellipse_point(a, b, x_center, y_home, frequency, u):
-    """Seed ellipse at cycle phase u: (x, y, vx, vy, ax, ay) in m, m/s, m/s^2 and the stance
-    flag."""
-    w = 2.0 * np.pi * frequency
-    c, s = np.cos(2.0 * np.pi * u), np.sin(2.0 * np.pi * u)
-    return (x_center + a * c, y_home + b * s, -a * w * s, b * w * c, -a * w * w * c,
-            -b * w * w * s, s < 0.0)
+def ellipse_point(c, u):
+    """Seed ellipse (EllipseConstants c) at cycle phase u: (x, y, vx, vy, ax, ay) in m, m/s,
+    m/s^2 and the stance flag."""
+    w = 2.0 * np.pi * c.frequency
+    cu, su = np.cos(2.0 * np.pi * u), np.sin(2.0 * np.pi * u)
+    return (c.x_center + c.a * cu, c.y_home + c.b * su, -c.a * w * su, c.b * w * cu,
+            -c.a * w * w * cu, -c.b * w * w * su, su < 0.0)
+
+
+@register_path
+@dataclass(frozen=True)
+class SeedEllipse(FootPath):
+    """The seed's ellipse (module docstring): the lower half is the stance."""
+
+    kind: ClassVar[str] = "seed_ellipse"
+    point: ClassVar = staticmethod(ellipse_point)
+
+    def constants(self, gait: Gait) -> EllipseConstants:
+        return EllipseConstants(gait.a_m, gait.b_m, gait.x_center_m, gait.y_home_m,
+                                gait.frequency_hz)
+
+    def stance_start(self, gait: Gait) -> float:
+        return 0.5
 
 
 @jit
@@ -87,11 +137,24 @@ def _quintic_h(r):
             -36 * r + 96 * r**2 - 60 * r**3)
 
 
+class TrotConstants(NamedTuple):
+    """The trot path's stride half-length a, lift b and centre (x_center, y_home) in m, period
+    in s and duty factor beta."""
+
+    a: float
+    b: float
+    x_center: float
+    y_home: float
+    period: float
+    beta: float
+
+
 @jit
-def trot_point(a, b, x_center, y_home, period, beta, u):
-    """Trot path (module docstring) at cycle phase u: (x, y, vx, vy, ax, ay) in m, m/s, m/s^2
-    and the stance flag. The swing's x is the min-jerk P (0 -> 1) with H and G
+def trot_point(c, u):
+    """Trot path (module docstring; TrotConstants c) at cycle phase u: (x, y, vx, vy, ax, ay) in
+    m, m/s, m/s^2 and the stance flag. The swing's x is the min-jerk P (0 -> 1) with H and G
     (G(s) = -H(1 - s)) adding the matched end slopes."""
+    a, b, x_center, y_home, period, beta = c.a, c.b, c.x_center, c.y_home, c.period, c.beta
     v = 2.0 * a / (beta * period)
     if u >= 1.0 - beta:                     # stance: flat, at constant speed
         sigma = min(max((u - (1.0 - beta)) / beta, 0.0), 1.0)
@@ -111,51 +174,66 @@ def trot_point(a, b, x_center, y_home, period, beta, u):
             (-2 * a * ddp + v * t_sw * ddhg) / t_sw**2, b * ddbump, False)
 
 
-@jit
-def path_point(trot, a, b, x_center, y_home, frequency, period, beta, u):
-    """The trot path (trot True) or the seed ellipse at cycle phase u:
-    (x, y, vx, vy, ax, ay, stance flag) (see trot_point, ellipse_point)."""
-    if trot:
-        return trot_point(a, b, x_center, y_home, period, beta, u)
-    return ellipse_point(a, b, x_center, y_home, frequency, u)
+@register_path
+@dataclass(frozen=True)
+class Trot(FootPath):
+    """The trot path (module docstring); duty_factor: its fraction of the cycle in stance
+    (None: the parameter file's gait.duty_factor)."""
+
+    kind: ClassVar[str] = "trot"
+    point: ClassVar = staticmethod(trot_point)
+    duty_factor: Optional[float] = None
+
+    def beta(self, gait: Gait) -> float:
+        return gait.duty_factor if self.duty_factor is None else self.duty_factor
+
+    def check(self, field: str) -> None:
+        if self.duty_factor is not None:
+            check_number(f"{field}.duty_factor", self.duty_factor, 0.0, 1.0, low_open=True,
+                         high_open=True)
+
+    def constants(self, gait: Gait) -> TrotConstants:
+        return TrotConstants(gait.a_m, gait.b_m, gait.x_center_m, gait.y_home_m, gait.period_s,
+                             self.beta(gait))
+
+    def stance_start(self, gait: Gait) -> float:
+        return 1.0 - self.beta(gait)
 
 
-@jit
-def path_arrays(trot, a, b, x_center, y_home, frequency, period, beta, u):
-    """path_point at cycle phases u (n,): six arrays (n,) and the stance flags (n,)."""
+@jit_uncached
+def path_arrays(point, constants, u):
+    """point(constants, .) (FootPath.point) at cycle phases u (n,): six arrays (n,) and the
+    stance flags (n,)."""
     out, stance = np.empty((6, u.shape[0])), np.empty(u.shape[0], dtype=np.bool_)
     for i in range(u.shape[0]):
-        x, y, vx, vy, ax, ay, stance[i] = path_point(trot, a, b, x_center, y_home, frequency,
-                                                     period, beta, u[i])
+        x, y, vx, vy, ax, ay, stance[i] = point(constants, u[i])
         out[0, i], out[1, i], out[2, i], out[3, i], out[4, i], out[5, i] = x, y, vx, vy, ax, ay
     return out[0], out[1], out[2], out[3], out[4], out[5], stance
 
 
-def path_constants(gait: Gait, path: str) -> tuple:
-    """The leading arguments of path_arrays for a path of footpath.PATHS."""
-    check_path(path)
-    return (path == "trot", gait.a_m, gait.b_m, gait.x_center_m, gait.y_home_m,
-            gait.frequency_hz, gait.period_s, gait.duty_factor)
-
-
-def evaluate(gait: Gait, path: str, t, phase_rad=0.0) -> PathPoints:
-    """The path at times t (s) for a leg with gait phase phase_rad (rad); t and phase_rad
-    broadcast against each other."""
+def evaluate(gait: Gait, path: FootPath | str, t, phase_rad=0.0) -> PathPoints:
+    """The path (a FootPath or its kind) at times t (s) for a leg with gait phase phase_rad
+    (rad); t and phase_rad broadcast against each other."""
+    path = foot_path(path)
     u = cycle_phase(gait, t, phase_rad)
     flat = np.ascontiguousarray(u, dtype=float).ravel()
     x, y, vx, vy, ax, ay, stance = (v.reshape(u.shape) for v in
-                                    path_arrays(*path_constants(gait, path), flat))
+                                    path_arrays(path.point, path.constants(gait), flat))
     return PathPoints(pos=np.stack([x, y], -1), vel=np.stack([vx, vy], -1),
                       acc=np.stack([ax, ay], -1), stance=stance)
 
 
-def stance_start(gait: Gait, path: str) -> float:
-    """Cycle phase u at which the path's stance begins (it ends at u = 1)."""
-    check_path(path)
-    return 0.5 if path == "seed_ellipse" else 1.0 - gait.duty_factor
+def stance_speed(gait: Gait, path: FootPath | str) -> float:
+    """FootPath.stance_speed of a path or kind."""
+    return foot_path(path).stance_speed(gait)
 
 
-def stance_weight(gait: Gait, path: str, t, phase_rad, transfer_s: float) -> np.ndarray:
+def stance_start(gait: Gait, path: FootPath | str) -> float:
+    """FootPath.stance_start of a path or kind."""
+    return foot_path(path).stance_start(gait)
+
+
+def stance_weight(gait: Gait, path: FootPath | str, t, phase_rad, transfer_s: float) -> np.ndarray:
     """Scheduled share of a foot in the support (0 swing, 1 stance) at times t (s), rising and
     falling smoothly (smoothstep) over transfer_s (s) after touchdown and before lift-off, so
     the load passes from foot to foot without a step."""
@@ -167,7 +245,10 @@ def stance_weight(gait: Gait, path: str, t, phase_rad, transfer_s: float) -> np.
 
 @jit
 def stance_weight_at(u, u0, period, transfer_s):
-    """stance_weight at cycle phase u for a stance from u0 to 1 (period s)."""
+    """stance_weight at cycle phase u for a stance from u0 to 1 (period s; u0 = 0: always in
+    stance, no touchdown or lift-off)."""
+    if u0 <= 0.0:
+        return 1.0
     if u < u0:
         return 0.0
     edge = min(u - u0, 1.0 - u) * period           # s from the nearer stance end
@@ -189,11 +270,72 @@ def cycle_times(gait: Gait) -> np.ndarray:
     return np.arange(gait.samples) * (gait.period_s / gait.samples)
 
 
-def stance_loads(gait: Gait, path: str, t, phases_rad, weight_N: float) -> np.ndarray:
+def stance_loads(gait: Gait, path: FootPath | str, t, phases_rad, weight_N: float) -> np.ndarray:
     """Scheduled ground load (N) on each foot at times t: the weight shared equally by the feet
     the schedule has in stance (none in a flight phase). Shape (legs, *t.shape)."""
     stance = np.stack([evaluate(gait, path, t, ph).stance for ph in phases_rad])
     return stance * weight_N / np.maximum(stance.sum(0), 1)
+
+
+@jit_uncached
+def foot_references(point, constants, frequency, period, stance_start_u, transfer_s, home,
+                    phases, start_s, ramp_s, t):
+    """The foot references at time t (s) as one vector (7 legs / 2, GaitSource): targets,
+    velocities and accelerations (legs x (x, y) each), then stance weights (legs); the path
+    point(constants, u) (FootPath.point) at frequency (Hz) and period (s)."""
+    n = phases.shape[0]
+    out = np.zeros(7 * n)
+    targets, vel, acc = (out[:2 * n].reshape(n, 2), out[2 * n:4 * n].reshape(n, 2),
+                         out[4 * n:6 * n].reshape(n, 2))
+    weights = out[6 * n:]
+    weights[:] = 1.0
+    tau = t - start_s
+    if tau < 0.0:
+        targets[:, 0], targets[:, 1] = home[0], home[1]
+        return out
+    s, ds = (tau / ramp_s, 1.0 / ramp_s) if ramp_s > 0 and tau < ramp_s else (1.0, 0.0)
+    for i in range(n):
+        u = phase_of(frequency, tau, phases[i])
+        x, y, vx, vy, ax, ay, _ = point(constants, u)
+        for j, (rel, v, a) in enumerate(((x - home[0], vx, ax), (y - home[1], vy, ay))):
+            targets[i, j] = home[j] + s * rel
+            vel[i, j] = ds * rel + s * v
+            acc[i, j] = 2.0 * ds * v + s * a
+        weights[i] = 1.0 - s * (1.0 - stance_weight_at(u, stance_start_u, period, transfer_s))
+    return out
+
+
+class GaitSource(LeafSystem):
+    """Time (s) -> foot targets of all legs in their leg planes and the stance schedule,
+    sampled every period_s (the controller's period).
+
+    Output port "foot_references" (7 legs / 2): foot targets (legs x (x, y), m), velocities
+    (m/s), accelerations (m/s^2), then the stance weights (legs, in [0, 1]).
+    The foot path (FootPath.point) with gait time tau = t - start_s, each leg at its phase
+    (rad), about the home point (x_c, y_home) scaled by s ramping 0 -> 1 over ramp_s; the
+    stance weights blend from all-stance to the schedule with the same s. While standing
+    (t < start_s) the feet rest at home, all in stance. The path is known ahead, so at each
+    tick t the source stores the values of the next tick: a block sampling it at a tick reads
+    the values at that tick, computed once, with no Python on the output port."""
+
+    def __init__(self, gait: Gait, path: FootPath, phases, start_s: float, ramp_s: float,
+                 transfer_s: float, period_s: float):
+        super().__init__()
+        self._args = (path.point, path.constants(gait), gait.frequency_hz, gait.period_s,
+                      path.stance_start(gait), float(transfer_s),
+                      np.array([gait.x_center_m, gait.y_home_m]),
+                      np.asarray(phases, dtype=float), float(start_s), float(ramp_s))
+        self._period = period_s
+        self._group = self.DeclareDiscreteState(self.references(0.0))
+        self.DeclarePeriodicDiscreteUpdateEvent(period_s, 0.0, self._update)
+        self.DeclareStateOutputPort("foot_references", self._group)
+
+    def references(self, t: float) -> np.ndarray:
+        """The output port's value at time t (s)."""
+        return foot_references(*self._args, float(t))
+
+    def _update(self, context, discrete_state):
+        discrete_state.set_value(self._group, self.references(context.get_time() + self._period))
 
 
 @dataclass(frozen=True)

@@ -11,7 +11,6 @@ from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import DiscreteTimeIntegrator, Multiplexer, VectorLogSink
 
 from fivebar_drake.core.drake_configs import config_with
-from fivebar_drake.core.footpath import stance_start
 from fivebar_drake.core.motor import MotorModel
 from fivebar_drake.core.validation import ParameterError, check_number, require
 from fivebar_drake.robots.quadruped.closure import design_closure
@@ -19,10 +18,9 @@ from fivebar_drake.robots.quadruped.control_law import ControlGains
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.plant import ClosureDesign, RobotLayout, add_robot
 from fivebar_drake.simulation.scenario import Scenario
-from fivebar_drake.simulation.systems import FootLegController, GaitSource, derive_gains
+from fivebar_drake.simulation.systems import FootLegController, derive_gains
 
 
-SAP_CLOSURES = ("bushing", "ball")              # closed by SAP constraints
 SAP_APPROXIMATIONS = ("sap", "lagged", "similar")   # Drake's approximations solved by SAP
 MAX_PLANT_STEPS = 20_000_000   # duration / time step: at ~0.3 ms of wall time per plant step
 #                                (measured, 2 cores) about two hours
@@ -70,7 +68,7 @@ def check_plant_config(scenario: Scenario, time_step: float) -> None:
             "must be 0: the plant's step is scenario.time_step_s (0 = derived for the closure)")
     require(not config.use_sampled_output_ports, f"{field}.use_sampled_output_ports", True,
             "must be false: the controller and the motor model read the state at their tick")
-    if scenario.closure in SAP_CLOSURES:
+    if scenario.closure.sap:
         require(config.discrete_contact_approximation in SAP_APPROXIMATIONS,
                 f"{field}.discrete_contact_approximation", config.discrete_contact_approximation,
                 f"the '{scenario.closure}' closure is a SAP constraint: use one of "
@@ -116,7 +114,7 @@ def check_run(scenario: Scenario, params: Params) -> ClosureDesign:
             f"the recorder logs every {log_period:.6g} s (whole plant steps of {step:.6g} s), "
             f"which must be a whole number of motor periods (scenario.motor_period_s = "
             f"{scenario.motor_period_s:g} s): the motor's samples are averaged per interval")
-    stance_s = (1.0 - stance_start(params.gait, scenario.gait)) * period
+    stance_s = (1.0 - scenario.gait.stance_start(params.gait)) * period
     check_number("scenario.load_transfer_s", scenario.load_transfer_s, high=stance_s / 2,
                  why=f"a foot must take up its load and give it off within its stance of "
                      f"{stance_s:g} s")
@@ -140,9 +138,9 @@ def add_controller(builder: DiagramBuilder, scenario: Scenario, params: Params, 
     """Add gait source -> leg controller -> motor model -> the plant's actuation, the controller
     and the motor model sampling the plant state; returns (controller, motor model)."""
     gains = controller_gains(scenario, params, layout)
-    gait = builder.AddNamedSystem("gait_source", GaitSource(
-        params.gait, scenario.gait, scenario.phases_rad, scenario.stand_s, scenario.ramp_s,
-        scenario.load_transfer_s, scenario.control_period_s))
+    gait = scenario.gait.add_to(builder, params.gait, scenario.phases_rad, scenario.stand_s,
+                                scenario.ramp_s, scenario.load_transfer_s,
+                                scenario.control_period_s)
     controller = builder.AddNamedSystem("leg_controller", FootLegController(
         params, layout, gains, scenario.control_period_s, scenario.control_delay_periods,
         scenario.catch_gain, scenario.catch_rate_s, scenario.touchdown_detection))

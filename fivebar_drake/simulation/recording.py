@@ -81,7 +81,7 @@ def write_recording(path: Path, sig: Signals, record: SimulationRecord, summary:
     states) and its summary (statistics window, per-cycle peaks)."""
     scenario = record.scenario
     path.parent.mkdir(parents=True, exist_ok=True)
-    with recording_file(path, f"fivebar_drake-{scenario.gait}-{scenario.closure}",
+    with recording_file(path, f"fivebar_drake-{scenario.gait.kind}-{scenario.closure.kind}",
                         blueprint(record.layout.legs)) as rec:
         if len(sig.t):
             _log_scene(rec, sig, record)

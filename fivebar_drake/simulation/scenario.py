@@ -26,11 +26,13 @@ from pydrake.systems.analysis import SimulatorConfig
 
 from fivebar_drake.core.drake_configs import config_fields
 from fivebar_drake.core.files import read_input_text
-from fivebar_drake.core.footpath import PATHS, TROT_PHASES_RAD
+from fivebar_drake.core.footpath import PATHS, FootPath, Trot
 from fivebar_drake.core.validation import ParameterError, check_number, require
 from fivebar_drake.robots.quadruped.config import load_params, with_gait
 from fivebar_drake.robots.quadruped.params import Params
-from fivebar_drake.robots.quadruped.plant import CLOSURES, default_plant_config
+from fivebar_drake.robots.quadruped.closure import CLOSURES, Closure, CompliantBushing
+from fivebar_drake.robots.quadruped.plant import default_plant_config
+from fivebar_drake.robots.quadruped.legs import TROT_PHASES_RAD
 
 
 # Bounds of the scenario's values, each with the reason it exists.
@@ -61,6 +63,7 @@ def default_simulator_config() -> SimulatorConfig:
 
 
 DRAKE_CONFIGS = {"plant_config": MultibodyPlantConfig, "simulator_config": SimulatorConfig}
+REGISTRIES = {FootPath: PATHS, Closure: CLOSURES}    # the variant fields' base classes, registries
 DEFAULT_CONFIGS = {MultibodyPlantConfig: default_plant_config,
                    SimulatorConfig: default_simulator_config}
 def _doc(default, doc: str, factory=None):
@@ -75,8 +78,11 @@ class Scenario:
     """What to simulate and how; each field's description is in its metadata["doc"]."""
 
     duration_s: float = _doc(8.0, "simulated time from t = 0")
-    gait: str = _doc("trot", f"foot path, one of {', '.join(PATHS)} (core/footpath.py)")
-    closure: str = _doc("bushing", f"loop closure, one of {', '.join(CLOSURES)}")
+    gait: FootPath = _doc(None, f"foot path, one of {', '.join(PATHS)} (core/footpath.py), by "
+                                "kind (its defaults) or as {kind: KIND, FIELD: value, ...} (trot: "
+                                "duty_factor, null = the parameter file's)", factory=Trot)
+    closure: Closure = _doc(None, f"loop closure, one of {', '.join(CLOSURES)} "
+                                  "(robots/quadruped/closure.py)", factory=CompliantBushing)
     time_step_s: float = _doc(0.0, "plant step; 0 = derived (bushing, ball: 1 ms; bushing_rpy: "
                                    "its stability bound)")
     target_loop_gap_m: float = _doc(4e-6, "the bushing's design loop gap under the trot's load")
@@ -136,9 +142,6 @@ class Scenario:
         for f in dataclasses.fields(self):
             setattr(self, f.name, _typed(f"scenario.{f.name}", kinds[f.name],
                                          getattr(self, f.name)))
-        require(self.gait in PATHS, "scenario.gait", self.gait, f"allowed {list(PATHS)}")
-        require(self.closure in CLOSURES, "scenario.closure", self.closure,
-                f"allowed {list(CLOSURES)}")
         number = check_number
         number("scenario.log_period_s", self.log_period_s, MIN_TIME_STEP_S)
         number("scenario.duration_s", self.duration_s, self.log_period_s,
@@ -212,10 +215,12 @@ def fields_markdown() -> str:
     for f in dataclasses.fields(Scenario):
         kind = {float: "number", int: "integer", bool: "true/false", str: "text"}.get(
             kinds[f.name], "list of numbers" if kinds[f.name] == list[float] else
+            "kind or mapping" if kinds[f.name] in REGISTRIES else
             "mapping" if kinds[f.name] in DRAKE_CONFIGS.values() else "number or null")
         default = getattr(defaults, f.name)
         shown = (_changed_fields(default) if f.name in DRAKE_CONFIGS else
                  "null" if default is None else f'"{default}"' if isinstance(default, str) else
+                 f'"{default.kind}"' if isinstance(default, tuple(REGISTRIES)) else
                  str(default).lower() if isinstance(default, bool) else
                  "[" + ", ".join(f"{v:.4g}" for v in default) + "]"
                  if isinstance(default, list) else f"{default:g}")
@@ -224,9 +229,35 @@ def fields_markdown() -> str:
     return "\n".join(rows)
 
 
+def _variant(name: str, base: type, value):
+    """The variant (core/variants.py) of a field of type base, checked (Variant.check): value is
+    a variant, a kind of its registry (REGISTRIES) or a mapping {kind: KIND, FIELD: value, ...}
+    (each field typed as in _typed)."""
+    if isinstance(value, base):
+        value.check(name)
+        return value
+    registry = REGISTRIES[base]
+    fields = value if isinstance(value, dict) else {"kind": value}
+    require("kind" in fields, name, value, f"a mapping needs the kind, one of {list(registry)}")
+    kind = fields["kind"]
+    require(isinstance(kind, str) and kind in registry, name, kind, f"allowed {list(registry)}")
+    cls = registry[kind]
+    names, hints = [f.name for f in dataclasses.fields(cls)], typing.get_type_hints(cls)
+    for key in fields:
+        require(key == "kind" or key in names, f"{name}.{key}", fields[key],
+                f"unknown field; {kind} has {names}")
+    variant = cls(**{key: _typed(f"{name}.{key}", hints[key], item)
+                     for key, item in fields.items() if key != "kind"})
+    variant.check(name)
+    return variant
+
+
 def _typed(name: str, kind, value):
     """value checked against a field's type (a number of a float field as a float; a Drake
-    config from the mapping of its fields, over the field's default)."""
+    config from the mapping of its fields, over the field's default; a variant by its kind or
+    as a mapping, _variant)."""
+    if kind in REGISTRIES:
+        return _variant(name, kind, value)
     if kind in DRAKE_CONFIGS.values():
         if isinstance(value, kind):
             return value

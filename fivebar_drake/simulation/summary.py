@@ -25,8 +25,7 @@ import numpy as np
 
 from fivebar_drake.core.checks import CHECK_ORDER, SEVERITY, motor_checks
 from fivebar_drake.core.files import write_atomic
-from fivebar_drake.core.footpath import (cycle_phase, evaluate, stance_loads, stance_speed,
-                                         stance_start)
+from fivebar_drake.core.footpath import cycle_phase, evaluate, stance_loads
 from fivebar_drake.core.rotation import body_rotation, tilt_deg
 from fivebar_drake.mechanisms.fivebar import (MOTORS, forward, link_jacobians, static_torques,
                                               torques)
@@ -116,8 +115,9 @@ def signals(record: SimulationRecord) -> Signals:
     stance = np.stack([evaluate(params.gait, scenario.gait, tau_gait, ph).stance
                        for ph in scenario.phases_rad], 1) & gaiting
     u = np.stack([cycle_phase(params.gait, tau_gait, ph) for ph in scenario.phases_rad], 1)
-    swing_fraction = np.where(gaiting & ~stance, u / stance_start(params.gait, scenario.gait),
-                              np.nan)
+    swing = gaiting & ~stance
+    swing_fraction = np.where(swing, u / np.where(swing, scenario.gait.stance_start(params.gait),
+                                                  1.0), np.nan)
     weight = params.robot.total_mass_kg * params.robot.gravity_m_s2
     loads = np.where(gaiting, stance_loads(params.gait, scenario.gait, tau_gait,
                                            scenario.phases_rad, weight).T, weight / len(lay.legs))
@@ -260,7 +260,7 @@ def summarize(sig: Signals, record: SimulationRecord, seed_analysis: dict) -> di
     p = sig.body_p[win]
     tw = sig.t[win]
     speed = float((p[-1, 0] - p[0, 0]) / (tw[-1] - tw[0])) if len(tw) > 1 else math.nan
-    gait_speed = stance_speed(params.gait, scenario.gait)
+    gait_speed = scenario.gait.stance_speed(params.gait)
     max_tilt = float(np.max(sig.tilt_deg)) if len(sig.t) else math.nan
     run_why = achievement(params, speed, gait_speed, max_tilt)
     for ms in legs.values():
@@ -274,7 +274,7 @@ def summarize(sig: Signals, record: SimulationRecord, seed_analysis: dict) -> di
     scheduled_swing = (~sig.stance[win]).sum(0)
     seed_peak = max(seed_analysis[m]["peak_torque_Nm"] for m in MOTORS)
     summary = {
-        "gait": scenario.gait, "closure": scenario.closure,
+        "gait": scenario.gait.kind, "closure": scenario.closure.kind,
         "duration_s": t_end, "requested_duration_s": scenario.duration_s,
         "completed": completed, "interrupted": bool(record.interrupted),
         "error": record.error or (f"interrupted by {record.interrupted} at t = {t_end:.2f} s"

@@ -1,4 +1,5 @@
-"""The Diagram's blocks: gait source, leg controller, motor model.
+"""The Diagram's blocks: the leg controller (the gait source is core/footpath.GaitSource, the
+motor model core/motor.MotorModel).
 
 Legs are ordered FL, FR, RL, RR; per leg the motors A, B and foot coordinates (x, y) in the leg
 plane (m). Torque vectors (8) are in the plant's actuation order (LegIndices.actuators).
@@ -9,74 +10,12 @@ from __future__ import annotations
 import numpy as np
 from pydrake.systems.framework import LeafSystem
 
-from fivebar_drake.core.compiled import jit
-from fivebar_drake.core.footpath import (Gait, path_constants, path_point, phase_of, stance_start,
-                                         stance_weight_at)
 from fivebar_drake.mechanisms.fivebar import (LINK_NAMES, com_fractions, physical_izz)
 from fivebar_drake.robots.quadruped.control_law import ControlGains, LawConstants, leg_command
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.plant import RobotLayout
 from fivebar_drake.robots.quadruped.legs import plane_rotation
 from fivebar_drake.robots.quadruped.sdf import body_height
-
-
-@jit
-def foot_references(path, stance_start_u, transfer_s, home, phases, start_s, ramp_s, t):
-    """The foot references at time t (s) as one vector (7 legs / 2, GaitSource): targets,
-    velocities and accelerations (legs x (x, y) each), then stance weights (legs);
-    path: footpath.path_constants."""
-    n = phases.shape[0]
-    out = np.zeros(7 * n)
-    targets, vel, acc = (out[:2 * n].reshape(n, 2), out[2 * n:4 * n].reshape(n, 2),
-                         out[4 * n:6 * n].reshape(n, 2))
-    weights = out[6 * n:]
-    weights[:] = 1.0
-    tau = t - start_s
-    if tau < 0.0:
-        targets[:, 0], targets[:, 1] = home[0], home[1]
-        return out
-    s, ds = (tau / ramp_s, 1.0 / ramp_s) if ramp_s > 0 and tau < ramp_s else (1.0, 0.0)
-    for i in range(n):
-        u = phase_of(path[5], tau, phases[i])
-        x, y, vx, vy, ax, ay, _ = path_point(*path, u)
-        for j, (rel, v, a) in enumerate(((x - home[0], vx, ax), (y - home[1], vy, ay))):
-            targets[i, j] = home[j] + s * rel
-            vel[i, j] = ds * rel + s * v
-            acc[i, j] = 2.0 * ds * v + s * a
-        weights[i] = 1.0 - s * (1.0 - stance_weight_at(u, stance_start_u, path[6], transfer_s))
-    return out
-
-
-class GaitSource(LeafSystem):
-    """Time (s) -> foot targets of all legs in their leg planes and the stance schedule,
-    sampled every period_s (the controller's period).
-
-    Output port "foot_references" (7 legs / 2): foot targets (legs x (x, y), m), velocities
-    (m/s), accelerations (m/s^2), then the stance weights (legs, in [0, 1]).
-    The foot path (footpath.path_point) with gait time tau = t - start_s, each leg at its phase
-    (rad), about the home point (x_c, y_home) scaled by s ramping 0 -> 1 over ramp_s; the
-    stance weights blend from all-stance to the schedule with the same s. While standing
-    (t < start_s) the feet rest at home, all in stance. The path is known ahead, so at each
-    tick t the source stores the values of the next tick: a block sampling it at a tick reads
-    the values at that tick, computed once, with no Python on the output port."""
-
-    def __init__(self, gait: Gait, path: str, phases, start_s: float, ramp_s: float,
-                 transfer_s: float, period_s: float):
-        super().__init__()
-        self._args = (path_constants(gait, path), stance_start(gait, path), float(transfer_s),
-                      np.array([gait.x_center_m, gait.y_home_m]),
-                      np.asarray(phases, dtype=float), float(start_s), float(ramp_s))
-        self._period = period_s
-        self._group = self.DeclareDiscreteState(self.references(0.0))
-        self.DeclarePeriodicDiscreteUpdateEvent(period_s, 0.0, self._update)
-        self.DeclareStateOutputPort("foot_references", self._group)
-
-    def references(self, t: float) -> np.ndarray:
-        """The output port's value at time t (s)."""
-        return foot_references(*self._args, float(t))
-
-    def _update(self, context, discrete_state):
-        discrete_state.set_value(self._group, self.references(context.get_time() + self._period))
 
 
 def derive_gains(mass_kg: float, inertia_kg_m2, leg_inertia_kg_m2: float, swing_hz: float,

@@ -10,9 +10,10 @@ import pytest
 
 from fivebar_drake.analysis.torques import analyze
 from fivebar_drake.cli import main
-from fivebar_drake.core.footpath import TROT_PHASES_RAD, evaluate, stance_loads, stance_weight
+from fivebar_drake.core.footpath import evaluate, stance_loads, stance_weight
 from fivebar_drake.analysis.plots import FIGURES
 from fivebar_drake.analysis.report import markdown
+from fivebar_drake.robots.quadruped.legs import TROT_PHASES_RAD
 
 DT = 1e-5
 

@@ -19,11 +19,14 @@ is: the loop is softer than designed (min_loop_gap).
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
+from typing import ClassVar
 
 import numpy as np
 from pydrake.multibody.plant import MultibodyPlant
 
 from fivebar_drake.core.validation import ParameterError, check_number
+from fivebar_drake.core.variants import Variant, by_kind, registrar
 from fivebar_drake.mechanisms.fivebar import sample_gait, tree_positions
 from fivebar_drake.robots.quadruped.inverse_dynamics import loop_jacobian, plane_point_jacobian
 from fivebar_drake.robots.quadruped.leg_loads import trot_model
@@ -36,6 +39,7 @@ STABILITY_MARGIN = 0.8   # fraction of the explicit stability bound a + 2 b < 4
 DAMPING_RATIO = 0.3
 NEAR_RIGID_BETA = 0.1    # SAP's near-rigid parameter of a distance constraint (drake 1.51,
 #                          SapDistanceConstraint)
+OFFSET_M = 0.02   # the compliant bushing's second distance constraint's point: this far off DE at E
 
 
 def fixed_leg(params: Params):
@@ -129,34 +133,109 @@ def min_loop_gap(m_eff_kg: float, sap_mass_kg: float, loop_force_N: float, time_
 IMPLICIT_TIME_STEP_S = 1e-3   # plant step of the closures SAP treats implicitly
 
 
-def design_closure(params: Params, closure: str, target_gap_m: float, time_step_s: float = 0.0,
-                   log_period_s: float = 2e-3) -> ClosureDesign:
-    """The closure for the parameters: the bushing's stiffness and damping from the knee's
-    effective mass, the loop force and the accepted gap (bushing_parameters). SAP treats the
-    compliant "bushing" and the "ball" implicitly, so they run at IMPLICIT_TIME_STEP_S, while the
-    explicit "bushing_rpy" needs the step its stability bound allows: the largest stable step
-    that divides log_period_s (s), so every log interval has whole steps. time_step_s > 0 asks
-    for a step. ParameterError if the explicit bushing is unstable at it, or if the compliant
-    bushing's gap is below min_loop_gap at its step (SAP would regularise it: not F / k)."""
+def design_closure(params: Params, closure: "Closure | str", target_gap_m: float,
+                   time_step_s: float = 0.0, log_period_s: float = 2e-3) -> ClosureDesign:
+    """The closure (a Closure or its kind) designed for the parameters (Closure.design) from the
+    knee's effective mass and the loop force (loop_load). time_step_s > 0 asks for a plant step
+    (s; 0: derived), log_period_s (s) is the recorder's interval."""
     m_eff, force = loop_load(params)
-    if closure == "ball":
-        return ClosureDesign(closure, time_step_s or IMPLICIT_TIME_STEP_S, None, m_eff, force)
-    if closure == "bushing":
+    return by_kind(CLOSURES, closure, "closure").design(params, m_eff, force, target_gap_m,
+                                                        time_step_s, log_period_s)
+
+
+CLOSURES: dict[str, type[Closure]] = {}    # the loop closures by kind, in registration order
+register_closure = registrar(CLOSURES)
+
+
+@dataclass(frozen=True)
+class Closure(Variant):
+    """A loop closure at E (register with register_closure): what each leg's SDF declares there
+    (`sdf_element`: the mechanism's sdf_elements closure, None: nothing), whether it is a SAP
+    constraint (`sap`: the plant needs a SAP solver), its design and the constraints it adds
+    after parsing."""
+
+    sdf_element: ClassVar[str | None] = None
+    sap: ClassVar[bool] = False
+
+    def design(self, params: Params, m_eff_kg: float, loop_force_N: float, target_gap_m: float,
+               time_step_s: float, log_period_s: float) -> ClosureDesign:
+        """The design from the knee's effective mass (kg) and loop force (N) for the accepted gap
+        (m) at the asked step (s, 0: derived); ParameterError naming the scenario field if it
+        cannot hold."""
+        raise NotImplementedError
+
+    def add_to(self, plant: MultibodyPlant, instance, legs, params: Params,
+               bushing: Bushing | None) -> None:
+        """Add what the SDF cannot declare to the parsed, unfinalized plant (nothing here)."""
+
+
+@register_closure
+@dataclass(frozen=True)
+class CompliantBushing(Closure):
+    """The bushing's force law (a translational spring-damper at E, free about the hinge) as two
+    compliant SAP distance constraints, treated implicitly: SAP steps it at IMPLICIT_TIME_STEP_S
+    while its gap is at least min_loop_gap (SAP would regularise a stiffer one: not F / k)."""
+
+    kind: ClassVar[str] = "bushing"
+    sap: ClassVar[bool] = True
+
+    def design(self, params, m_eff_kg, loop_force_N, target_gap_m, time_step_s, log_period_s):
         step = time_step_s or IMPLICIT_TIME_STEP_S
-        least = min_loop_gap(m_eff, near_rigid_mass(params), force, step)
+        least = min_loop_gap(m_eff_kg, near_rigid_mass(params), loop_force_N, step)
         check_number("scenario.target_loop_gap_m", target_gap_m, least, why=(
             f"at the plant step {step:g} s SAP regularises a stiffer bushing (k = loop force "
-            f"{force:.3g} N / gap > {force / least:.3g} N/m) as near-rigid, and the gap is no "
-            "longer F / k; the bound scales with the step squared: use a larger gap or a smaller "
-            "scenario.time_step_s"))
-        bushing, _ = bushing_parameters(m_eff, force, target_gap_m)
-        return ClosureDesign(closure, step, bushing, m_eff, force)
-    bushing, dt = bushing_parameters(m_eff, force, target_gap_m)
-    if time_step_s > dt:
-        raise ParameterError(
-            f"scenario.time_step_s = {time_step_s!r}: the explicit bushing (k = "
-            f"{bushing.stiffness_N_m:.3g} N/m, m_eff = {m_eff * 1e3:.2f} g) is stable up to "
-            f"{dt:.3g} s; use 0 (derived) or a smaller step, a larger target_loop_gap_m, or the "
-            "implicit closure 'bushing'", "scenario.time_step_s")
-    derived = log_period_s / math.ceil(log_period_s / dt - 1e-9)
-    return ClosureDesign(closure, time_step_s or derived, bushing, m_eff, force)
+            f"{loop_force_N:.3g} N / gap > {loop_force_N / least:.3g} N/m) as near-rigid, and "
+            "the gap is no longer F / k; the bound scales with the step squared: use a larger gap "
+            "or a smaller scenario.time_step_s"))
+        bushing, _ = bushing_parameters(m_eff_kg, loop_force_N, target_gap_m)
+        return ClosureDesign(self, step, bushing, m_eff_kg, loop_force_N)
+
+    def add_to(self, plant, instance, legs, params, bushing):
+        """E on CE joined to D on DE at the length DE and to the point Q OFFSET_M off DE at E
+        (perpendicular, in the leg plane) at OFFSET_M: both springs have the bushing's stiffness
+        and damping, their directions at E are orthogonal, so E feels an isotropic in-plane
+        spring, and both lines of action pass through E: no torque about the hinge."""
+        g, k, d = params.leg, bushing.stiffness_N_m, bushing.damping_N_s_m
+        for leg in legs:
+            ce = plant.GetBodyByName(f"{leg}_CE", instance)
+            de = plant.GetBodyByName(f"{leg}_DE", instance)
+            plant.AddDistanceConstraint(ce, [g.ce_m, 0.0, 0.0], de, [0.0, 0.0, 0.0], g.de_m, k, d)
+            plant.AddDistanceConstraint(ce, [g.ce_m, 0.0, 0.0], de, [g.de_m, OFFSET_M, 0.0],
+                                        OFFSET_M, k, d)
+
+
+@register_closure
+@dataclass(frozen=True)
+class ExplicitBushing(Closure):
+    """Drake's explicit LinearBushingRollPitchYaw with the bushing's stiffness (the reference the
+    seed names): the plant steps at the largest stable step that divides the log interval, so
+    every interval has whole steps."""
+
+    kind: ClassVar[str] = "bushing_rpy"
+    sdf_element: ClassVar[str | None] = "bushing_rpy"
+
+    def design(self, params, m_eff_kg, loop_force_N, target_gap_m, time_step_s, log_period_s):
+        bushing, dt = bushing_parameters(m_eff_kg, loop_force_N, target_gap_m)
+        if time_step_s > dt:
+            raise ParameterError(
+                f"scenario.time_step_s = {time_step_s!r}: the explicit bushing (k = "
+                f"{bushing.stiffness_N_m:.3g} N/m, m_eff = {m_eff_kg * 1e3:.2f} g) is stable up "
+                f"to {dt:.3g} s; use 0 (derived) or a smaller step, a larger target_loop_gap_m, "
+                "or the implicit closure 'bushing'", "scenario.time_step_s")
+        derived = log_period_s / math.ceil(log_period_s / dt - 1e-9)
+        return ClosureDesign(self, time_step_s or derived, bushing, m_eff_kg, loop_force_N)
+
+
+@register_closure
+@dataclass(frozen=True)
+class Ball(Closure):
+    """A SAP ball constraint: SAP regularises it to a spring whose stiffness the step sets
+    (nothing to design); IMPLICIT_TIME_STEP_S by default."""
+
+    kind: ClassVar[str] = "ball"
+    sdf_element: ClassVar[str | None] = "ball"
+    sap: ClassVar[bool] = True
+
+    def design(self, params, m_eff_kg, loop_force_N, target_gap_m, time_step_s, log_period_s):
+        return ClosureDesign(self, time_step_s or IMPLICIT_TIME_STEP_S, None, m_eff_kg,
+                             loop_force_N)

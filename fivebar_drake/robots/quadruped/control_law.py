@@ -187,7 +187,7 @@ def ground_forces(k, targets, velocities, accelerations, weights, fx, fy, state,
 @jit
 def leg_command(k, references, state):
     """(torque command (8) in actuation order, swing IK targets (legs, 2) in m, whether the
-    command is finite) from the foot references (systems.foot_references: targets, velocities,
+    command is finite) from the foot references (footpath.foot_references: targets, velocities,
     accelerations (legs, 2) each, stance weights (legs,)) and the plant state (nx,). NaN where
     a target is out of reach or the legs cannot close."""
     n = references.shape[0] // 7

@@ -5,9 +5,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from fivebar_drake.core.footpath import TROT_PHASES_RAD, stance_loads
+from fivebar_drake.core.footpath import FootPath, stance_loads
 from fivebar_drake.mechanisms.fivebar import DynamicsModel, LINK_NAMES, physical_izz
 from fivebar_drake.robots.quadruped.params import Params
+from fivebar_drake.robots.quadruped.legs import TROT_PHASES_RAD
 
 
 def seed_model(params: Params) -> DynamicsModel:
@@ -34,7 +35,7 @@ def full_model(params: Params) -> DynamicsModel:
         gravity_m_s2=params.robot.gravity_m_s2)
 
 
-def trot_model(params: Params, path: str, t, phases_rad=TROT_PHASES_RAD,
+def trot_model(params: Params, path: FootPath | str, t, phases_rad=TROT_PHASES_RAD,
                leg: int = 0) -> DynamicsModel:
     """The full model under trot loading at times t (s) of the foot path: the robot's weight
     shared by the feet the schedule (legs' gait phases phases_rad) has in stance, none in swing

@@ -11,6 +11,9 @@ from __future__ import annotations
 import numpy as np
 
 LEGS = ("FL", "FR", "RL", "RR")           # front/rear, left/right
+# Gait phase (rad) of each leg in a trot: diagonal pairs (FL, RR and FR, RL) in phase, the pairs
+# half a cycle apart.
+TROT_PHASES_RAD = tuple(np.pi if (leg[0] == "F") != (leg[1] == "L") else 0.0 for leg in LEGS)
 PLANE_RPY = (np.pi / 2, 0.0, np.pi)       # roll, pitch, yaw (rad) of a leg plane in the body
 
 

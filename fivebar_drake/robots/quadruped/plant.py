@@ -16,63 +16,39 @@ from pydrake.systems.framework import DiagramBuilder
 from fivebar_drake.mechanisms.fivebar import JOINTS
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.core.drake_configs import config_with
+from fivebar_drake.core.variants import Variant
 from fivebar_drake.mechanisms.base import Bushing
 from fivebar_drake.robots.quadruped.legs import LEGS, hip_positions
 from fivebar_drake.robots.quadruped.sdf import body_height, quadruped_sdf, single_leg_sdf
 
 
-# Loop closures at E: "bushing", the bushing's force law (a translational spring-damper at E, free
-# about the hinge) as two compliant SAP distance constraints, treated implicitly; "bushing_rpy",
-# Drake's explicit LinearBushingRollPitchYaw; "ball", a rigid SAP ball constraint.
-CLOSURES = ("bushing", "bushing_rpy", "ball")
-OFFSET_M = 0.02   # the second distance constraint's point on DE: this far off the link at E
-
-
 @dataclass(frozen=True)
 class ClosureDesign:
-    """A loop closure designed before the plant is assembled (plain data): the closure
-    (plant.CLOSURES), the plant's time step (s), the bushing (None for the rigid ball) and what
-    it was designed from, the knee's effective mass (kg) and the largest loop force (N)."""
+    """A loop closure designed before the plant is assembled (plain data): the closure (a
+    closure.Closure), the plant's time step (s), the bushing (None for the ball) and what it was
+    designed from, the knee's effective mass (kg) and the largest loop force (N)."""
 
-    closure: str
+    closure: Variant
     time_step_s: float
     bushing: Bushing | None
     m_eff_kg: float
     loop_force_N: float
 
 
-def check_closure(closure: str) -> None:
-    if closure not in CLOSURES:
-        raise ValueError(f"closure = {closure!r}: allowed {list(CLOSURES)}")
-
-
-def add_model(plant: MultibodyPlant, params: Params, model: str, closure: str | None,
+def add_model(plant: MultibodyPlant, params: Params, model: str, closure: Variant | None,
               bushing: Bushing | None = None):
     """Parse the generated SDF ("leg": one fixed-hip leg named "leg"; "quadruped": body + legs
-    FL, FR, RL, RR) into plant and close each loop (closure None: the open tree, for kinematics
-    and mass properties). Returns (model instance, leg names).
-
-    The "bushing" closure joins E on CE to D on DE at the length DE and to the point Q 20 mm off
-    DE at E (perpendicular, in the leg plane) at 20 mm: both springs have the bushing's stiffness
-    and damping, their directions at E are orthogonal, so E feels an isotropic in-plane spring,
-    and both lines of action pass through E: no torque about the hinge."""
-    if closure is not None:
-        check_closure(closure)
-    if closure in ("bushing", "bushing_rpy") and bushing is None:
-        raise ValueError(f"closure {closure!r} needs bushing parameters")
-    text = (single_leg_sdf if model == "leg" else quadruped_sdf)(params, closure, bushing)
+    FL, FR, RL, RR) into plant and close each loop with closure (a closure.Closure: its SDF
+    element, then closure.add_to; bushing: the designed one, None for the ball; closure None: the
+    open tree, for kinematics and mass properties). Returns (model instance, leg names)."""
+    element = None if closure is None else closure.sdf_element
+    text = (single_leg_sdf if model == "leg" else quadruped_sdf)(params, element, bushing)
     parser = Parser(plant)
     parser.SetStrictParsing()
     (instance,) = parser.AddModelsFromString(text, "sdf")
     legs = ("leg",) if model == "leg" else LEGS
-    if closure == "bushing":
-        g, k, d = params.leg, bushing.stiffness_N_m, bushing.damping_N_s_m
-        for leg in legs:
-            ce = plant.GetBodyByName(f"{leg}_CE", instance)
-            de = plant.GetBodyByName(f"{leg}_DE", instance)
-            plant.AddDistanceConstraint(ce, [g.ce_m, 0.0, 0.0], de, [0.0, 0.0, 0.0], g.de_m, k, d)
-            plant.AddDistanceConstraint(ce, [g.ce_m, 0.0, 0.0], de, [g.de_m, OFFSET_M, 0.0],
-                                        OFFSET_M, k, d)
+    if closure is not None:
+        closure.add_to(plant, instance, legs, params, bushing)
     return instance, legs
 
 

@@ -12,7 +12,8 @@ from pydrake.systems.framework import DiagramBuilder
 from pydrake.common.value import AbstractValue
 
 from fivebar_drake.core.validation import ParameterError
-from fivebar_drake.robots.quadruped.closure import (IMPLICIT_TIME_STEP_S, bushing_parameters,
+from fivebar_drake.robots.quadruped.closure import (CLOSURES, IMPLICIT_TIME_STEP_S,
+                                                    bushing_parameters,
                                                     design_closure, loop_load, min_loop_gap,
                                                     near_rigid_mass)
 from fivebar_drake.mechanisms.fivebar import inverse, tree_positions
@@ -31,7 +32,7 @@ def leg_plant(params, bushing, foot_force_N=None, motors="locked", dt=DT, closur
     plant = builder.AddSystem(MultibodyPlant(dt))
     ApplyMultibodyPlantConfig(MultibodyPlantConfig(time_step=dt,
                                                    discrete_contact_approximation="sap"), plant)
-    instance, _ = add_model(plant, params, "leg", closure, bushing)
+    instance, _ = add_model(plant, params, "leg", CLOSURES[closure](), bushing)
     plant.mutable_gravity_field().set_gravity_vector([0.0, 0.0, 0.0])
     if motors == "held":
         for j in ("A", "B"):

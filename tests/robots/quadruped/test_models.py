@@ -7,6 +7,7 @@ import pytest
 from pydrake.multibody.plant import DiscreteContactApproximation, MultibodyPlant
 from pydrake.visualization import ModelVisualizer
 
+from fivebar_drake.robots.quadruped.closure import CLOSURES
 from fivebar_drake.robots.quadruped.plant import add_model
 from fivebar_drake.simulation.scenario import load_scenario
 from fivebar_drake.robots.quadruped.sdf import MODEL_FILES, body_mass_properties
@@ -36,7 +37,7 @@ def test_models_load_in_model_visualizer_without_warnings(name):
 def test_quadruped_plant_is_physical(params, closure):
     plant = MultibodyPlant(1e-3)
     plant.set_discrete_contact_approximation(DiscreteContactApproximation.kSap)
-    instance, legs = add_model(plant, params, "quadruped", closure,
+    instance, legs = add_model(plant, params, "quadruped", CLOSURES[closure](),
                                closure_design(load_scenario(closure="bushing"), params).bushing)
     plant.Finalize()
     context = plant.CreateDefaultContext()

@@ -7,6 +7,7 @@ import pytest
 from pydrake.systems.framework import DiagramBuilder
 
 from fivebar_drake.mechanisms.fivebar import foot_jacobian, forward, static_torques
+from fivebar_drake.robots.quadruped.closure import Ball
 from fivebar_drake.robots.quadruped.leg_loads import full_model
 from fivebar_drake.robots.quadruped.plant import ClosureDesign, add_robot, set_standing_pose
 from fivebar_drake.robots.quadruped.legs import plane_rotation
@@ -21,7 +22,7 @@ def standing(params):
     scenario = load_scenario(closure="ball")
     builder = DiagramBuilder()
     plant, instance, layout = add_robot(builder, params,
-                                        ClosureDesign("ball", 1e-3, None, 0.0, 0.0))
+                                        ClosureDesign(Ball(), 1e-3, None, 0.0, 0.0))
     controller = FootLegController(params, layout, controller_gains(scenario, params, layout),
                                    scenario.control_period_s, 0, scenario.catch_gain,
                                    scenario.catch_rate_s, scenario.touchdown_detection)

@@ -1,0 +1,43 @@
+"""Typed variants: a gait, a controller or a loop closure is a small frozen dataclass registered by
+its kind in its registry (a dict kind -> class), loaded from the scenario by name (its defaults)
+or as a mapping {kind: KIND, field: value, ...} (simulation/scenario.py)."""
+
+from __future__ import annotations
+
+import dataclasses
+from typing import ClassVar
+
+
+class Variant:
+    """Base of the variants: `kind` names it in its registry; check validates its fields."""
+
+    kind: ClassVar[str] = ""
+
+    def __str__(self) -> str:
+        """The kind, with the fields that differ from the kind's defaults, e.g. trot or
+        trot(duty_factor=0.7)."""
+        default = type(self)()
+        changed = [f"{f.name}={getattr(self, f.name)!r}" for f in dataclasses.fields(self)
+                   if getattr(self, f.name) != getattr(default, f.name)]
+        return f"{self.kind}({', '.join(changed)})" if changed else self.kind
+
+    def check(self, field: str) -> None:
+        """ParameterError naming f"{field}.NAME" for a field out of its bounds (none here)."""
+
+
+def by_kind(registry: dict, value, what: str) -> Variant:
+    """value if it is a variant, else the registered variant of that kind with its defaults
+    (ValueError naming `what` and the kinds)."""
+    if isinstance(value, Variant):
+        return value
+    if value not in registry:
+        raise ValueError(f"{what} = {value!r}: allowed {list(registry)}")
+    return registry[value]()
+
+
+def registrar(registry: dict):
+    """The class decorator that registers a Variant subclass in registry under its kind."""
+    def register(cls):
+        registry[cls.kind] = cls
+        return cls
+    return register

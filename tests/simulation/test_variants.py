@@ -1,0 +1,127 @@
+"""Gaits, controllers and closures as typed variants: the registered ones give what the code
+before them gave (tests/data/before_variants.npz, saved from it: the default trot's and the seed
+ellipse's foot references at 301 times over 4.5 s, the default controller's commands at those
+references and perturbed standing states), a scenario names them by kind or as a mapping, and a
+gait registered in a test alone runs through the pipeline."""
+
+from dataclasses import dataclass
+from pathlib import Path
+from typing import ClassVar, NamedTuple
+
+import numpy as np
+import pytest
+from pydrake.systems.framework import DiagramBuilder
+
+from fivebar_drake.core.compiled import jit
+from fivebar_drake.core.footpath import PATHS, FootPath, Trot, register_path
+from fivebar_drake.core.rotation import tilt_deg
+from fivebar_drake.core.validation import ParameterError
+from fivebar_drake.pipeline import run_simulation
+from fivebar_drake.robots.quadruped.plant import add_robot, standing_height
+from fivebar_drake.simulation.builder import check_run, controller_gains
+from fivebar_drake.simulation.scenario import load_scenario
+from fivebar_drake.simulation.systems import FootLegController
+
+BEFORE = np.load(Path(__file__).parent.parent / "data" / "before_variants.npz")
+
+
+def gait_source(scenario, params):
+    """The scenario's gait source, added to a fresh builder as the simulation adds it."""
+    return scenario.gait.add_to(DiagramBuilder(), params.gait, scenario.phases_rad,
+                                scenario.stand_s, scenario.ramp_s, scenario.load_transfer_s,
+                                scenario.control_period_s)
+
+
+@pytest.mark.parametrize("gait", ["trot", "seed_ellipse"])
+def test_registered_gaits_give_the_references_of_before(params, gait):
+    """Bit for bit: targets, velocities, accelerations and stance weights of all legs, standing,
+    ramping and walking."""
+    source = gait_source(load_scenario(gait=gait), params)
+    now = np.array([source.references(t) for t in BEFORE["t"]])
+    np.testing.assert_array_equal(now, BEFORE[f"references_{gait}"])
+
+
+def test_the_default_controller_gives_the_commands_of_before(params):
+    scenario = load_scenario()
+    plant, _, layout = add_robot(DiagramBuilder(), params, check_run(scenario, params),
+                                 scenario.plant_config)
+    controller = FootLegController(params, layout, controller_gains(scenario, params, layout),
+                                   scenario.control_period_s, scenario.control_delay_periods,
+                                   scenario.catch_gain, scenario.catch_rate_s,
+                                   scenario.touchdown_detection)
+    now = np.array([controller.command(r, x) for r, x in zip(BEFORE["references_trot"],
+                                                             BEFORE["states"])])
+    np.testing.assert_array_equal(now, BEFORE["commands"])
+
+
+def test_a_gait_by_kind_or_as_a_mapping(tmp_path):
+    assert load_scenario().gait == Trot() and str(Trot()) == "trot"
+    path = tmp_path / "s.yaml"
+    path.write_text("gait: {kind: trot, duty_factor: 0.7}\n")
+    gait = load_scenario(path).gait
+    assert gait == Trot(duty_factor=0.7) and str(gait) == "trot(duty_factor=0.7)"
+    for text, message in [("gait: {kind: trot, duty_factor: 1.5}\n",
+                           "scenario.gait.duty_factor = 1.5"),
+                          ("gait: {kind: trot, stride: 1}\n",
+                           "scenario.gait.stride = 1: unknown field; trot has ['duty_factor']"),
+                          ("gait: {duty_factor: 0.7}\n", "a mapping needs the kind"),
+                          ("gait: {kind: hop}\n", "scenario.gait = 'hop': allowed")]:
+        path.write_text(text)
+        with pytest.raises(ParameterError, match=message.replace("[", r"\[").replace("(", r"\(")):
+            load_scenario(path)
+
+
+def test_a_duty_factor_of_the_gait_changes_its_stance(params):
+    """The trot's own duty_factor overrides the parameter file's."""
+    tight = load_scenario(gait={"kind": "trot", "duty_factor": 0.6})
+    assert tight.gait.stance_start(params.gait) == pytest.approx(0.4)
+    assert Trot().stance_start(params.gait) == pytest.approx(1.0 - params.gait.duty_factor)
+
+
+class Home(NamedTuple):
+    """The home point (m)."""
+
+    x: float
+    y: float
+
+
+@jit
+def home_point(c, u):
+    """At home, at rest, in stance, whatever the phase."""
+    return c.x, c.y, 0.0, 0.0, 0.0, 0.0, True
+
+
+@pytest.fixture
+def stand_still():
+    """A toy gait registered for the test alone (and removed after it)."""
+    @register_path
+    @dataclass(frozen=True)
+    class StandStill(FootPath):
+        """Holds every foot at home: all stance, no speed."""
+
+        kind: ClassVar[str] = "stand_still"
+        point: ClassVar = staticmethod(home_point)
+
+        def constants(self, gait):
+            return Home(gait.x_center_m, gait.y_home_m)
+
+        def stance_start(self, gait):
+            return 0.0
+
+        def stance_speed(self, gait):
+            return 0.0
+
+    yield StandStill
+    del PATHS["stand_still"]
+
+
+def test_a_gait_registered_alone_runs_through_the_pipeline(params, stand_still):
+    """The toy gait, by kind in a scenario: the robot stays standing where it stood."""
+    record = run_simulation(load_scenario(gait="stand_still", duration_s=1.5, closure="ball"),
+                            progress=False)
+    assert record.completed and isinstance(record.scenario.gait, stand_still)
+    state, body = record.table["state"], record.layout.state.body_q
+    height, xy = state[:, body + 6], state[:, body + 4:body + 6]
+    assert np.abs(height - standing_height(params)).max() < 5e-3
+    assert np.abs(xy - xy[0]).max() < 5e-3
+    assert tilt_deg(state[:, body:body + 4]).max() < 1.0
