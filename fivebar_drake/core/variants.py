@@ -21,8 +21,18 @@ class Variant:
                    if getattr(self, f.name) != getattr(default, f.name)]
         return f"{self.kind}({', '.join(changed)})" if changed else self.kind
 
+    def described(self) -> str:
+        """The kind with every field, e.g. foot_leg (swing_bandwidth_hz = 15, ...)."""
+        return f"{self.kind} (" + ", ".join(f"{f.name} = {getattr(self, f.name)!r}"
+                                            for f in dataclasses.fields(self)) + ")"
+
     def check(self, field: str) -> None:
         """ParameterError naming f"{field}.NAME" for a field out of its bounds (none here)."""
+
+
+def documented(default, doc: str):
+    """A variant's field with its default and its description (metadata["doc"], README)."""
+    return dataclasses.field(default=default, metadata={"doc": doc})
 
 
 def by_kind(registry: dict, value, what: str) -> Variant:

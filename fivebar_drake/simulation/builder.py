@@ -7,18 +7,16 @@ import math
 from dataclasses import dataclass
 import numpy as np
 from pydrake.multibody.plant import ApplyMultibodyPlantConfig, MultibodyPlant
-from pydrake.systems.framework import DiagramBuilder
+from pydrake.systems.framework import DiagramBuilder, LeafSystem
 from pydrake.systems.primitives import DiscreteTimeIntegrator, Multiplexer, VectorLogSink
 
 from fivebar_drake.core.drake_configs import config_with
 from fivebar_drake.core.motor import MotorModel
 from fivebar_drake.core.validation import ParameterError, check_number, require
 from fivebar_drake.robots.quadruped.closure import design_closure
-from fivebar_drake.robots.quadruped.control_law import ControlGains
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.plant import ClosureDesign, RobotLayout, add_robot
 from fivebar_drake.simulation.scenario import Scenario
-from fivebar_drake.simulation.systems import FootLegController, derive_gains
 
 
 SAP_APPROXIMATIONS = ("sap", "lagged", "similar")   # Drake's approximations solved by SAP
@@ -37,11 +35,11 @@ class Setup:
     instance: object
     layout: RobotLayout
     design: ClosureDesign
-    gains: ControlGains
+    gains: tuple
     recorder: VectorLogSink
     motor_log: VectorLogSink
     motor_samples_per_row: int
-    controller: FootLegController
+    controller: LeafSystem
     actuation_log: VectorLogSink | None = None
 
 
@@ -121,29 +119,15 @@ def check_run(scenario: Scenario, params: Params) -> ClosureDesign:
     return design
 
 
-def controller_gains(scenario: Scenario, params: Params, layout: RobotLayout) -> ControlGains:
-    """Gains from the robot's numbers: the swing joint's inertia is the largest diagonal entry
-    of the leg's mass matrix at home plus the reflected rotor inertia (systems.derive_gains)."""
-    leg = params.mechanism
-    home = leg.inverse(np.array([params.gait.x_center_m, params.gait.y_home_m]))
-    leg_inertia = (np.max(np.diag(leg.mass_matrix(home)))
-                   + params.motor.reflected_inertia_kg_m2)
-    return derive_gains(layout.mass_kg, layout.inertia_kg_m2, leg_inertia,
-                        scenario.swing_bandwidth_hz, scenario.body_bandwidth_hz,
-                        scenario.damping_ratio)
-
-
 def add_controller(builder: DiagramBuilder, scenario: Scenario, params: Params, plant,
-                   instance, layout: RobotLayout) -> tuple[FootLegController, MotorModel]:
-    """Add gait source -> leg controller -> motor model -> the plant's actuation, the controller
-    and the motor model sampling the plant state; returns (controller, motor model)."""
-    gains = controller_gains(scenario, params, layout)
+                   instance, layout: RobotLayout) -> tuple[LeafSystem, MotorModel]:
+    """Add gait source -> leg controller -> motor model -> the plant's actuation (each variant
+    adds its own block: FootPath.add_to, Controller.add_to), the controller and the motor model
+    sampling the plant state; returns (controller, motor model)."""
     gait = scenario.gait.add_to(builder, params.gait, scenario.phases_rad, scenario.stand_s,
                                 scenario.ramp_s, scenario.load_transfer_s,
-                                scenario.control_period_s)
-    controller = builder.AddNamedSystem("leg_controller", FootLegController(
-        params, layout, gains, scenario.control_period_s, scenario.control_delay_periods,
-        scenario.catch_gain, scenario.catch_rate_s, scenario.touchdown_detection))
+                                scenario.controller.control_period_s)
+    controller = scenario.controller.add_to(builder, params, layout)
     speed_index = np.zeros(layout.state.actuators.size, dtype=int)    # joint speed of each actuator
     speed_index[layout.state.actuators.ravel()] = layout.state.v_index.ravel() + layout.state.nq
     motor = builder.AddNamedSystem("motor_model", MotorModel(
@@ -199,7 +183,7 @@ def build_diagram(scenario: Scenario, params: Params, design: ClosureDesign,
             layout.state.actuators.size, design.time_step_s))
         builder.Connect(motor.GetOutputPort("applied_torque"), actuation_log.get_input_port())
     setup = Setup(plant=plant, instance=instance, layout=layout, design=design,
-                  gains=controller.constants.gains, recorder=recorder, motor_log=motor_log,
+                  gains=controller.gains, recorder=recorder, motor_log=motor_log,
                   motor_samples_per_row=per_row, controller=controller,
                   actuation_log=actuation_log)
     return builder.Build(), setup

@@ -202,8 +202,6 @@ def divergence(message: str, t: float, scenario: Scenario, params: Params, layou
                 "the motors: lower gait_frequency_hz or the stride gait_a_m")
     else:
         what = (f"no loop came apart, the body stayed above the ground and the motors within "
-                f"their limits; likely cause: the controller's gains (swing_bandwidth_hz = "
-                f"{scenario.swing_bandwidth_hz:g}, body_bandwidth_hz = "
-                f"{scenario.body_bandwidth_hz:g}, damping_ratio = {scenario.damping_ratio:g}) "
-                f"at control_period_s = {scenario.control_period_s:g} s: lower the bandwidths")
+                f"their limits; likely cause: the controller's gains "
+                f"({scenario.controller.described()}): lower the bandwidths")
     return f"{head}: {what} (Drake: {drake})"

@@ -33,21 +33,12 @@ from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.closure import CLOSURES, Closure, CompliantBushing
 from fivebar_drake.robots.quadruped.plant import default_plant_config
 from fivebar_drake.robots.quadruped.legs import TROT_PHASES_RAD
+from fivebar_drake.simulation.systems import CONTROLLERS, MIN_TIME_STEP_S, Controller, FootLeg
 
 
 # Bounds of the scenario's values, each with the reason it exists.
 MAX_LOG_ROWS = 500_000            # recorded intervals kept in memory, ~6 kB each (measured) from the
 #                                   recorder to the recording: ~3 GB; 1000 s at the default 2 ms
-MIN_TIME_STEP_S = 1e-6            # any step or period: the explicit bushing needs ~34 us; nothing
-#                                   in the robot is faster
-MIN_BANDWIDTH_HZ = 0.1            # a loop this slow cannot follow any gait
-CONTROL_SAMPLES_PER_BANDWIDTH = 20  # a digital loop samples >= 20x its bandwidth, or its gains
-#                                     (derived as if continuous) lose their phase margin
-MAX_DELAY_BANDWIDTH_PHASE = 0.25  # delay * swing bandwidth < 1/4: a quarter period of delay
-#                                   costs the swing loop 90 deg of phase, all its margin
-MAX_DAMPING_RATIO = 2.0           # well past critical (1): more only slows the loops
-MAX_CATCH_GAIN = 10.0             # the reflex saturates at the step height long before
-MAX_CATCH_RATE_S = 1.0            # a velocity lead longer than a gait cycle anticipates nothing
 MAX_LOOP_GAP_M = 1e-3             # 1 % of a link: a looser loop is not the 5-bar's kinematics
 MIN_LOOP_GAP_M = 1e-8             # a floor for any closure and step (the explicit bushing's step
 #                                   ~ sqrt(gap) is ~2 us here, near MIN_TIME_STEP_S); the compliant
@@ -63,7 +54,10 @@ def default_simulator_config() -> SimulatorConfig:
 
 
 DRAKE_CONFIGS = {"plant_config": MultibodyPlantConfig, "simulator_config": SimulatorConfig}
-REGISTRIES = {FootPath: PATHS, Closure: CLOSURES}    # the variant fields' base classes, registries
+# the variant fields' base classes and registries; a controller's fields are also scenario fields,
+# today's flat names (ALIASES), and its errors name them so
+REGISTRIES = {FootPath: PATHS, Closure: CLOSURES, Controller: CONTROLLERS}
+ALIASES = tuple(f.name for f in dataclasses.fields(FootLeg))
 DEFAULT_CONFIGS = {MultibodyPlantConfig: default_plant_config,
                    SimulatorConfig: default_simulator_config}
 def _doc(default, doc: str, factory=None):
@@ -86,20 +80,13 @@ class Scenario:
     time_step_s: float = _doc(0.0, "plant step; 0 = derived (bushing, ball: 1 ms; bushing_rpy: "
                                    "its stability bound)")
     target_loop_gap_m: float = _doc(4e-6, "the bushing's design loop gap under the trot's load")
-    control_period_s: float = _doc(0.002, "update period of the leg controller")
+    controller: Controller = _doc(None, f"leg controller, one of {', '.join(CONTROLLERS)} "
+                                        "(simulation/systems.py), by kind or as a mapping; its "
+                                        "fields (below) may also be given at the top level",
+                                  factory=FootLeg)
     motor_period_s: float = _doc(0.001, "update period of the motor model")
-    control_delay_periods: int = _doc(0, "extra controller periods before a command is "
-                                         "released (0: it reaches the motor model's next sample)")
-    swing_bandwidth_hz: float = _doc(15.0, "swing legs' joint PD bandwidth")
-    body_bandwidth_hz: float = _doc(3.0, "stance legs' body (height, speed, attitude) bandwidth")
-    damping_ratio: float = _doc(0.7, "damping ratio of both loops")
     load_transfer_s: float = _doc(0.04, "time over which a foot takes up or gives off its load "
                                         "at touchdown and lift-off")
-    catch_gain: float = _doc(1.0, "swing legs' catch reflex, m of reach per m of hip drop "
-                                  "(0 = off)")
-    catch_rate_s: float = _doc(0.1, "catch reflex: lead on the hip's sinking speed")
-    touchdown_detection: bool = _doc(True, "a descending swing foot meeting the ground early "
-                                           "joins the support")
     stand_s: float = _doc(0.5, "standing time before the gait starts")
     ramp_s: float = _doc(1.0, "time over which the foot path grows to full size")
     phases_rad: list[float] = _doc(None, "gait phase of FL, FR, RL, RR (a trot: 0, pi, pi, 0)",
@@ -135,6 +122,25 @@ class Scenario:
         self.__dict__.update({**state, **{name: kind(**state[name])
                                           for name, kind in DRAKE_CONFIGS.items()}})
 
+    def replaced(self, **changes) -> Scenario:
+        """A copy with fields changed (not validated); today's flat controller fields (ALIASES)
+        change the controller's (ParameterError if a controller mapping gives one too)."""
+        flat = {k: changes.pop(k) for k in list(changes) if k in ALIASES}
+        scenario = dataclasses.replace(self, **changes)
+        if flat:
+            controller = scenario.controller
+            if isinstance(controller, Controller):
+                controller = {"kind": controller.kind, **dataclasses.asdict(controller)}
+            elif isinstance(controller, dict):
+                for key, value in flat.items():
+                    require(key not in controller, f"scenario.{key}", value,
+                            f"given twice: also scenario.controller.{key} = "
+                            f"{controller.get(key)!r}")
+            else:
+                controller = {"kind": controller}
+            scenario.controller = {**controller, **flat}
+        return scenario
+
     def validate(self) -> None:
         """Check every field (type, finite, bounds; ParameterError naming the first bad field,
         its value and what is allowed) and store numbers as the field's type."""
@@ -158,27 +164,10 @@ class Scenario:
                    why="0 = derived; nothing in the robot needs a finer step")
         number("scenario.target_loop_gap_m", self.target_loop_gap_m, MIN_LOOP_GAP_M,
                MAX_LOOP_GAP_M)
-        for name in ("swing_bandwidth_hz", "body_bandwidth_hz"):
-            number(f"scenario.{name}", getattr(self, name), MIN_BANDWIDTH_HZ)
-        fastest = max(self.swing_bandwidth_hz, self.body_bandwidth_hz)
-        number("scenario.control_period_s", self.control_period_s, MIN_TIME_STEP_S,
-               1.0 / (CONTROL_SAMPLES_PER_BANDWIDTH * fastest),
-               why=f"a digital loop samples at least {CONTROL_SAMPLES_PER_BANDWIDTH}x its "
-                   f"bandwidth, here {fastest:g} Hz")
         number("scenario.motor_period_s", self.motor_period_s, MIN_TIME_STEP_S,
-               self.control_period_s, why="the motor model samples every command of the controller "
-                                  "(scenario.control_period_s)")
-        number("scenario.control_delay_periods", self.control_delay_periods, 0,
-               math.floor(MAX_DELAY_BANDWIDTH_PHASE
-                          / (self.swing_bandwidth_hz * self.control_period_s) - 1e-9),
-               integer=True, why=f"the delay must stay below {MAX_DELAY_BANDWIDTH_PHASE:g} of "
-                                 "a period of swing_bandwidth_hz, or the swing loop has no "
-                                 "phase margin left")
-        number("scenario.damping_ratio", self.damping_ratio, 0.0, MAX_DAMPING_RATIO,
-               low_open=True)
+               self.controller.control_period_s, why="the motor model samples every command of "
+                                                     "the controller (scenario.control_period_s)")
         number("scenario.load_transfer_s", self.load_transfer_s, 0.0)
-        number("scenario.catch_gain", self.catch_gain, 0.0, MAX_CATCH_GAIN)
-        number("scenario.catch_rate_s", self.catch_rate_s, 0.0, MAX_CATCH_RATE_S)
         require(len(self.phases_rad) == 4, "scenario.phases_rad", self.phases_rad,
                 "needs 4 values (FL, FR, RL, RR)")
         for i, phase in enumerate(self.phases_rad):
@@ -207,25 +196,35 @@ def _changed_fields(config) -> str:
                            for k, v in changed.items()) + "}"
 
 
+def _field_row(f: dataclasses.Field, kind, default, doc: str) -> str:
+    """A row of fields_markdown: the field f of type kind with its default and meaning."""
+    shown_kind = {float: "number", int: "integer", bool: "true/false", str: "text"}.get(
+        kind, "list of numbers" if kind == list[float] else
+        "kind or mapping" if kind in REGISTRIES else
+        "mapping" if kind in DRAKE_CONFIGS.values() else "number or null")
+    shown = (_changed_fields(default) if f.name in DRAKE_CONFIGS else
+             "null" if default is None else f'"{default}"' if isinstance(default, str) else
+             f'"{default.kind}"' if isinstance(default, tuple(REGISTRIES)) else
+             str(default).lower() if isinstance(default, bool) else
+             "[" + ", ".join(f"{v:.4g}" for v in default) + "]"
+             if isinstance(default, list) else f"{default:g}")
+    unit = next((u for suffix, u in UNITS.items() if f.name.endswith(suffix)), "")
+    return f"| `{f.name}` | {shown_kind} | {shown} | {unit} | {doc} |"
+
+
 def fields_markdown() -> str:
-    """The README's table of the scenario fields: name, type, default, unit, meaning."""
-    kinds = typing.get_type_hints(Scenario)
-    defaults = Scenario()
+    """The README's table of the scenario fields: name, type, default, unit, meaning; the
+    default controller's fields after the controller's row."""
+    kinds, defaults = typing.get_type_hints(Scenario), Scenario()
     rows = ["| field | type | default | unit | meaning |", "|---|---|---|---|---|"]
     for f in dataclasses.fields(Scenario):
-        kind = {float: "number", int: "integer", bool: "true/false", str: "text"}.get(
-            kinds[f.name], "list of numbers" if kinds[f.name] == list[float] else
-            "kind or mapping" if kinds[f.name] in REGISTRIES else
-            "mapping" if kinds[f.name] in DRAKE_CONFIGS.values() else "number or null")
-        default = getattr(defaults, f.name)
-        shown = (_changed_fields(default) if f.name in DRAKE_CONFIGS else
-                 "null" if default is None else f'"{default}"' if isinstance(default, str) else
-                 f'"{default.kind}"' if isinstance(default, tuple(REGISTRIES)) else
-                 str(default).lower() if isinstance(default, bool) else
-                 "[" + ", ".join(f"{v:.4g}" for v in default) + "]"
-                 if isinstance(default, list) else f"{default:g}")
-        unit = next((u for suffix, u in UNITS.items() if f.name.endswith(suffix)), "")
-        rows.append(f"| `{f.name}` | {kind} | {shown} | {unit} | {f.metadata['doc']} |")
+        rows.append(_field_row(f, kinds[f.name], getattr(defaults, f.name), f.metadata["doc"]))
+        if f.name == "controller":
+            knobs = defaults.controller
+            inner = typing.get_type_hints(type(knobs))
+            rows += [_field_row(g, inner[g.name], getattr(knobs, g.name),
+                                f"{knobs.kind}: {g.metadata['doc']}")
+                     for g in dataclasses.fields(knobs)]
     return "\n".join(rows)
 
 
@@ -233,8 +232,9 @@ def _variant(name: str, base: type, value):
     """The variant (core/variants.py) of a field of type base, checked (Variant.check): value is
     a variant, a kind of its registry (REGISTRIES) or a mapping {kind: KIND, FIELD: value, ...}
     (each field typed as in _typed)."""
+    prefix = "scenario" if base is Controller else name        # its fields are also top-level
     if isinstance(value, base):
-        value.check(name)
+        value.check(prefix)
         return value
     registry = REGISTRIES[base]
     fields = value if isinstance(value, dict) else {"kind": value}
@@ -244,11 +244,11 @@ def _variant(name: str, base: type, value):
     cls = registry[kind]
     names, hints = [f.name for f in dataclasses.fields(cls)], typing.get_type_hints(cls)
     for key in fields:
-        require(key == "kind" or key in names, f"{name}.{key}", fields[key],
+        require(key == "kind" or key in names, f"{prefix}.{key}", fields[key],
                 f"unknown field; {kind} has {names}")
-    variant = cls(**{key: _typed(f"{name}.{key}", hints[key], item)
+    variant = cls(**{key: _typed(f"{prefix}.{key}", hints[key], item)
                      for key, item in fields.items() if key != "kind"})
-    variant.check(name)
+    variant.check(prefix)
     return variant
 
 
@@ -312,7 +312,7 @@ def read_scenario_file(path) -> dict:
     if not isinstance(data, dict):
         raise ParameterError(f"must be a mapping of scenario fields (e.g. `duration_s: 5.0`), "
                              f"not a {type(data).__name__}{hint}", source=str(path))
-    names = [f.name for f in dataclasses.fields(Scenario)]
+    names = [f.name for f in dataclasses.fields(Scenario)] + list(ALIASES)
     for key in data:
         require(key in names, f"scenario.{key}", data[key],
                 f"unknown field; the fields are {names}")
@@ -340,8 +340,8 @@ def load_scenario(path: "str | Path | None" = None, **overrides) -> Scenario:
             raise err.located(path) from None
         if isinstance(data.get("params_file"), str) and data["params_file"]:
             data["params_file"] = str(Path(path).parent / data["params_file"])
-    scenario = dataclasses.replace(Scenario(), **{**data, **overrides})
     try:
+        scenario = Scenario().replaced(**{**data, **overrides})
         scenario.validate()
     except ParameterError as err:
         raise err.located(source_of(err, path, overrides)) from None

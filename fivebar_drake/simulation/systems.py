@@ -1,5 +1,6 @@
-"""The Diagram's blocks: the leg controller (the gait source is core/footpath.GaitSource, the
-motor model core/motor.MotorModel).
+"""The leg controllers as variants (Controller, registered by kind in CONTROLLERS) and the foot/leg
+controller's block; the gait source is core/footpath.GaitSource, the motor model
+core/motor.MotorModel.
 
 Legs are ordered FL, FR, RL, RR; per leg the motors A, B and foot coordinates (x, y) in the leg
 plane (m). Torque vectors (8) are in the plant's actuation order (LegIndices.actuators).
@@ -7,15 +8,53 @@ plane (m). Torque vectors (8) are in the plant's actuation order (LegIndices.act
 
 from __future__ import annotations
 
+import math
+from dataclasses import dataclass
+from typing import ClassVar
 import numpy as np
 from pydrake.systems.framework import LeafSystem
 
+from fivebar_drake.core.validation import check_number
+from fivebar_drake.core.variants import Variant, documented, registrar
 from fivebar_drake.mechanisms.fivebar import (LINK_NAMES, com_fractions, physical_izz)
 from fivebar_drake.robots.quadruped.control_law import ControlGains, LawConstants, leg_command
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.plant import RobotLayout
 from fivebar_drake.robots.quadruped.legs import plane_rotation
 from fivebar_drake.robots.quadruped.sdf import body_height
+
+
+MIN_BANDWIDTH_HZ = 0.1            # a loop this slow cannot follow any gait
+CONTROL_SAMPLES_PER_BANDWIDTH = 20  # a digital loop samples >= 20x its bandwidth, or its gains
+#                                     (derived as if continuous) lose their phase margin
+MAX_DELAY_BANDWIDTH_PHASE = 0.25  # delay * swing bandwidth < 1/4: a quarter period of delay
+#                                   costs the swing loop 90 deg of phase, all its margin
+MAX_DAMPING_RATIO = 2.0           # well past critical (1): more only slows the loops
+MAX_CATCH_GAIN = 10.0             # the reflex saturates at the step height long before
+MAX_CATCH_RATE_S = 1.0            # a velocity lead longer than a gait cycle anticipates nothing
+MIN_TIME_STEP_S = 1e-6            # any step or period: the explicit bushing needs ~34 us; nothing
+#                                   in the robot is faster
+
+CONTROLLERS: dict[str, type[Controller]] = {}   # the leg controllers by kind
+register_controller = registrar(CONTROLLERS)
+
+
+@dataclass(frozen=True)
+class Controller(Variant):
+    """A leg controller (register with register_controller): a block with the input ports
+    "foot_references" (GaitSource) and "plant_state" (nx) and the output port "torque_command"
+    (8, N*m, actuation order), updated every control_period_s (s; the gait source samples at the
+    same period), and the attribute `gains` (a NamedTuple, summary.json's controller_gains). Its
+    fields are also scenario fields (the scenario's flat names)."""
+
+    control_period_s: float = documented(0.002, "update period of the leg controller")
+
+    def check(self, field: str) -> None:
+        check_number(f"{field}.control_period_s", self.control_period_s, MIN_TIME_STEP_S)
+
+    def add_to(self, builder, params: Params, layout: RobotLayout) -> LeafSystem:
+        """Add the controller's block (named "leg_controller") to the DiagramBuilder."""
+        raise NotImplementedError
 
 
 def derive_gains(mass_kg: float, inertia_kg_m2, leg_inertia_kg_m2: float, swing_hz: float,
@@ -36,9 +75,9 @@ class FootLegController(LeafSystem):
     """Foot targets, stance schedule and the sampled plant state -> motor torque commands.
 
     Input ports: "foot_references" (GaitSource), "plant_state" (nx). Output port:
-    "torque_command" (8) N*m in actuation order. Every period_s the controller samples its
-    inputs and computes a command that it releases delay_periods ticks later (0: at once), held
-    in between.
+    "torque_command" (8) N*m in actuation order. Every knobs.control_period_s the controller
+    samples its inputs and computes a command that it releases knobs.control_delay_periods ticks
+    later (0: at once), held in between.
 
     - Swing (weight 1 - w per leg): joint PD to the closed-form IK of the target (knees out) with
       the full model's inverse dynamics (M q'' + c + G of the links, reflected rotor inertia) of
@@ -61,9 +100,7 @@ class FootLegController(LeafSystem):
       else stops the body tipping about the diagonal.
     - The links' weight is compensated on every leg."""
 
-    def __init__(self, params: Params, layout: RobotLayout, gains: ControlGains, period_s: float,
-                 delay_periods: int, catch_gain: float, catch_rate_s: float,
-                 touchdown_detection: bool):
+    def __init__(self, params: Params, layout: RobotLayout, gains: ControlGains, knobs: FootLeg):
         super().__init__()
         self._mechanism, self._layout = params.mechanism, layout
         self.constants = LawConstants(
@@ -77,17 +114,21 @@ class FootLegController(LeafSystem):
             reflected_inertia=params.motor.reflected_inertia_kg_m2, gains=gains,
             foot_radius_m=params.body.foot_radius_m,
             stand_offset_m=float(body_height(params, 0.0)), mu=params.body.foot_friction,
-            catch_gain=float(catch_gain), catch_rate_s=float(catch_rate_s),
-            catch_limit_m=params.gait.b_m, touchdown=bool(touchdown_detection))
+            catch_gain=float(knobs.catch_gain), catch_rate_s=float(knobs.catch_rate_s),
+            catch_limit_m=params.gait.b_m, touchdown=bool(knobs.touchdown_detection))
         n = layout.state.q_index.size
         self._references = self.DeclareVectorInputPort("foot_references", 7 * n // 2)
         self._state = self.DeclareVectorInputPort("plant_state", layout.nx)
         # the released command (the output) and the delay_periods commands after it, oldest first
         self._released = self.DeclareDiscreteState(n)
-        self._queue = self.DeclareDiscreteState(delay_periods * n)
-        self._delayed = delay_periods > 0
-        self.DeclarePeriodicDiscreteUpdateEvent(period_s, 0.0, self._update)
+        self._queue = self.DeclareDiscreteState(knobs.control_delay_periods * n)
+        self._delayed = knobs.control_delay_periods > 0
+        self.DeclarePeriodicDiscreteUpdateEvent(knobs.control_period_s, 0.0, self._update)
         self.DeclareStateOutputPort("torque_command", self._released)
+
+    @property
+    def gains(self) -> ControlGains:
+        return self.constants.gains
 
     def command(self, references, state) -> np.ndarray:
         """Torque command (8) in actuation order from the foot references (GaitSource) and the
@@ -107,3 +148,59 @@ class FootLegController(LeafSystem):
             new = queue[:new.size]
             discrete_state.set_value(self._queue, queue[new.size:])
         discrete_state.set_value(self._released, new)
+
+
+@register_controller
+@dataclass(frozen=True)
+class FootLeg(Controller):
+    """The foot/leg controller (FootLegController) with its knobs; gains from the robot's
+    numbers (gains)."""
+
+    kind: ClassVar[str] = "foot_leg"
+    control_delay_periods: int = documented(0, "extra controller periods before a command is "
+                                               "released (0: it reaches the motor model's next "
+                                               "sample)")
+    swing_bandwidth_hz: float = documented(15.0, "swing legs' joint PD bandwidth")
+    body_bandwidth_hz: float = documented(3.0, "stance legs' body (height, speed, attitude) "
+                                               "bandwidth")
+    damping_ratio: float = documented(0.7, "damping ratio of both loops")
+    catch_gain: float = documented(1.0, "swing legs' catch reflex, m of reach per m of hip drop "
+                                        "(0 = off)")
+    catch_rate_s: float = documented(0.1, "catch reflex: lead on the hip's sinking speed")
+    touchdown_detection: bool = documented(True, "a descending swing foot meeting the ground "
+                                                 "early joins the support")
+
+    def check(self, field: str) -> None:
+        number = check_number
+        for name in ("swing_bandwidth_hz", "body_bandwidth_hz"):
+            number(f"{field}.{name}", getattr(self, name), MIN_BANDWIDTH_HZ)
+        fastest = max(self.swing_bandwidth_hz, self.body_bandwidth_hz)
+        number(f"{field}.control_period_s", self.control_period_s, MIN_TIME_STEP_S,
+               1.0 / (CONTROL_SAMPLES_PER_BANDWIDTH * fastest),
+               why=f"a digital loop samples at least {CONTROL_SAMPLES_PER_BANDWIDTH}x its "
+                   f"bandwidth, here {fastest:g} Hz")
+        number(f"{field}.control_delay_periods", self.control_delay_periods, 0,
+               math.floor(MAX_DELAY_BANDWIDTH_PHASE
+                          / (self.swing_bandwidth_hz * self.control_period_s) - 1e-9),
+               integer=True, why=f"the delay must stay below {MAX_DELAY_BANDWIDTH_PHASE:g} of "
+                                 "a period of swing_bandwidth_hz, or the swing loop has no "
+                                 "phase margin left")
+        number(f"{field}.damping_ratio", self.damping_ratio, 0.0, MAX_DAMPING_RATIO,
+               low_open=True)
+        number(f"{field}.catch_gain", self.catch_gain, 0.0, MAX_CATCH_GAIN)
+        number(f"{field}.catch_rate_s", self.catch_rate_s, 0.0, MAX_CATCH_RATE_S)
+
+    def gains(self, params: Params, layout: RobotLayout) -> ControlGains:
+        """Gains from the robot's numbers: the swing joint's inertia is the largest diagonal
+        entry of the leg's mass matrix at home plus the reflected rotor inertia
+        (derive_gains)."""
+        leg = params.mechanism
+        home = leg.inverse(np.array([params.gait.x_center_m, params.gait.y_home_m]))
+        leg_inertia = (np.max(np.diag(leg.mass_matrix(home)))
+                       + params.motor.reflected_inertia_kg_m2)
+        return derive_gains(layout.mass_kg, layout.inertia_kg_m2, leg_inertia,
+                            self.swing_bandwidth_hz, self.body_bandwidth_hz, self.damping_ratio)
+
+    def add_to(self, builder, params: Params, layout: RobotLayout) -> FootLegController:
+        return builder.AddNamedSystem("leg_controller", FootLegController(
+            params, layout, self.gains(params, layout), self))

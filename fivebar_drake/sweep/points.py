@@ -30,7 +30,7 @@ from fivebar_drake.pipeline import run_simulation, run_step_check, summarize_run
 from fivebar_drake.robots.quadruped.config import with_changes
 from fivebar_drake.robots.quadruped.legs import LEGS
 from fivebar_drake.robots.quadruped.params import Params
-from fivebar_drake.simulation.scenario import Scenario
+from fivebar_drake.simulation.scenario import ALIASES, Scenario
 
 SCENARIO = "scenario."
 ANALYSIS_MOTOR = ("peak_torque_Nm", "rms_torque_Nm", "safety_factor", "verdict",
@@ -102,12 +102,12 @@ def analysis_rows(base: Params, settings: tuple[str, str],
 def scenario_with(scenario: Scenario, changes: dict) -> Scenario:
     """The scenario with fields changed by `scenario.NAME` paths, validated (ParameterError
     naming the path)."""
-    known = {f.name for f in dataclasses.fields(scenario)}
+    known = {f.name for f in dataclasses.fields(scenario)} | set(ALIASES)
     for path in changes:
         if path[len(SCENARIO):] not in known:
             raise ParameterError(f"{path}: no such scenario field; the fields are "
                                  f"{sorted(known)}", path)
-    changed = dataclasses.replace(scenario, **{k[len(SCENARIO):]: v for k, v in changes.items()})
+    changed = scenario.replaced(**{k[len(SCENARIO):]: v for k, v in changes.items()})
     changed.validate()
     return changed
 

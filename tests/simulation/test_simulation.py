@@ -214,7 +214,7 @@ def test_controller_acts_on_the_state_sampled_at_its_tick(delay):
     set_standing_pose(setup.plant, plant_context, setup.instance, setup.layout.legs, params)
     simulator.Initialize()
     controller, gait = setup.controller, diagram.GetSubsystemByName("gait_source")
-    period, dt = scenario.control_period_s, setup.design.time_step_s
+    period, dt = scenario.controller.control_period_s, setup.design.time_step_s
     tick = 0.7                                                  # gait running, a tick time
     simulator.AdvanceTo(tick)                                   # events at t_k not yet handled
     state_k = setup.plant.GetPositionsAndVelocities(plant_context).copy()

@@ -18,9 +18,10 @@ from fivebar_drake.core.rotation import tilt_deg
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.pipeline import run_simulation
 from fivebar_drake.robots.quadruped.plant import add_robot, standing_height
-from fivebar_drake.simulation.builder import check_run, controller_gains
+from fivebar_drake.simulation.builder import check_run
+from fivebar_drake.robots.quadruped.closure import Ball
 from fivebar_drake.simulation.scenario import load_scenario
-from fivebar_drake.simulation.systems import FootLegController
+from fivebar_drake.simulation.systems import FootLeg
 
 BEFORE = np.load(Path(__file__).parent.parent / "data" / "before_variants.npz")
 
@@ -29,7 +30,7 @@ def gait_source(scenario, params):
     """The scenario's gait source, added to a fresh builder as the simulation adds it."""
     return scenario.gait.add_to(DiagramBuilder(), params.gait, scenario.phases_rad,
                                 scenario.stand_s, scenario.ramp_s, scenario.load_transfer_s,
-                                scenario.control_period_s)
+                                scenario.controller.control_period_s)
 
 
 @pytest.mark.parametrize("gait", ["trot", "seed_ellipse"])
@@ -45,10 +46,7 @@ def test_the_default_controller_gives_the_commands_of_before(params):
     scenario = load_scenario()
     plant, _, layout = add_robot(DiagramBuilder(), params, check_run(scenario, params),
                                  scenario.plant_config)
-    controller = FootLegController(params, layout, controller_gains(scenario, params, layout),
-                                   scenario.control_period_s, scenario.control_delay_periods,
-                                   scenario.catch_gain, scenario.catch_rate_s,
-                                   scenario.touchdown_detection)
+    controller = scenario.controller.add_to(DiagramBuilder(), params, layout)
     now = np.array([controller.command(r, x) for r, x in zip(BEFORE["references_trot"],
                                                              BEFORE["states"])])
     np.testing.assert_array_equal(now, BEFORE["commands"])
@@ -68,6 +66,27 @@ def test_a_gait_by_kind_or_as_a_mapping(tmp_path):
                           ("gait: {kind: hop}\n", "scenario.gait = 'hop': allowed")]:
         path.write_text(text)
         with pytest.raises(ParameterError, match=message.replace("[", r"\[").replace("(", r"\(")):
+            load_scenario(path)
+
+
+def test_a_controller_and_a_closure_by_kind_or_as_a_mapping(tmp_path):
+    """Today's flat controller fields change the controller's; a field given both ways is
+    refused; a closure by kind or as a mapping."""
+    path = tmp_path / "s.yaml"
+    path.write_text("controller: {kind: foot_leg, swing_bandwidth_hz: 20}\ncatch_gain: 0.5\n"
+                    "closure: {kind: ball}\n")
+    scenario = load_scenario(path)
+    assert scenario.controller == FootLeg(swing_bandwidth_hz=20.0, catch_gain=0.5)
+    assert scenario.closure == Ball() and load_scenario(closure="ball").closure == Ball()
+    assert load_scenario(swing_bandwidth_hz=20).controller == FootLeg(swing_bandwidth_hz=20.0)
+    for text, message in [("controller: {kind: foot_leg, catch_gain: 2}\ncatch_gain: 1\n",
+                           "scenario.catch_gain = 1: given twice"),
+                          ("controller: {kind: foot_leg, catch_gain: 20}\n",
+                           r"scenario.catch_gain = 20.0: must be in \[0, 10\]"),
+                          ("controller: pid\n", "scenario.controller = 'pid': allowed"),
+                          ("closure: {kind: glue}\n", "scenario.closure = 'glue': allowed")]:
+        path.write_text(text)
+        with pytest.raises(ParameterError, match=message):
             load_scenario(path)
 
 

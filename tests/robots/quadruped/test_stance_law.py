@@ -11,7 +11,6 @@ from fivebar_drake.robots.quadruped.closure import Ball
 from fivebar_drake.robots.quadruped.leg_loads import full_model
 from fivebar_drake.robots.quadruped.plant import ClosureDesign, add_robot, set_standing_pose
 from fivebar_drake.robots.quadruped.legs import plane_rotation
-from fivebar_drake.simulation.builder import controller_gains
 from fivebar_drake.simulation.scenario import load_scenario
 from fivebar_drake.simulation.systems import FootLegController
 
@@ -23,9 +22,8 @@ def standing(params):
     builder = DiagramBuilder()
     plant, instance, layout = add_robot(builder, params,
                                         ClosureDesign(Ball(), 1e-3, None, 0.0, 0.0))
-    controller = FootLegController(params, layout, controller_gains(scenario, params, layout),
-                                   scenario.control_period_s, 0, scenario.catch_gain,
-                                   scenario.catch_rate_s, scenario.touchdown_detection)
+    controller = FootLegController(params, layout, scenario.controller.gains(params, layout),
+                                   scenario.controller)
     context = plant.CreateDefaultContext()
     set_standing_pose(plant, context, instance, layout.legs, params)
     return controller, layout, plant.GetPositionsAndVelocities(context)
