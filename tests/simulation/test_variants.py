@@ -44,8 +44,8 @@ def test_registered_gaits_give_the_references_of_before(params, gait):
 
 def test_the_default_controller_gives_the_commands_of_before(params):
     scenario = load_scenario()
-    plant, _, layout = add_robot(DiagramBuilder(), params, check_run(scenario, params),
-                                 scenario.plant_config)
+    _, _, layout = add_robot(DiagramBuilder(), params, check_run(scenario, params),
+                             scenario.plant_config)
     controller = scenario.controller.add_to(DiagramBuilder(), params, layout)
     now = np.array([controller.command(r, x) for r, x in zip(BEFORE["references_trot"],
                                                              BEFORE["states"])])

@@ -14,6 +14,9 @@ it keeps the law gap = F / k only while a constraint's regularisation 1 / (dt (d
 J diag(A)^-1 J^T, Drake's Delassus estimate with only the diagonal of the tree's mass matrix A).
 Stiffer, SAP clamps the constraint to an effective stiffness 2 pi^2 / (beta^2 w dt^2) whatever k
 is: the loop is softer than designed (min_loop_gap).
+
+The closures are variants (Closure, registered by kind in CLOSURES): the compliant "bushing", the
+explicit "bushing_rpy" and the "ball", each with its design, its SDF element and its constraints.
 """
 
 from __future__ import annotations
@@ -133,16 +136,6 @@ def min_loop_gap(m_eff_kg: float, sap_mass_kg: float, loop_force_N: float, time_
 IMPLICIT_TIME_STEP_S = 1e-3   # plant step of the closures SAP treats implicitly
 
 
-def design_closure(params: Params, closure: "Closure | str", target_gap_m: float,
-                   time_step_s: float = 0.0, log_period_s: float = 2e-3) -> ClosureDesign:
-    """The closure (a Closure or its kind) designed for the parameters (Closure.design) from the
-    knee's effective mass and the loop force (loop_load). time_step_s > 0 asks for a plant step
-    (s; 0: derived), log_period_s (s) is the recorder's interval."""
-    m_eff, force = loop_load(params)
-    return by_kind(CLOSURES, closure, "closure").design(params, m_eff, force, target_gap_m,
-                                                        time_step_s, log_period_s)
-
-
 CLOSURES: dict[str, type[Closure]] = {}    # the loop closures by kind, in registration order
 register_closure = registrar(CLOSURES)
 
@@ -239,3 +232,13 @@ class Ball(Closure):
     def design(self, params, m_eff_kg, loop_force_N, target_gap_m, time_step_s, log_period_s):
         return ClosureDesign(self, time_step_s or IMPLICIT_TIME_STEP_S, None, m_eff_kg,
                              loop_force_N)
+
+
+def design_closure(params: Params, closure: "Closure | str", target_gap_m: float,
+                   time_step_s: float = 0.0, log_period_s: float = 2e-3) -> ClosureDesign:
+    """The closure (a Closure or its kind) designed for the parameters (Closure.design) from the
+    knee's effective mass and the loop force (loop_load). time_step_s > 0 asks for a plant step
+    (s; 0: derived), log_period_s (s) is the recorder's interval."""
+    m_eff, force = loop_load(params)
+    return by_kind(CLOSURES, closure, "closure").design(params, m_eff, force, target_gap_m,
+                                                        time_step_s, log_period_s)
