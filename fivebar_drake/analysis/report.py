@@ -9,7 +9,7 @@ from pathlib import Path
 from fivebar_drake.analysis.design_report import design_assumptions, design_lines
 from fivebar_drake.analysis.torques import Analysis
 from fivebar_drake.core.files import write_atomic
-from fivebar_drake.core.footpath import stance_speed
+from fivebar_drake.core.footpath import foot_path
 from fivebar_drake.mechanisms.fivebar import LINK_NAMES, MOTORS, physical_izz
 from fivebar_drake.robots.quadruped.config import sampling_error
 
@@ -47,23 +47,6 @@ def assumptions(analysis: Analysis) -> list[str]:
     ]
 
 
-def path_name(analysis: Analysis) -> str:
-    return {"seed_ellipse": "seed's elliptical gait", "trot": "trot foot path"}[
-        analysis.samples.path]
-
-
-def path_text(analysis: Analysis) -> str:
-    """The analysed foot path in words, with its numbers (mm, s)."""
-    g = analysis.params.gait
-    if analysis.samples.path == "seed_ellipse":
-        return (f"the seed's ellipse x = {g.x_center_m * 1e3:g} + {g.a_m * 1e3:g} cos(wt) mm, "
-                f"y = {g.y_home_m * 1e3:g} + {g.b_m * 1e3:g} sin(wt) mm")
-    return (f"the trot path (core/footpath.py): stance flat at y = {g.y_home_m * 1e3:g} mm over the "
-            f"stride 2a = {2 * g.a_m * 1e3:g} mm at {stance_speed(g, 'trot'):.3f} m/s, duty "
-            f"factor {g.duty_factor:g} (stance fraction of the cycle), swing lifting the foot by "
-            f"b = {g.b_m * 1e3:g} mm with matched touchdown speed")
-
-
 def _where(at: dict) -> str:
     x, y = (v * 1e3 for v in at["foot_m"])
     return f"t = {at['time_s']:.3f} s (sample {at['sample']}), F = ({x:.1f}, {y:.1f}) mm"
@@ -74,12 +57,12 @@ def markdown(analysis: Analysis, sampled: dict | None = None) -> str:
     if sampled is None:
         sampled = sampling_error(analysis.params, analysis.samples.path)
     r = analysis.results["results"]
-    p = analysis.params
+    p, path = analysis.params, foot_path(analysis.samples.path)
     g = p.gait
     lines = [
-        f"# 5-bar leg: dynamic torque analysis over the {path_name(analysis)}",
+        f"# 5-bar leg: dynamic torque analysis over the {path.title}",
         "",
-        f"Foot path: {path_text(analysis)}, f = {g.frequency_hz:g} Hz, N = {g.samples} samples "
+        f"Foot path: {path.text(g)}, f = {g.frequency_hz:g} Hz, N = {g.samples} samples "
         f"(central differences: peak joint speed within {sampled['speed']:.1%}, peak "
         f"acceleration within {sampled['acceleration']:.1%} of {sampled['reference_samples']} "
         f"samples). Motor: {p.motor.peak_torque_Nm:g} N m, {p.motor.no_load_speed_rad_s:.2f} "

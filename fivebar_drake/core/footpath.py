@@ -72,6 +72,11 @@ class FootPath(Variant):
     register them with register_path."""
 
     point: ClassVar = None
+    title: ClassVar[str] = ""          # the path in a few words, e.g. "trot foot path"
+
+    def text(self, gait: Gait) -> str:
+        """The path in words with its numbers (mm, m/s), for the analysis report."""
+        return self.title
 
     def constants(self, gait: Gait) -> tuple:
         """The NamedTuple of constants `point` takes."""
@@ -120,6 +125,12 @@ class SeedEllipse(FootPath):
 
     kind: ClassVar[str] = "seed_ellipse"
     point: ClassVar = staticmethod(ellipse_point)
+    title: ClassVar[str] = "seed's elliptical gait"
+
+    def text(self, gait: Gait) -> str:
+        g = gait
+        return (f"the seed's ellipse x = {g.x_center_m * 1e3:g} + {g.a_m * 1e3:g} cos(wt) mm, "
+                f"y = {g.y_home_m * 1e3:g} + {g.b_m * 1e3:g} sin(wt) mm")
 
     def constants(self, gait: Gait) -> EllipseConstants:
         return EllipseConstants(gait.a_m, gait.b_m, gait.x_center_m, gait.y_home_m,
@@ -182,9 +193,18 @@ class Trot(FootPath):
 
     kind: ClassVar[str] = "trot"
     point: ClassVar = staticmethod(trot_point)
+    title: ClassVar[str] = "trot foot path"
     duty_factor: Optional[float] = None
 
+    def text(self, gait: Gait) -> str:
+        g = gait
+        return (f"the trot path (core/footpath.py): stance flat at y = {g.y_home_m * 1e3:g} mm "
+                f"over the stride 2a = {2 * g.a_m * 1e3:g} mm at {self.stance_speed(g):.3f} m/s, "
+                f"duty factor {self.beta(g):g} (stance fraction of the cycle), swing lifting the "
+                f"foot by b = {g.b_m * 1e3:g} mm with matched touchdown speed")
+
     def beta(self, gait: Gait) -> float:
+        """The duty factor: this path's, or the parameter file's."""
         return gait.duty_factor if self.duty_factor is None else self.duty_factor
 
     def check(self, field: str) -> None:
@@ -198,6 +218,9 @@ class Trot(FootPath):
 
     def stance_start(self, gait: Gait) -> float:
         return 1.0 - self.beta(gait)
+
+    def stance_speed(self, gait: Gait) -> float:
+        return 2.0 * gait.a_m / (self.beta(gait) * gait.period_s)
 
 
 @jit_uncached

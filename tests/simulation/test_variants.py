@@ -13,7 +13,7 @@ import pytest
 from pydrake.systems.framework import DiagramBuilder
 
 from fivebar_drake.core.compiled import jit
-from fivebar_drake.core.footpath import PATHS, FootPath, Trot, register_path
+from fivebar_drake.core.footpath import PATHS, FootPath, SeedEllipse, Trot, register_path
 from fivebar_drake.core.rotation import tilt_deg
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.pipeline import run_simulation
@@ -91,10 +91,14 @@ def test_a_controller_and_a_closure_by_kind_or_as_a_mapping(tmp_path):
 
 
 def test_a_duty_factor_of_the_gait_changes_its_stance(params):
-    """The trot's own duty_factor overrides the parameter file's."""
-    tight = load_scenario(gait={"kind": "trot", "duty_factor": 0.6})
-    assert tight.gait.stance_start(params.gait) == pytest.approx(0.4)
-    assert Trot().stance_start(params.gait) == pytest.approx(1.0 - params.gait.duty_factor)
+    """The trot's own duty_factor overrides the parameter file's; its stance and speed are the
+    formulas of before, to the bit."""
+    tight = load_scenario(gait={"kind": "trot", "duty_factor": 0.6}).gait
+    g = params.gait
+    for path, beta in [(tight, 0.6), (Trot(), g.duty_factor)]:
+        assert path.stance_start(g) == 1.0 - beta
+        assert path.stance_speed(g) == 2.0 * g.a_m / (beta * g.period_s)
+    assert SeedEllipse().stance_speed(g) == 2.0 * g.a_m / (0.5 * g.period_s)
 
 
 class Home(NamedTuple):
