@@ -246,23 +246,13 @@ def evaluate(gait: Gait, path: FootPath | str, t, phase_rad=0.0) -> PathPoints:
                       acc=np.stack([ax, ay], -1), stance=stance)
 
 
-def stance_speed(gait: Gait, path: FootPath | str) -> float:
-    """FootPath.stance_speed of a path or kind."""
-    return foot_path(path).stance_speed(gait)
-
-
-def stance_start(gait: Gait, path: FootPath | str) -> float:
-    """FootPath.stance_start of a path or kind."""
-    return foot_path(path).stance_start(gait)
-
-
 def stance_weight(gait: Gait, path: FootPath | str, t, phase_rad, transfer_s: float) -> np.ndarray:
     """Scheduled share of a foot in the support (0 swing, 1 stance) at times t (s), rising and
     falling smoothly (smoothstep) over transfer_s (s) after touchdown and before lift-off, so
     the load passes from foot to foot without a step."""
     u = cycle_phase(gait, t, phase_rad)
     flat = np.ascontiguousarray(u, dtype=float).ravel()
-    return stance_weight_arrays(flat, stance_start(gait, path), gait.period_s,
+    return stance_weight_arrays(flat, foot_path(path).stance_start(gait), gait.period_s,
                                 float(transfer_s)).reshape(u.shape)
 
 

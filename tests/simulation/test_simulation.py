@@ -12,7 +12,7 @@ from pydrake.systems.analysis import Simulator
 from rerun.chunk import RrdReader
 
 from fivebar_drake.cli import main
-from fivebar_drake.core.footpath import stance_speed
+from fivebar_drake.core.footpath import Trot
 from fivebar_drake.mechanisms.fivebar import UnreachableError, foot_jacobian, forward
 from fivebar_drake.pipeline import run_simulation, summarize_run
 from fivebar_drake.simulation.recording import read_series
@@ -58,7 +58,7 @@ def test_default_trot_is_credible(run):
     speed = (x[-1] - x[0]) / (sig.t[inside][-1] - sig.t[inside][0])
     gait_speed = 2 * params.gait.a_m / (params.gait.duty_factor * params.gait.period_s)
     assert speed >= 0.7 * gait_speed
-    assert gait_speed == pytest.approx(stance_speed(params.gait, "trot"))
+    assert gait_speed == pytest.approx(Trot().stance_speed(params.gait))
     # swing feet, from the schedule and the measured ground force (> 1 N: on the ground):
     # never dragged through mid-swing; off the ground for >= 80 % of the swing (the rest is an
     # early touchdown at its end, where the catch reflex sends a foot under a sinking hip)
