@@ -178,7 +178,7 @@ def _compare(args, signals) -> int:
 
 def _models(args, signals) -> int:
     from fivebar_drake.simulation.runner import load_run
-    from fivebar_drake.robots.quadruped.sdf import MODEL_FILES, write_models
+    from fivebar_drake.robots.quadruped.closure import MODEL_FILES, write_models
     from fivebar_drake.simulation.builder import closure_design
 
     scenario, params = load_run(args.scenario, closure="bushing_rpy", params_file=args.config)

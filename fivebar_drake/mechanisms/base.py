@@ -29,6 +29,20 @@ class Bushing:
 
 
 @dataclass(frozen=True)
+class LoopCut:
+    """Where a mechanism's loop is cut in its SDF tree: the point p_a (m) of body_a that meets the
+    point p_b (m) of body_b when the loop is closed, and the frames frame_a, frame_b at those
+    points (z along the hinge). A loop closure writes its SDF element from it."""
+
+    body_a: str
+    p_a: tuple[float, float, float]
+    frame_a: str
+    body_b: str
+    p_b: tuple[float, float, float]
+    frame_b: str
+
+
+@dataclass(frozen=True)
 class SdfLook:
     """How the robot dresses a mechanism's SDF: link cross-section width (m); the tool's
     collision and visual elements, with "{pose}" where the mechanism puts the tool point's
@@ -98,10 +112,12 @@ class DrakeModel(Protocol):
 class SdfElements(Protocol):
     """The mechanism's SDF links, joints and loop closures, to place in a robot's model."""
 
-    def sdf_elements(self, prefix: str, parent: str, frame: str, closure: str,
+    def sdf_elements(self, prefix: str, parent: str, frame: str, closure,
                      bushing: Bushing | None, look: SdfLook) -> str:
         """SDF links, joints and loop closure of one mechanism placed in the SDF frame `frame`,
-        its actuated joints (one per motor) on the link `parent`; names start with prefix."""
+        its actuated joints (one per motor) on the link `parent`; names start with prefix.
+        closure: None (the loops left cut) or an object whose sdf(LoopCut, bushing) gives the
+        SDF element closing a loop ("" where it declares none)."""
 
 
 PARTS = {"kinematics": Kinematics, "statics": Statics, "dynamics": Dynamics,

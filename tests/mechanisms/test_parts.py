@@ -20,7 +20,7 @@ from fivebar_drake.mechanisms.base import SdfLook, missing_parts
 from fivebar_drake.mechanisms.fivebar import sample_gait
 from fivebar_drake.mechanisms.parallel4.mechanism import Parallel4
 from fivebar_drake.mechanisms.registry import MECHANISMS
-from fivebar_drake.robots.quadruped.closure import fixed_leg
+from fivebar_drake.robots.quadruped.closure import Ball, fixed_leg
 from fivebar_drake.robots.quadruped.config import load_params
 from fivebar_drake.robots.quadruped.inverse_dynamics import projected_inverse_dynamics
 from fivebar_drake.robots.quadruped.leg_loads import full_model
@@ -206,7 +206,7 @@ def test_sdf_elements_parse_into_one_actuator_per_motor(name):
                    drive_xml="")
     text = ("<sdf version='1.9' xmlns:drake='http://drake.mit.edu'><model name='m'>"
             "<link name='base'/><joint name='weld' type='fixed'><parent>world</parent>"
-            f"<child>base</child></joint>{m.sdf_elements('m', 'base', 'base', 'ball', None, look)}"
+            f"<child>base</child></joint>{m.sdf_elements('m', 'base', 'base', Ball(), None, look)}"
             "</model></sdf>")
     config = MultibodyPlantConfig(time_step=1e-3, discrete_contact_approximation="sap")
     plant, _ = AddMultibodyPlant(config, DiagramBuilder())

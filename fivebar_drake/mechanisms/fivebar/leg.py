@@ -58,7 +58,7 @@ class FiveBarLeg:
     def loop_gaps(self, x) -> np.ndarray:
         return loop.loop_gaps(self.geometry, x)
 
-    def sdf_elements(self, prefix: str, parent: str, frame: str, closure: str,
+    def sdf_elements(self, prefix: str, parent: str, frame: str, closure,
                      bushing: Bushing | None, look: SdfLook) -> str:
         """The leg's SDF (sdf.sdf_elements): links in the leg-plane frame `frame`, motors on
         the link `parent`."""

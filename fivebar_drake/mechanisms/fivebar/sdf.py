@@ -4,18 +4,15 @@ C, D (passive knees), and the loop cut at E with its closure.
 The leg lives in a *leg-plane frame* whose x-y plane is the seed's leg plane (x, y) and whose z
 axis is the hinge axis, so a joint angle about +z is the seed's counter-clockwise motor angle.
 Each link's frame sits at its first joint with x along the link in the zero configuration; the
-knee joints C and D measure the lower link relative to the upper one. The loop is cut at E:
-frames `<prefix>_E_on_CE` and `<prefix>_E_on_DE` (z along the hinge) are joined by a
-`<drake:linear_bushing_rpy>` (closure "bushing_rpy"), a `<drake:ball_constraint>` (closure
-"ball"), or by two compliant SAP distance constraints that SDFormat cannot declare and the plant
-builder adds (closure "bushing"). Only the foot (the tool) collides.
+knee joints C and D measure the lower link relative to the upper one. The loop is cut at E
+(loop_cut): E on CE meets E on DE, with frames `<prefix>_E_on_CE` and `<prefix>_E_on_DE` (z along
+the hinge); the closure writes what joins them. Only the foot (the tool) collides.
 """
 
 from __future__ import annotations
 
-from fivebar_drake.core.sdf import (PASSIVE, axis, ball_constraint, box, element, fmt, inertial,
-                                    joint, pose, visual)
-from fivebar_drake.mechanisms.base import Bushing, SdfLook
+from fivebar_drake.core.sdf import PASSIVE, axis, box, element, inertial, joint, pose, visual
+from fivebar_drake.mechanisms.base import Bushing, LoopCut, SdfLook
 from fivebar_drake.mechanisms.fivebar.geometry import (LINK_NAMES, LegGeometry, LinkInertia,
                                                         physical_izz)
 
@@ -58,11 +55,17 @@ def _loop_frame(prefix: str, link: str, length_m: float) -> str:
                    name=f"{prefix}_E_on_{link}", attached_to=f"{prefix}_{link}")
 
 
+def loop_cut(leg: LegGeometry, prefix: str) -> LoopCut:
+    """The loop's cut at E: the end of CE on the end of DE, at their frames E_on_CE, E_on_DE."""
+    return LoopCut(f"{prefix}_CE", (leg.ce_m, 0.0, 0.0), f"{prefix}_E_on_CE",
+                   f"{prefix}_DE", (leg.de_m, 0.0, 0.0), f"{prefix}_E_on_DE")
+
+
 def sdf_elements(leg: LegGeometry, links: dict[str, LinkInertia], prefix: str, parent: str,
-                 frame: str, closure: str, bushing: Bushing | None, look: SdfLook) -> str:
+                 frame: str, closure, bushing: Bushing | None, look: SdfLook) -> str:
     """SDF elements of one leg: links placed in the leg-plane frame `frame`, motors A and B on
-    the link `parent` (dressed by look), the loop at E closed by `closure` (bushing: the
-    bushing_rpy's stiffness and damping)."""
+    the link `parent` (dressed by look), the loop at E closed by `closure` (base.SdfElements:
+    None, or its sdf(loop_cut, bushing) element; bushing: the designed one)."""
     ax, ay = leg.motor_a_m
     bx, by = leg.motor_b_m
     parts = [_link(leg, links, prefix, frame, "AC", (ax, ay), look),
@@ -75,17 +78,5 @@ def sdf_elements(leg: LegGeometry, links: dict[str, LinkInertia], prefix: str, p
              _joint(prefix, "D", f"{prefix}_BD", "DE", None),
              _loop_frame(prefix, "CE", leg.ce_m),
              _loop_frame(prefix, "DE", leg.de_m)]
-    if closure == "ball":
-        parts.append(ball_constraint(f"{prefix}_CE", (leg.ce_m, 0, 0), f"{prefix}_DE",
-                                     (leg.de_m, 0, 0)))
-    if closure == "bushing_rpy":
-        k, d = bushing.stiffness_N_m, bushing.damping_N_s_m
-        parts.append(element(
-            "drake:linear_bushing_rpy",
-            element("drake:bushing_frameA", f"{prefix}_E_on_CE"),
-            element("drake:bushing_frameC", f"{prefix}_E_on_DE"),
-            element("drake:bushing_torque_stiffness", "0 0 0"),
-            element("drake:bushing_torque_damping", "0 0 0"),
-            element("drake:bushing_force_stiffness", fmt(k, k, k)),
-            element("drake:bushing_force_damping", fmt(d, d, d))))
-    return "\n".join(parts)
+    closing = "" if closure is None else closure.sdf(loop_cut(leg, prefix), bushing)
+    return "\n".join(parts + ([closing] if closing else []))

@@ -41,7 +41,7 @@ class ScaraArm(Scara):
     def loop_gaps(self, x) -> np.ndarray:
         return np.zeros(np.shape(x)[:-1] + (0,))
 
-    def sdf_elements(self, prefix: str, parent: str, frame: str, closure: str = "none",
+    def sdf_elements(self, prefix: str, parent: str, frame: str, closure=None,
                      bushing: Bushing | None = None, look: SdfLook | None = None) -> str:
         """SDF links <prefix>link1..3 and joints <prefix>q1..q3, placed in the SDF frame
         `frame`, joint 1 on the link `parent`. Link frames sit on the joint axes, aligned with

@@ -23,11 +23,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from pathlib import Path
 from typing import ClassVar
 
 import numpy as np
 from pydrake.multibody.plant import MultibodyPlant
 
+from fivebar_drake.core.files import write_atomic
+from fivebar_drake.core.sdf import ball_constraint, element, fmt
 from fivebar_drake.core.validation import ParameterError, check_number
 from fivebar_drake.core.variants import Variant, by_kind, registrar
 from fivebar_drake.mechanisms.fivebar import sample_gait, tree_positions
@@ -35,7 +38,8 @@ from fivebar_drake.robots.quadruped.inverse_dynamics import loop_jacobian, plane
 from fivebar_drake.robots.quadruped.leg_loads import trot_model
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.plant import ClosureDesign, add_model, leg_indices
-from fivebar_drake.mechanisms.base import Bushing
+from fivebar_drake.robots.quadruped.sdf import quadruped_sdf, single_leg_sdf
+from fivebar_drake.mechanisms.base import Bushing, LoopCut
 
 
 STABILITY_MARGIN = 0.8   # fraction of the explicit stability bound a + 2 b < 4
@@ -142,13 +146,15 @@ register_closure = registrar(CLOSURES)
 
 @dataclass(frozen=True)
 class Closure(Variant):
-    """A loop closure at E (register with register_closure): what each leg's SDF declares there
-    (`sdf_element`: the mechanism's sdf_elements closure, None: nothing), whether it is a SAP
-    constraint (`sap`: the plant needs a SAP solver), its design and the constraints it adds
-    after parsing."""
+    """A loop closure at E (register with register_closure): whether it is a SAP constraint
+    (`sap`: the plant needs a SAP solver), its design, the SDF element it declares at each loop
+    cut and the constraints it adds after parsing."""
 
-    sdf_element: ClassVar[str | None] = None
     sap: ClassVar[bool] = False
+
+    def sdf(self, cut: LoopCut, bushing: Bushing | None) -> str:
+        """The SDF element closing the loop at the cut (the designed bushing); "" for none."""
+        return ""
 
     def design(self, params: Params, m_eff_kg: float, loop_force_N: float, target_gap_m: float,
                time_step_s: float, log_period_s: float) -> ClosureDesign:
@@ -205,7 +211,18 @@ class ExplicitBushing(Closure):
     every interval has whole steps."""
 
     kind: ClassVar[str] = "bushing_rpy"
-    sdf_element: ClassVar[str | None] = "bushing_rpy"
+
+    def sdf(self, cut, bushing):
+        """A <drake:linear_bushing_rpy> between the cut's frames: the bushing's force stiffness
+        and damping, free in rotation."""
+        k, d = bushing.stiffness_N_m, bushing.damping_N_s_m
+        return element("drake:linear_bushing_rpy",
+                       element("drake:bushing_frameA", cut.frame_a),
+                       element("drake:bushing_frameC", cut.frame_b),
+                       element("drake:bushing_torque_stiffness", "0 0 0"),
+                       element("drake:bushing_torque_damping", "0 0 0"),
+                       element("drake:bushing_force_stiffness", fmt(k, k, k)),
+                       element("drake:bushing_force_damping", fmt(d, d, d)))
 
     def design(self, params, m_eff_kg, loop_force_N, target_gap_m, time_step_s, log_period_s):
         bushing, dt = bushing_parameters(m_eff_kg, loop_force_N, target_gap_m)
@@ -226,8 +243,10 @@ class Ball(Closure):
     (nothing to design); IMPLICIT_TIME_STEP_S by default."""
 
     kind: ClassVar[str] = "ball"
-    sdf_element: ClassVar[str | None] = "ball"
     sap: ClassVar[bool] = True
+
+    def sdf(self, cut, bushing):
+        return ball_constraint(cut.body_a, cut.p_a, cut.body_b, cut.p_b)
 
     def design(self, params, m_eff_kg, loop_force_N, target_gap_m, time_step_s, log_period_s):
         return ClosureDesign(self, time_step_s or IMPLICIT_TIME_STEP_S, None, m_eff_kg,
@@ -242,3 +261,17 @@ def design_closure(params: Params, closure: "Closure | str", target_gap_m: float
     m_eff, force = loop_load(params)
     return by_kind(CLOSURES, closure, "closure").design(params, m_eff, force, target_gap_m,
                                                         time_step_s, log_period_s)
+
+
+# The committed models (sdf/), each closed by its closure.
+MODEL_FILES = {"leg.sdf": (single_leg_sdf, ExplicitBushing()),
+               "quadruped.sdf": (quadruped_sdf, ExplicitBushing()),
+               "quadruped_ball.sdf": (quadruped_sdf, Ball())}
+
+
+def write_models(params: Params, bushing: Bushing, out_dir: Path) -> list[Path]:
+    """Write the MODEL_FILES into out_dir, each atomically: the fixed-hip leg and the quadruped
+    closed by the explicit bushing, and the quadruped closed by ball constraints."""
+    out_dir.mkdir(parents=True, exist_ok=True)
+    return [write_atomic(out_dir / name, make(params, closure, bushing))
+            for name, (make, closure) in MODEL_FILES.items()]

@@ -41,8 +41,7 @@ def add_model(plant: MultibodyPlant, params: Params, model: str, closure: Varian
     FL, FR, RL, RR) into plant and close each loop with closure (a closure.Closure: its SDF
     element, then closure.add_to; bushing: the designed one, None for the ball; closure None: the
     open tree, for kinematics and mass properties). Returns (model instance, leg names)."""
-    element = None if closure is None else closure.sdf_element
-    text = (single_leg_sdf if model == "leg" else quadruped_sdf)(params, element, bushing)
+    text = (single_leg_sdf if model == "leg" else quadruped_sdf)(params, closure, bushing)
     parser = Parser(plant)
     parser.SetStrictParsing()
     (instance,) = parser.AddModelsFromString(text, "sdf")

@@ -6,11 +6,9 @@ foot spheres (and the body box) collide.
 
 from __future__ import annotations
 
-from pathlib import Path
 from xml.dom import minidom
 import numpy as np
 
-from fivebar_drake.core.files import write_atomic
 from fivebar_drake.core.sdf import (box, document, element, fmt, inertial, joint, pose, sphere,
                                     visual)
 from fivebar_drake.mechanisms.base import Bushing, SdfLook
@@ -18,11 +16,12 @@ from fivebar_drake.robots.quadruped.legs import LEGS, PLANE_RPY, hip_positions, 
 from fivebar_drake.robots.quadruped.params import Params
 
 
-def leg_sdf(params: Params, leg: str, parent: str, hip_xyz, closure: str,
+def leg_sdf(params: Params, leg: str, parent: str, hip_xyz, closure,
             bushing: Bushing | None) -> str:
     """SDF of one leg attached to link `parent`: its leg-plane frame at hip_xyz (m) in the
     parent frame, then the mechanism's elements dressed with this robot's link width, foot pad
-    and motors."""
+    and motors, its loop closed by closure (a closure.Closure, None: left cut; bushing: the
+    designed one)."""
     b, m = params.body, params.motor
     pad = element("geometry", sphere(b.foot_radius_m))
     contact = element("drake:proximity_properties",
@@ -84,29 +83,17 @@ def _document(name: str, body: str) -> str:
                           "parameter file (fivebar-drake models); do not edit. -->", 1)
 
 
-def quadruped_sdf(params: Params, closure: str, bushing: Bushing | None) -> str:
+def quadruped_sdf(params: Params, closure, bushing: Bushing | None) -> str:
     """The whole robot: a floating body and a leg per LEGS (legs.py)."""
     legs = [leg_sdf(params, leg, "body", hip, closure, bushing)
             for leg, hip in hip_positions(params).items()]
     return _document("quadruped", "\n".join([_body_link(params)] + legs))
 
 
-def single_leg_sdf(params: Params, closure: str, bushing: Bushing | None) -> str:
+def single_leg_sdf(params: Params, closure, bushing: Bushing | None) -> str:
     """One leg on a hip link welded to the world; the leg plane is the world x-z plane with the
     leg's y along world +z (gravity along the leg's -y)."""
     m = params.robot.motors_kg / (2 * params.robot.legs)
     hip = (element("link", inertial(m, ("1e-4",) * 3), name="hip")
            + joint("hip_weld", "fixed", "world", "hip"))
     return _document("leg", hip + "\n" + leg_sdf(params, "leg", "hip", (0, 0, 0), closure, bushing))
-
-MODEL_FILES = {"leg.sdf": (single_leg_sdf, "bushing_rpy"),
-               "quadruped.sdf": (quadruped_sdf, "bushing_rpy"),
-               "quadruped_ball.sdf": (quadruped_sdf, "ball")}
-
-
-def write_models(params: Params, bushing: Bushing, out_dir: Path) -> list[Path]:
-    """Write the MODEL_FILES into out_dir, each atomically: the fixed-hip leg and the quadruped
-    closed by the explicit bushing, and the quadruped closed by ball constraints."""
-    out_dir.mkdir(parents=True, exist_ok=True)
-    return [write_atomic(out_dir / name, make(params, closure, bushing))
-            for name, (make, closure) in MODEL_FILES.items()]

@@ -7,10 +7,10 @@ import pytest
 from pydrake.multibody.plant import DiscreteContactApproximation, MultibodyPlant
 from pydrake.visualization import ModelVisualizer
 
-from fivebar_drake.robots.quadruped.closure import CLOSURES
+from fivebar_drake.robots.quadruped.closure import CLOSURES, MODEL_FILES
 from fivebar_drake.robots.quadruped.plant import add_model
 from fivebar_drake.simulation.scenario import load_scenario
-from fivebar_drake.robots.quadruped.sdf import MODEL_FILES, body_mass_properties
+from fivebar_drake.robots.quadruped.sdf import body_mass_properties
 from fivebar_drake.simulation.builder import closure_design
 
 SDF = Path(__file__).parents[3] / "sdf"
