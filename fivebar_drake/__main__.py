@@ -1,9 +1,8 @@
-
 from __future__ import annotations
 
 import sys
 
-from fivebar_drake.cli import main
+from fivebar_drake.launcher import main
 
 
 sys.exit(main())

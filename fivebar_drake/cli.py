@@ -315,6 +315,9 @@ def main(argv=None) -> int:
     except SystemExit as exit_:             # --help, --version, or a usage error (code 2)
         return int(exit_.code or 0)
     try:
+        if getattr(args, "out", None) == "":
+            raise ParameterError("--out = '': an empty path; give a folder or file name (or "
+                                 "leave --out out for the default)", "--out", "command line")
         with Signals(stop_gently=args.command == "simulate") as signals:
             return args.run(args, signals)
     except ParameterError as err:

@@ -56,6 +56,12 @@ def conf(command, old, new, *expect):
     return (argv, "params.toml", *expect)
 
 
+def fifo(t, name="fifo.yaml"):
+    path = t / name
+    os.mkfifo(path)
+    return str(path)
+
+
 def a_file(t):
     (t / "afile").write_text("not a folder")
     return t / "afile"
@@ -180,8 +186,37 @@ CASES = {
     "closure constraints need SAP": scen(
         "plant_config: {discrete_contact_approximation: tamsi}\n",
         "scenario.plant_config.discrete_contact_approximation = 'tamsi'", "SAP constraint"),
-    "plant config Drake refuses": scen("plant_config: {contact_model: magic}\n",
-                                       "scenario.plant_config", "Drake refuses it"),
+    "plant config contact model": scen("plant_config: {contact_model: magic}\n",
+                                       "scenario.plant_config.contact_model = 'magic'"),
+    "plant config hydroelastic": scen("plant_config: {contact_model: hydroelastic}\n",
+                                      "contact_model = 'hydroelastic'", "point-contact"),
+    # values Drake would abort the process on (a failed C++ condition), or refuse late
+    "plant config zero stiction": scen("plant_config: {stiction_tolerance: 0}\n",
+                                       "scenario.plant_config.stiction_tolerance = 0"),
+    "plant config negative near-rigid": scen("plant_config: {sap_near_rigid_threshold: -5}\n",
+                                             "sap_near_rigid_threshold = -5"),
+    "plant config zero penetration": scen("plant_config: {penetration_allowance: 0}\n",
+                                          "penetration_allowance = 0"),
+    "simulator config scheme": scen("simulator_config: {integration_scheme: bogus}\n",
+                                    "integration_scheme = 'bogus'", "runge_kutta3"),
+    "simulator config step": scen("simulator_config: {max_step_size: -1}\n",
+                                  "max_step_size = -1"),
+    "simulator config start": scen("simulator_config: {start_time: 5}\n",
+                                   "start_time = 5", "starts at t = 0"),
+    "simulator config crawl": scen("simulator_config: {target_realtime_rate: 0.001}\n",
+                                   "target_realtime_rate = 0.001", "as fast as possible"),
+    "simulator config accuracy": scen("simulator_config: {accuracy: -1}\n", "accuracy = -1"),
+    "scenario alias bomb": scen("a: &a [1, 1, 1, 1, 1, 1, 1, 1, 1]\nb: &b [*a, *a, *a, *a]\n"
+                                "c: &c [*b, *b, *b, *b]\nduration_s: *c\n", "aliases"),
+    "scenario field twice": scen("duration_s: 1.0\nduration_s: 2.0\n", "written twice"),
+    "scenario nested deep": scen("plant_config: " + "[" * 50 + "]" * 50 + "\n", "nested deeper"),
+    "scenario that is a FIFO": (lambda t: sim(t, "--scenario", fifo(t)), "fifo.yaml",
+                                "not a regular file"),
+    "parameter file that is a FIFO": (lambda t: ["analyze", "--config", fifo(t, "p.toml"),
+                                                 "--out", str(t / "out")], "p.toml",
+                                      "not a regular file"),
+    "empty --out": (lambda t: ["simulate", "--out", ""], "command line", "--out = ''"),
+    "models into an empty --out": (lambda t: ["models", "--out", ""], "command line", "--out = ''"),
     "simulator config text for a number": scen(
         "simulator_config: {target_realtime_rate: fast}\n",
         "scenario.simulator_config.target_realtime_rate = 'fast'", "must be a number"),

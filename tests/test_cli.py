@@ -3,6 +3,8 @@ import math
 import subprocess
 import sys
 
+import pytest
+
 from fivebar_drake.cli import main
 from fivebar_drake.robots.quadruped.config import DEFAULT_PATH
 
@@ -60,3 +62,21 @@ def test_module_entry_point_and_bad_config(tmp_path):
     assert f"{bad}: leg.ce_m = 0.0: must be in (0, 2]" in run.stderr
     assert "Traceback" not in run.stderr
     assert not (tmp_path / "o").exists()
+
+
+@pytest.mark.parametrize("delay_s", [0.2, 1.0])
+def test_ctrl_c_while_loading_is_quiet(tmp_path, delay_s):
+    """SIGINT while the command is still importing (Drake, numba) or already running: exit 130,
+    one line, no traceback."""
+    import signal
+    import subprocess
+    import time
+
+    proc = subprocess.Popen([sys.executable, "-m", "fivebar_drake", "analyze", "--out",
+                             str(tmp_path / "out")], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+    time.sleep(delay_s)
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=120)
+    assert proc.returncode == 130, err
+    assert "Traceback" not in err and "interrupted" in err

@@ -51,3 +51,20 @@ class Signals:
     def name(self) -> str:
         """The signal received ("SIGINT", "SIGTERM"), "" if none."""
         return signal.Signals(self.signum).name if self.signum else ""
+
+
+STOP_SLICE_S = 0.05    # simulated time between polls of a stop request in a study's run
+
+
+def advance(simulator, t_end: float, stop=None) -> str:
+    """Advance a Drake simulator to t_end (s) in slices of STOP_SLICE_S, polling stop() after
+    each (a non-empty answer, a signal's name, ends the run there): the answer, "" if t_end was
+    reached."""
+    t = simulator.get_context().get_time()
+    while t < t_end:
+        t = min(t + STOP_SLICE_S, t_end)
+        simulator.AdvanceTo(t)
+        reason = stop() if stop else ""
+        if reason:
+            return reason
+    return ""

@@ -23,6 +23,8 @@ MAX_ROTOR_INERTIA_KG_M2 = 1.0   # a small outrunner's rotor is ~1e-6 kg m^2
 MAX_FRICTION_COEFFICIENT = 5.0  # rubber on rough ground is 1-2
 MAX_CONTACT_STIFFNESS_N_M = 1e9  # a steel ball on steel is ~1e8-1e9 N/m
 MAX_RELAXATION_TIME_S = 1.0     # a foot pad still dissipating a second after touchdown is no foot
+MIN_PLANT_STEP_S = 1e-6        # no mechanism here needs a finer plant step
+MAX_PLANT_STEPS = 20_000_000   # a run of more steps takes hours (~0.1-0.3 ms each)
 MAX_SAFETY_FACTOR = 100.0       # a verdict threshold beyond this can never pass
 
 

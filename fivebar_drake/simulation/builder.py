@@ -7,10 +7,10 @@ import math
 from dataclasses import dataclass
 import numpy as np
 from pydrake.multibody.plant import ApplyMultibodyPlantConfig, MultibodyPlant
-from pydrake.systems.framework import DiagramBuilder, LeafSystem
+from pydrake.systems.framework import DiagramBuilder, TriggerType, LeafSystem
 from pydrake.systems.primitives import DiscreteTimeIntegrator, Multiplexer, VectorLogSink
 
-from fivebar_drake.core.drake_configs import config_with
+from fivebar_drake.core.drake_configs import check_plant_config_values, config_with
 from fivebar_drake.core.motor import MotorModel
 from fivebar_drake.core.validation import ParameterError, check_number, require
 from fivebar_drake.robots.quadruped.closure import design_closure
@@ -20,6 +20,8 @@ from fivebar_drake.simulation.scenario import Scenario
 
 
 SAP_APPROXIMATIONS = ("sap", "lagged", "similar")   # Drake's approximations solved by SAP
+PERIODIC = {TriggerType.kPeriodic}   # the logs: periodic rows only, whatever the simulator
+#                                     publishes (SimulatorConfig.publish_every_time_step)
 MAX_PLANT_STEPS = 20_000_000   # duration / time step: at ~0.3 ms of wall time per plant step
 #                                (measured, 2 cores) about two hours
 MIN_LOG_INTERVALS_PER_CYCLE = 100   # the statistics take peaks and percentiles of the recorded
@@ -62,6 +64,7 @@ def check_plant_config(scenario: Scenario, time_step: float) -> None:
     model read the state at their tick), a SAP solver for the SAP constraint closures, and
     Drake accepts it."""
     config, field = scenario.plant_config, "scenario.plant_config"
+    check_plant_config_values(config, field)
     require(config.time_step == 0.0, f"{field}.time_step", config.time_step,
             "must be 0: the plant's step is scenario.time_step_s (0 = derived for the closure)")
     require(not config.use_sampled_output_ports, f"{field}.use_sampled_output_ports", True,
@@ -153,10 +156,10 @@ def add_recorders(builder: DiagramBuilder, scenario: Scenario, plant, instance,
                                         DiscreteTimeIntegrator(layout.nv, time_step))
     rows = builder.AddNamedSystem("rows", Multiplexer([layout.nx, layout.nv]))
     log_period, per_row = recorded_periods(scenario, time_step)
-    recorder = builder.AddNamedSystem("recorder", VectorLogSink(layout.nx + layout.nv,
-                                                                log_period))
-    motor_log = builder.AddNamedSystem("motor_log", VectorLogSink(3 * layout.state.actuators.size,
-                                                                  scenario.motor_period_s))
+    recorder = builder.AddNamedSystem("recorder", VectorLogSink(
+        layout.nx + layout.nv, PERIODIC, log_period))
+    motor_log = builder.AddNamedSystem("motor_log", VectorLogSink(
+        3 * layout.state.actuators.size, PERIODIC, scenario.motor_period_s))
     builder.Connect(plant.get_generalized_contact_forces_output_port(instance),
                     integrator.get_input_port())
     builder.Connect(motor.GetOutputPort("motor_record"), motor_log.get_input_port())
@@ -180,7 +183,7 @@ def build_diagram(scenario: Scenario, params: Params, design: ClosureDesign,
     actuation_log = None
     if log_actuation:
         actuation_log = builder.AddNamedSystem("actuation_log", VectorLogSink(
-            layout.state.actuators.size, design.time_step_s))
+            layout.state.actuators.size, PERIODIC, design.time_step_s))
         builder.Connect(motor.GetOutputPort("applied_torque"), actuation_log.get_input_port())
     setup = Setup(plant=plant, instance=instance, layout=layout, design=design,
                   gains=controller.gains, recorder=recorder, motor_log=motor_log,

@@ -15,19 +15,18 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import re
 import typing
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Optional
-import yaml
 from pydrake.multibody.plant import MultibodyPlantConfig
 from pydrake.systems.analysis import SimulatorConfig
 
-from fivebar_drake.core.drake_configs import config_fields
+from fivebar_drake.core.drake_configs import check_simulator_config, config_fields
 from fivebar_drake.core.files import read_input_text
 from fivebar_drake.core.footpath import PATHS, FootPath, Trot
 from fivebar_drake.core.validation import ParameterError, check_number, require
+from fivebar_drake.core.yaml_files import load_yaml
 from fivebar_drake.robots.quadruped.config import load_params, with_gait
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.closure import CLOSURES, Closure, CompliantBushing
@@ -172,6 +171,7 @@ class Scenario:
                 "needs 4 values (FL, FR, RL, RR)")
         for i, phase in enumerate(self.phases_rad):
             number(f"scenario.phases_rad[{i}]", phase, -MAX_PHASE_RAD, MAX_PHASE_RAD)
+        check_simulator_config(self.simulator_config, "scenario.simulator_config")
 
     def load_params(self) -> Params:
         """The parameter file with this scenario's gait overrides (validated: reachable gait)."""
@@ -286,27 +286,13 @@ def _typed(name: str, kind, value):
     return None if value is None else check_number(name, value)       # Optional[float]
 
 
-class _YamlLoader(yaml.SafeLoader):
-    """YAML 1.2 numbers: 1e-9 is a float (YAML 1.1 reads a number without a dot as text)."""
-
-_YamlLoader.add_implicit_resolver(
-    "tag:yaml.org,2002:float",
-    re.compile(r"^[-+]?(?:[0-9][0-9_]*(?:\.[0-9_]*)?|\.[0-9_]+)[eE][-+]?[0-9]+$"),
-    list("-+0123456789."))
-
-
 def read_scenario_file(path) -> dict:
-    """The fields named in a scenario file (YAML mapping); ParameterError naming the file."""
+    """The fields named in a scenario file (YAML mapping, core/yaml_files: untrusted data);
+    ParameterError naming the file."""
     path = Path(path)
     text = read_input_text(path, "scenario file")
     hint = " (a parameter file goes to --config)" if path.suffix == ".toml" else ""
-    try:
-        data = yaml.load(text, Loader=_YamlLoader)
-    except yaml.YAMLError as err:
-        where = getattr(err, "problem_mark", None)
-        at = f" at line {where.line + 1}, column {where.column + 1}" if where else ""
-        problem = getattr(err, "problem", None) or str(err)
-        raise ParameterError(f"not valid YAML{at}: {problem}{hint}", source=str(path)) from None
+    data = load_yaml(text, str(path), hint)
     if data is None:
         data = {}                                   # an empty file: every default
     if not isinstance(data, dict):

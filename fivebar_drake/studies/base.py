@@ -23,7 +23,7 @@ import math
 from pathlib import Path
 from typing import Any, Callable, NamedTuple, Protocol, Sequence, runtime_checkable
 
-from fivebar_drake.core.validation import ParameterError, check_number
+from fivebar_drake.core.validation import MAX_PLANT_STEPS, ParameterError, check_number
 
 
 class Plan(NamedTuple):
@@ -80,6 +80,25 @@ class Study(Protocol):
     def write_simulation(self, record, out: Path) -> Written: ...
 
 
+MIN_RUN_STEPS = 10     # a run shorter than this many plant steps records next to nothing
+
+
+def duration_limits(default: float, time_step_s: float, most_s: float = math.inf) -> dict:
+    """checked_duration's limits of a study's run: its default, at least MIN_RUN_STEPS plant
+    steps, at most most_s and core.validation.MAX_PLANT_STEPS steps."""
+    high = min(most_s, MAX_PLANT_STEPS * time_step_s)
+    return {"default": default, "low": MIN_RUN_STEPS * time_step_s, "high": high,
+            "why": f"{MIN_RUN_STEPS} .. {MAX_PLANT_STEPS:g} plant steps of {time_step_s:g} s"
+                   + (f", at most {most_s:g} s" if high == most_s else "")}
+
+
+def stopped_early(interrupted: str, t) -> str:
+    """Written.interrupted of a run a signal stopped early ("" if none did)."""
+    end = float(t[-1]) if len(t) else 0.0
+    return (f"interrupted by {interrupted} at t = {end:.2f} s: wrote what was simulated"
+            if interrupted else "")
+
+
 def parameters_line(name: str, config: str | Path | None) -> tuple[str]:
     """The heading of a study's job: its name and parameter file."""
     return (f"{name} parameters: {config or 'packaged default'}",)
@@ -116,12 +135,14 @@ def analysis_writer(plots, report) -> Callable[[Any, Path], Written]:
 
 def checked_duration(duration_s: float | None, default: float, low: float = 0.0,
                      high: float = math.inf, why: str = "") -> float:
-    """The command line's --duration (None: default): a number > 0, then within low .. high
-    (low excluded when it is 0); ParameterError from the command line otherwise."""
-    if duration_s is None:
-        return default
+    """The command line's --duration (None: the parameter file's default): a number > 0, then
+    within low .. high (low excluded when it is 0); ParameterError from the command line (or
+    the parameter file, for its default) otherwise."""
+    name, value = ("--duration", duration_s) if duration_s is not None else (
+        "the run's duration (parameter file)", default)
     try:
-        check_number("--duration", duration_s, 0.0, low_open=True)
-        return check_number("--duration", duration_s, low, high, low_open=low == 0.0, why=why)
+        check_number(name, value, 0.0, low_open=True)
+        return check_number(name, value, low, high, low_open=low == 0.0, why=why)
     except ParameterError as err:
-        raise err.located("command line") from None
+        raise err.located("command line" if duration_s is not None else "parameter file") \
+            from None

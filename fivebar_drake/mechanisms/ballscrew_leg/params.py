@@ -11,7 +11,7 @@ import numpy as np
 
 from fivebar_drake.core.parameter_files import build_section, load_parameter_file, packaged
 from fivebar_drake.core.motor import LineMotor, build_motor
-from fivebar_drake.core.validation import (MAX_GEAR_RATIO, MAX_GRAVITY_M_S2, MAX_LENGTH_M,
+from fivebar_drake.core.validation import (MIN_PLANT_STEP_S, MAX_GEAR_RATIO, MAX_GRAVITY_M_S2, MAX_LENGTH_M,
                                            MAX_MASS_KG, MAX_SAMPLES, check_lengths, check_number, require)
 from fivebar_drake.mechanisms.ballscrew_leg.leg import BallScrewLeg
 
@@ -131,7 +131,7 @@ class Simulation:
                      low_open=True, high_open=True, why="deeper than q1_top_deg")
         check_number("simulation.hold_s", self.hold_s, 0.0, MAX_DURATION_S)
         check_number("simulation.down_s", self.down_s, 0.0, MAX_DURATION_S, low_open=True)
-        check_number("simulation.time_step_s", self.time_step_s, 0.0, 0.01, low_open=True)
+        check_number("simulation.time_step_s", self.time_step_s, MIN_PLANT_STEP_S, 0.01)
         check_number("simulation.motor_period_s", self.motor_period_s, self.time_step_s, 0.1,
                      why="at least one plant step")
         check_number("simulation.pd_bandwidth_hz", self.pd_bandwidth_hz, 0.0,

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from fivebar_drake.core.parameter_files import check_keys
-from fivebar_drake.core.validation import (MAX_LENGTH_M, MAX_MASS_KG, ParameterError,
+from fivebar_drake.core.validation import (MIN_PLANT_STEP_S, MAX_LENGTH_M, MAX_MASS_KG, ParameterError,
                                            check_number, require)
 from fivebar_drake.mechanisms.parallel4.geometry import Geometry
 from fivebar_drake.mechanisms.parallel4.statics import in_workspace
@@ -215,7 +215,7 @@ def params_from_dict(data: dict) -> Params:
         "period_s": (0.0, MAX_DURATION_S, {"low_open": True}),
         "kp_N_m": (0.0, MAX_GAIN_N_M, {"low_open": True}),
         "kd_N_s_m": (0.0, MAX_GAIN_N_M, {}),
-        "time_step_s": (0.0, 0.01, {"low_open": True}),
+        "time_step_s": (MIN_PLANT_STEP_S, 0.01, {}),
         "duration_s": (0.0, MAX_DURATION_S, {"low_open": True}),
         "record_hz": (1.0, 1000.0, {})})
     simulation = Simulation(_numbers("simulation.center", sim["center"], -89.0, 89.0, n=4),

@@ -7,7 +7,7 @@ import math
 from dataclasses import dataclass
 
 from fivebar_drake.core.parameter_files import build_section, check_keys
-from fivebar_drake.core.validation import (MAX_GRAVITY_M_S2, MAX_LENGTH_M, MAX_MASS_KG,
+from fivebar_drake.core.validation import (MIN_PLANT_STEP_S, MAX_GRAVITY_M_S2, MAX_LENGTH_M, MAX_MASS_KG,
                                            MAX_SAMPLES, MAX_SPEED_RAD_S, MAX_TORQUE_NM,
                                            check_number, require)
 
@@ -223,8 +223,9 @@ class Simulation:
     pose_rate_hz: float
 
     def __post_init__(self):
-        _positive("simulation.time_step_s", self.time_step_s, 0.01,
-                  why="the motor model samples at this period")
+        check_number("simulation.time_step_s", self.time_step_s, MIN_PLANT_STEP_S, 0.01,
+                     why="the motor model samples at this period; nothing in the arm needs a "
+                         "finer step")
         _positive("simulation.natural_frequency_rad_s", self.natural_frequency_rad_s,
                   MAX_GAIN_RAD_S)
         require(self.natural_frequency_rad_s * self.time_step_s <= 0.2,

@@ -22,8 +22,8 @@ load_simulation = base.simulation_loader(NAME, load_params, simulation.duration_
 
 
 def simulate(inputs: tuple[Params, float], progress: bool, stop) -> simulation.SquatRun:
-    """The squat (in one piece: neither progress lines nor an early stop)."""
-    return simulation.run_squat(*inputs)
+    """The squat (no progress lines; a stop request ends it early)."""
+    return simulation.run_squat(*inputs, stop=stop)
 
 
 def write_simulation(run: simulation.SquatRun, out: Path) -> base.Written:
@@ -34,4 +34,5 @@ def write_simulation(run: simulation.SquatRun, out: Path) -> base.Written:
     return base.Written([*plots.write_simulation(sig, run.params, out),
                          recording.write_recording(sig, run.params, path),
                          *report.write_simulation(summary, out)],
-                        report.simulation_lines(summary, path))
+                        report.simulation_lines(summary, path),
+                        interrupted=base.stopped_early(run.interrupted, run.t))

@@ -22,6 +22,8 @@ from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import Adder, LogVectorOutput, TrajectorySource
 from pydrake.trajectories import PiecewisePolynomial
 
+from fivebar_drake.core.interrupts import advance
+from fivebar_drake.studies.base import duration_limits as base_limits
 from fivebar_drake.core.motor import MotorModel, clip_flags
 from fivebar_drake.mechanisms.ballscrew_leg import TREE_JOINTS, Params, ball_screw_leg
 from fivebar_drake.studies.ballscrew_leg.model import LegModel, build_model
@@ -50,7 +52,8 @@ def reference(params: Params, t) -> tuple[np.ndarray, np.ndarray]:
 
 def duration_limits(params: Params) -> dict:
     """A run's duration: the whole squat by default, at most MAX_DURATION_S."""
-    return {"default": params.simulation.duration_s, "high": MAX_DURATION_S}
+    return base_limits(params.simulation.duration_s, params.simulation.time_step_s,
+                       MAX_DURATION_S)
 
 
 def _positions(model: LegModel, q1):
@@ -74,9 +77,10 @@ class SquatRun:
     gains: tuple
     feedforward: tuple
     wall_s: float
+    interrupted: str = ""       # the signal that stopped the run early ("" if it did not)
 
 
-def run_squat(params: Params, duration_s: float | None = None) -> SquatRun:
+def run_squat(params: Params, duration_s: float | None = None, stop=None) -> SquatRun:
     """Simulate the squat for duration_s (None: the whole squat, hold-down-up-hold; at most
     MAX_DURATION_S)."""
     s = params.simulation
@@ -123,13 +127,13 @@ def run_squat(params: Params, duration_s: float | None = None) -> SquatRun:
     plant.SetPositions(plant.GetMyMutableContextFromRoot(context), _positions(model, q1[0])[1])
     simulator.Initialize()
     start = time.perf_counter()
-    simulator.AdvanceTo(duration)
+    interrupted = advance(simulator, duration, stop)
     wall = time.perf_counter() - start
     log_x, log_m = (lg.FindLog(context) for lg in (states, record))
     return SquatRun(params=params, t=log_x.sample_times(), state=log_x.data().T,
                     motor=log_m.data().T, q_index=model.q_index,
                     v_index=model.v_index + plant.num_positions(), rail_q=model.rail[0],
-                    gains=(kp, kd), feedforward=(tf, ff), wall_s=wall)
+                    gains=(kp, kd), feedforward=(tf, ff), wall_s=wall, interrupted=interrupted)
 
 
 @dataclass(frozen=True)

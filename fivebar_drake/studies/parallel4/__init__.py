@@ -33,9 +33,9 @@ load_simulation = base.simulation_loader(NAME, load_params, simulation.duration_
 
 def simulate(inputs: tuple[Params, float], progress: bool,
              stop) -> tuple[Params, simulation.Run]:
-    """The run (about a second: neither progress lines nor an early stop)."""
+    """The run (about a second: no progress lines; a stop request ends it early)."""
     params, duration = inputs
-    return params, simulation.simulate(params, duration)
+    return params, simulation.simulate(params, duration, stop)
 
 
 def write_simulation(record: tuple[Params, simulation.Run], out: Path) -> base.Written:
@@ -44,4 +44,5 @@ def write_simulation(record: tuple[Params, simulation.Run], out: Path) -> base.W
     summary = simulation.run_summary(run)
     path = recording.write_recording(out / recording.RECORDING_FILE, params, run)
     return base.Written([path, *report.write_simulation(summary, out)],
-                        report.simulation_lines(summary, path))
+                        report.simulation_lines(summary, path),
+                        interrupted=base.stopped_early(run.interrupted, run.t))

@@ -11,6 +11,8 @@ from pydrake.systems.analysis import Simulator
 from pydrake.systems.primitives import TrajectorySource
 from pydrake.trajectories import PiecewisePolynomial
 
+from fivebar_drake.core.interrupts import advance
+from fivebar_drake.studies.base import duration_limits as base_limits
 from fivebar_drake.mechanisms.parallel4.kinematics import forward, inverse, velocity_jacobian
 from fivebar_drake.mechanisms.parallel4.params import Params
 from fivebar_drake.studies.parallel4.model import Parallel4Plant, closed_form_static_forces
@@ -34,11 +36,12 @@ class Run:
     static_drake: np.ndarray
     gap: np.ndarray
     fk: np.ndarray
+    interrupted: str = ""       # the signal that stopped the run early ("" if it did not)
 
 
 def duration_limits(params: Params) -> dict:
     """A run's duration: the file's by default."""
-    return {"default": params.simulation.duration_s}
+    return base_limits(params.simulation.duration_s, params.simulation.time_step_s)
 
 
 def _velocities(params: Params, t) -> np.ndarray:
@@ -47,7 +50,7 @@ def _velocities(params: Params, t) -> np.ndarray:
     return (params.simulation.poses(t + h) - params.simulation.poses(t - h)) / (2 * h)
 
 
-def simulate(params: Params, duration_s: float | None = None) -> Run:
+def simulate(params: Params, duration_s: float | None = None, stop=None) -> Run:
     """Run the model along the path for duration_s (default: the file's) and sample it."""
     g, m, sim = params.geometry, params.model, params.simulation
     duration = sim.duration_s if duration_s is None else duration_s
@@ -78,9 +81,11 @@ def simulate(params: Params, duration_s: float | None = None) -> Run:
     guide = [j.position_start() for j in model.guide]
     sliders = [j.position_start() for j in model.sliders]
     static_context = plant.CreateDefaultContext()
-    rows = []
+    rows, interrupted = [], ""
     for t in np.arange(0.0, duration + 1e-9, 1 / sim.record_hz):
-        simulator.AdvanceTo(t)
+        interrupted = advance(simulator, t, stop)
+        if interrupted:
+            break
         x = plant.GetPositions(plant_context)
         force = plant.get_net_actuation_output_port().Eval(plant_context)
         plant.SetPositions(static_context, x)
@@ -92,7 +97,7 @@ def simulate(params: Params, duration_s: float | None = None) -> Run:
                      model.loop_gaps(static_context)))
     t, pose, qs, force, static_drake, gap = (np.array(c) for c in zip(*rows))
     return Run(t, pose, sim.poses(t), qs, force, closed_form_static_forces(g, m, pose),
-               static_drake, gap, forward(g, qs, strict=False))
+               static_drake, gap, forward(g, qs, strict=False), interrupted)
 
 
 def run_summary(run: Run) -> dict:

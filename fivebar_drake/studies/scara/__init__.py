@@ -23,9 +23,9 @@ load_simulation = base.simulation_loader(NAME, load_params, simulation.duration_
 
 def simulate(inputs: tuple[ScaraParams, float], progress: bool,
              stop) -> tuple[ScaraParams, simulation.Run]:
-    """The run, a progress line every simulated second (it does not stop early)."""
+    """The run, a progress line every simulated second; a stop request ends it early."""
     params, duration = inputs
-    return params, simulation.run(params, duration, progress)
+    return params, simulation.run(params, duration, progress, stop)
 
 
 def write_simulation(record: tuple[ScaraParams, simulation.Run], out: Path) -> base.Written:
@@ -37,4 +37,5 @@ def write_simulation(record: tuple[ScaraParams, simulation.Run], out: Path) -> b
     return base.Written([*plots.write_simulation(run, summary, error, out),
                          recording.write_recording(path, params, run, error),
                          *report.write_simulation(summary, out)],
-                        report.simulation_lines(summary, path))
+                        report.simulation_lines(summary, path),
+                        interrupted=base.stopped_early(run.interrupted, run.t))

@@ -17,6 +17,8 @@ from pydrake.systems.primitives import (Demultiplexer, LogVectorOutput, MatrixGa
 from pydrake.trajectories import PiecewisePolynomial
 
 from fivebar_drake.core.files import say
+from fivebar_drake.core.interrupts import advance
+from fivebar_drake.studies.base import duration_limits as base_limits
 from fivebar_drake.core.motor import LineMotor, MotorModel, clip_flags
 from fivebar_drake.mechanisms.scara import Dynamics, Scara, ScaraParams, seed_inertia
 from fivebar_drake.mechanisms.scara.params import MAX_DURATION_S
@@ -47,8 +49,8 @@ def sized_motors(params: ScaraParams) -> list[LineMotor]:
 def duration_limits(params: ScaraParams) -> dict:
     """A run's duration: the trajectory's by default, at least 10 plant steps, at most
     MAX_DURATION_S."""
-    return {"default": params.trajectory.duration_s, "low": 10 * params.simulation.time_step_s,
-            "high": MAX_DURATION_S, "why": "at least 10 plant steps"}
+    return base_limits(params.trajectory.duration_s, params.simulation.time_step_s,
+                       MAX_DURATION_S)
 
 
 def _line(peak, ratio, speed) -> LineMotor:
@@ -68,9 +70,11 @@ class Run:
     record: np.ndarray
     motors: list
     wall_s: float
+    interrupted: str = ""       # the signal that stopped the run early ("" if it did not)
 
 
-def run(params: ScaraParams, duration_s: float | None = None, progress: bool = False) -> Run:
+def run(params: ScaraParams, duration_s: float | None = None, progress: bool = False,
+        stop=None) -> Run:
     """Simulate the arm following the seed's trajectory for duration_s (default: the
     trajectory's duration; see duration_limits)."""
     sim = params.simulation
@@ -122,8 +126,11 @@ def run(params: ScaraParams, duration_s: float | None = None, progress: bool = F
     context = simulator.get_mutable_context()
     plant.SetPositionsAndVelocities(plant.GetMyMutableContextFromRoot(context), x_des[0])
     start = time.perf_counter()
+    interrupted = ""
     for t_stop in np.append(np.arange(1.0, duration, 1.0), duration):
-        simulator.AdvanceTo(float(t_stop))
+        interrupted = advance(simulator, float(t_stop), stop)
+        if interrupted:
+            break
         if progress:
             say(f"  simulated {t_stop:.1f} of {duration:g} s")
     wall = time.perf_counter() - start
@@ -131,7 +138,7 @@ def run(params: ScaraParams, duration_s: float | None = None, progress: bool = F
     x = log.data().T
     rec = np.stack([r.FindLog(context).data().T for r in records], axis=2)   # (n, 3, joint)
     return Run(log.sample_times(), x[:, iq], x[:, nq + iv], desired,
-               np.transpose(rec, (0, 2, 1)), motors, wall)
+               np.transpose(rec, (0, 2, 1)), motors, wall, interrupted)
 
 
 def summarize(params: ScaraParams, r: Run) -> dict:
