@@ -98,7 +98,7 @@ def _evaluate_group(designs: list[Params], path: str, model: str) -> list[dict]:
         load = share[:, None] * np.array([p.robot.total_mass_kg * p.robot.gravity_m_s2
                                           for p in designs])
     loads = dataclasses.replace(full_model(first), foot_load_N=load)
-    total = first.mechanism.torques(loads, pose, qd, qdd).total          # (N, designs, 2)
+    total = first.fivebar_leg.torques(loads, pose, qd, qdd).total          # (N, designs, 2)
     rows = []
     for i, p in enumerate(designs):
         figures = motor_figures(p.motor, p.checks, total[:, i], qd[:, i])

@@ -68,7 +68,7 @@ def analyze(params: Params, path: str = "seed_ellipse") -> Analysis:
     samples = sample_gait(params.leg, params.gait, path)
     models = {m.name: m for m in (seed_model(params), full_model(params),
                                   trot_model(params, path, samples.t))}
-    tbs = {name: params.mechanism.torques(m, samples.pose, samples.qd, samples.qdd)
+    tbs = {name: params.fivebar_leg.torques(m, samples.pose, samples.qd, samples.qdd)
            for name, m in models.items()}
     measures = singularity_measures(params.leg, samples.pose)
     metrics = design_metrics(params, samples, models, tbs)

@@ -72,7 +72,7 @@ def interval_table(setup: Setup, params: Params, context) -> dict:
     command, delivered, applied = (samples[:, :, i] for i in range(3))
     at_peak, at_line = clip_flags(params.motor, command, delivered)
     return {"t": times[1:], "state": states[1:],
-            "gap": params.mechanism.loop_gaps(states[1:, tree_q]).reshape(len(dt), -1),
+            "gap": params.fivebar_leg.loop_gaps(states[1:, tree_q]).reshape(len(dt), -1),
             "speed": np.diff(q_act, axis=0) / dt,
             "contact_generalized": np.diff(integrals, axis=0) / dt,
             "command": command.mean(1), "motor_torque": delivered.mean(1),

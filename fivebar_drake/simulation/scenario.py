@@ -31,7 +31,7 @@ from fivebar_drake.robots.quadruped.config import load_params, with_gait
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.closure import CLOSURES, Closure, CompliantBushing
 from fivebar_drake.robots.quadruped.plant import default_plant_config
-from fivebar_drake.robots.quadruped.legs import TROT_PHASES_RAD
+from fivebar_drake.robots.quadruped.legs import LEGS, TROT_PHASES_RAD
 from fivebar_drake.simulation.systems import CONTROLLERS, MIN_TIME_STEP_S, Controller, FootLeg
 
 
@@ -167,8 +167,8 @@ class Scenario:
                self.controller.control_period_s, why="the motor model samples every command of "
                                                      "the controller (scenario.control_period_s)")
         number("scenario.load_transfer_s", self.load_transfer_s, 0.0)
-        require(len(self.phases_rad) == 4, "scenario.phases_rad", self.phases_rad,
-                "needs 4 values (FL, FR, RL, RR)")
+        require(len(self.phases_rad) == len(LEGS), "scenario.phases_rad", self.phases_rad,
+                f"needs {len(LEGS)} values ({', '.join(LEGS)})")
         for i, phase in enumerate(self.phases_rad):
             number(f"scenario.phases_rad[{i}]", phase, -MAX_PHASE_RAD, MAX_PHASE_RAD)
         check_simulator_config(self.simulator_config, "scenario.simulator_config")

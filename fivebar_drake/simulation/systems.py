@@ -102,7 +102,7 @@ class FootLegController(LeafSystem):
 
     def __init__(self, params: Params, layout: RobotLayout, gains: ControlGains, knobs: FootLeg):
         super().__init__()
-        self._mechanism, self._layout = params.mechanism, layout
+        self._mechanism, self._layout = params.fivebar_leg, layout
         self.constants = LawConstants(
             state=layout.state,
             hips_m=np.ascontiguousarray(layout.hips_m, dtype=float),
@@ -194,7 +194,7 @@ class FootLeg(Controller):
         """Gains from the robot's numbers: the swing joint's inertia is the largest diagonal
         entry of the leg's mass matrix at home plus the reflected rotor inertia
         (derive_gains)."""
-        leg = params.mechanism
+        leg = params.fivebar_leg
         home = leg.inverse(np.array([params.gait.x_center_m, params.gait.y_home_m]))
         leg_inertia = (np.max(np.diag(leg.mass_matrix(home)))
                        + params.motor.reflected_inertia_kg_m2)

@@ -75,7 +75,7 @@ def test_motor_torques_are_the_lagrangian_ones(params, rng, which):
     qd, qdd = rng.normal(0, 3, gait.qd.shape), rng.normal(0, 30, gait.qdd.shape)
     for rates in ((gait.qd, gait.qdd), (qd, qdd)):
         jl = joint_loads(params.leg, params.links, model, gait.pose, *rates)
-        want = params.mechanism.torques(model, gait.pose, *rates).total
+        want = params.fivebar_leg.torques(model, gait.pose, *rates).total
         np.testing.assert_allclose(jl.torques, want, rtol=1e-10, atol=1e-12)
 
 

@@ -52,7 +52,7 @@ def fivebar_leg() -> Example:
                                           rest, rest, model.foot_load_N)
 
     points = sample_gait(params.leg, params.gait).pose.f[::16]
-    return Example(params.mechanism, points, model, drake)
+    return Example(params.fivebar_leg, points, model, drake)
 
 
 def ballscrew() -> Example:

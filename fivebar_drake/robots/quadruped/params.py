@@ -87,7 +87,7 @@ class Params:
     body: Body
 
     @property
-    def mechanism(self) -> FiveBarLeg:
+    def fivebar_leg(self) -> FiveBarLeg:
         """Each leg: the 5-bar (every part of mechanisms/base.py and its torque breakdown)."""
         return FiveBarLeg(self.leg, self.links)
 

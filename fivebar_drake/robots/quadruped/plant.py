@@ -131,7 +131,7 @@ def set_standing_pose(plant, context, instance, legs, params: Params) -> None:
     """Standing pose in a plant context: every loop closed exactly (closed-form IK), at rest,
     feet at (x_center, y_home) on the ground."""
     foot = np.array([params.gait.x_center_m, params.gait.y_home_m])
-    x = params.mechanism.tree_positions(params.mechanism.inverse(foot))
+    x = params.fivebar_leg.tree_positions(params.fivebar_leg.inverse(foot))
     q = plant.GetPositions(context)
     for leg in legs:
         q[leg_indices(plant, instance, leg).q] = x

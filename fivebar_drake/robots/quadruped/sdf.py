@@ -39,7 +39,7 @@ def leg_sdf(params: Params, leg: str, parent: str, hip_xyz, closure,
     look = SdfLook(link_width_m=b.link_width_m, tool_xml=foot, limit_xml=limit, drive_xml=drive)
     frame = element("frame", pose(*hip_xyz, *PLANE_RPY, relative_to=parent),
                     name=f"{leg}_plane", attached_to=parent)
-    return frame + "\n" + params.mechanism.sdf_elements(leg, parent, f"{leg}_plane", closure,
+    return frame + "\n" + params.fivebar_leg.sdf_elements(leg, parent, f"{leg}_plane", closure,
                                                         bushing, look)
 
 
