@@ -8,12 +8,14 @@ from __future__ import annotations
 from dataclasses import dataclass
 import numpy as np
 
-from fivebar_drake.analysis.force_capability import (home_capability, max_force, support_available)
+from fivebar_drake.analysis.force_capability import (MODE_NAMES, home_capability, max_force,
+                                                     support_available)
 from fivebar_drake.analysis.gear_ratio import GearTrade, RATIO_RANGE, gear_trade
 from fivebar_drake.analysis.joint_loads import JOINT_LINKS, JOINT_NAMES, JointLoads, joint_loads
 from fivebar_drake.core.thermal import Thermal, rms_current, thermal_margin
-from fivebar_drake.mechanisms.fivebar import (DynamicsModel, GaitSamples, MOTORS, TorqueBreakdown,
-                                              foot_jacobian)
+from fivebar_drake.mechanisms.fivebar import (ALL_MODES, DynamicsModel, GaitSamples,
+                                              MOTORS, TorqueBreakdown, UnreachableError,
+                                              foot_jacobian, inverse)
 from fivebar_drake.robots.quadruped.params import Params
 
 
@@ -65,8 +67,15 @@ def _home(params: Params) -> dict:
     home = home_capability(params.leg, params.motor.peak_torque_Nm, foot)
     vertical = {m: v["max_vertical_N"] for m, v in home.items() if v is not None}
     ranked = sorted(vertical, key=vertical.get, reverse=True)
+    why = {}
+    for mode, name in zip(ALL_MODES, MODE_NAMES):
+        if home[name] is None:
+            try:
+                inverse(params.leg, np.asarray(foot, dtype=float), mode)
+            except UnreachableError as err:
+                why[name] = str(err)
     return {"home_foot_m": list(foot), "peak_torque_Nm": params.motor.peak_torque_Nm,
-            "home_pose": home, "support_ranking": ranked,
+            "home_pose": home, "home_pose_null_why": why, "support_ranking": ranked,
             "most_support_over_next": (vertical[ranked[0]] / vertical[ranked[1]]
                                        if len(ranked) > 1 else None)}
 

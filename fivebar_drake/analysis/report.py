@@ -153,6 +153,20 @@ def markdown(analysis: Analysis, sampled: dict | None = None) -> str:
     return "\n".join(lines) + "\n"
 
 
+def _defined(value, path: str, undefined: dict):
+    """The report's data with every non-finite number null, its path noted in undefined, so
+    report.json is always written (JSON has no NaN) and says where a figure does not exist."""
+    if isinstance(value, dict):
+        return {k: _defined(v, f"{path}.{k}" if path else str(k), undefined)
+                for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_defined(v, f"{path}[{i}]", undefined) for i, v in enumerate(value)]
+    if isinstance(value, float) and not math.isfinite(value):
+        undefined[path] = True
+        return None
+    return value
+
+
 def _maybe(value, fmt: str) -> str:
     return "n/a" if value is None else format(value, fmt)
 
@@ -163,6 +177,10 @@ def write_report(analysis: Analysis, out_dir: Path, sampled: dict | None = None)
     their paths."""
     sampled = sampled or sampling_error(analysis.params, analysis.samples.path)
     data = dict(analysis.results, assumptions=assumptions(analysis), sampling_error=sampled)
+    undefined = {}
+    data = _defined(data, "", undefined)
+    data["undefined"] = {path: "not defined for this design (a singular pose or a mode that "
+                               "is no assembly): left null" for path in undefined}
     texts = (markdown(analysis, sampled), json.dumps(data, indent=2, allow_nan=False) + "\n")
     out_dir.mkdir(parents=True, exist_ok=True)
     return [write_atomic(out_dir / name, text) for name, text in zip(REPORT_FILES, texts)]

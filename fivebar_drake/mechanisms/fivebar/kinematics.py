@@ -152,12 +152,25 @@ def forward(leg: LegGeometry, q, e_branch=None) -> LegPose:
 def inverse(leg: LegGeometry, foot, mode=KNEES_OUT, strict=True) -> LegPose:
     """Closed-form inverse kinematics (inverse_points) for foot targets (..., 2) in m in one
     assembly mode (c, d). Raises UnreachableError naming the first target out of reach, or
-    with strict=False gives NaN there."""
+    with strict=False gives NaN there. A pose whose knees C and D coincide (within
+    COINCIDENT_KNEES_M: two modes of a coaxial leg with equal upper links) is no assembly: the
+    loop collapses to a serial chain and the motors cannot hold the foot; it counts as out of
+    reach."""
     foot = np.asarray(foot, dtype=float)
     shape = foot.shape[:-1]
     fx, fy = _flat(foot[..., 0]), _flat(foot[..., 1])
     ta, tb, cx, cy, dx, dy, ex, ey = inverse_points(leg.core, fx, fy, float(mode[0]),
                                                     float(mode[1]))
+    collapsed = np.hypot(cx - dx, cy - dy) < COINCIDENT_KNEES_M
+    if np.any(collapsed):
+        if strict:
+            i = int(np.flatnonzero(collapsed)[0])
+            raise UnreachableError(
+                f"foot target {(foot.reshape(-1, 2)[i] * 1e3).round(3).tolist()} mm in mode "
+                f"{tuple(int(m) for m in mode)}: the knees C and D coincide, which is no "
+                f"assembly ({int(np.count_nonzero(collapsed))} of {collapsed.size} poses)")
+        for a in (ta, tb, cx, cy, dx, dy, ex, ey):
+            a[collapsed] = np.nan
     if strict:
         def what(joint):
             return lambda i: (f"foot target {(foot.reshape(-1, 2)[i] * 1e3).round(3).tolist()} "
@@ -167,6 +180,9 @@ def inverse(leg: LegGeometry, foot, mode=KNEES_OUT, strict=True) -> LegPose:
         _require_reach(cx, ax, ay, leg.ac_m, ex, ey, leg.ce_m, what("AE"))
     q = np.stack([ta, tb], axis=-1).reshape(shape + (2,))
     return _pose(shape, q, cx, cy, dx, dy, ex, ey, fx, fy)
+
+
+COINCIDENT_KNEES_M = 1e-9   # knees this close are one point: no closed loop
 
 
 def reachable(leg: LegGeometry, foot, mode=KNEES_OUT) -> np.ndarray:
