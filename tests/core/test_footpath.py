@@ -164,3 +164,50 @@ def test_stance_weight_hands_load_over_smoothly(params):
     assert np.all(w[(t > 0.29) & (t < 0.96)] == 1.0)        # 40 ms after touchdown .. before lift-off
     assert np.max(np.abs(np.diff(w))) < 1e-3                # continuous at 10 us steps
     assert w[np.searchsorted(t, 0.27)] == pytest.approx(0.5, abs=1e-3)   # halfway up at 20 ms
+
+
+def test_doggo_path_by_its_own_derivatives(params):
+    """The Doggo-style path (half sines up in flight, down in stance): velocity and acceleration
+    against central differences of the position inside each segment, the position continuous
+    through lift-off and touchdown, the stance at constant x speed 2a / ((1 - share) T)."""
+    from fivebar_drake.core.footpath import Doggo
+
+    path = Doggo(flight_height_m=0.03, stance_depth_m=0.01, flight_share=0.35)
+    g = params.gait
+    t = np.linspace(0.0, g.period_s, 14001)[:-1]
+    pts = evaluate(g, path, t)
+    dt = t[1] - t[0]
+    inside = np.ones(t.size, bool)
+    u = (g.frequency_hz * t) % 1.0
+    for edge in (0.0, 0.35, 1.0):
+        inside &= np.abs(u - edge) > 3 * dt * g.frequency_hz
+    for k in range(2):
+        v = np.gradient(pts.pos[:, k], dt)
+        a = np.gradient(pts.vel[:, k], dt)
+        np.testing.assert_allclose(v[inside], pts.vel[inside, k], atol=1e-5)
+        np.testing.assert_allclose(a[inside], pts.acc[inside, k], atol=1e-3 * max(
+            1.0, np.abs(pts.acc[:, k]).max()))
+    step = np.abs(np.diff(pts.pos, axis=0)).max()
+    assert step < 2 * g.a_m / 0.35 * g.frequency_hz * dt * 1.01       # no jump in position
+    stance = pts.stance
+    assert np.allclose(pts.vel[stance, 0], 2 * g.a_m / ((1 - 0.35) * g.period_s))
+    assert path.stance_speed(g) == pytest.approx(2 * g.a_m / ((1 - 0.35) * g.period_s))
+    assert pts.pos[stance, 1].min() == pytest.approx(g.y_home_m - 0.01, abs=1e-6)
+    assert pts.pos[~stance, 1].max() == pytest.approx(g.y_home_m + 0.03, abs=1e-6)
+
+
+def test_doggo_path_through_the_seams(tmp_path):
+    """A registered gait variant: analyze --gait doggo, and a scenario naming it with its own
+    fields (its checks name them)."""
+    from fivebar_drake.cli import main
+    from fivebar_drake.simulation.scenario import load_scenario
+    from fivebar_drake.core.validation import ParameterError
+
+    assert main(["analyze", "--gait", "doggo", "--out", str(tmp_path / "a")]) == 0
+    assert "Doggo-style" in (tmp_path / "a" / "report.md").read_text()
+    scenario = tmp_path / "s.yaml"
+    scenario.write_text("gait: {kind: doggo, stance_depth_m: 0.005, flight_share: 0.3}\n")
+    assert load_scenario(scenario).gait.flight_share == 0.3
+    scenario.write_text("gait: {kind: doggo, flight_share: 1.5}\n")
+    with pytest.raises(ParameterError, match="flight_share"):
+        load_scenario(scenario)
