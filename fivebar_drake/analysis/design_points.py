@@ -13,10 +13,10 @@ from __future__ import annotations
 import dataclasses
 import numpy as np
 
-from fivebar_drake.core.checks import Checks, motor_checks, verdict
+from fivebar_drake.core.checks import Checks, checks_of, verdict
 from fivebar_drake.core.footpath import cycle_phase, foot_path, path_arrays, stance_loads
 from fivebar_drake.core.motor import Motor
-from fivebar_drake.core.thermal import rms_current, thermal_margin
+from fivebar_drake.core.thermal import thermal_margin
 from fivebar_drake.core.validation import require
 from fivebar_drake.mechanisms.fivebar import (MOTORS, UnreachableError, periodic_derivatives,
                                               track_modes)
@@ -28,14 +28,18 @@ MODELS = ("full_trot", "full")   # leg_loads.trot_model, leg_loads.full_model
 def motor_figures(motor: Motor, checks: Checks, torque, speed) -> dict:
     """Per-motor figures of torques (N*m) at motor speeds (rad/s) sampled over one cycle
     (N, motors), time first: peak |torque|, RMS torque, safety factor peak_torque / peak, peak
-    |speed|, the least ratio of the envelope's torque to the demand, and the motor's checks
-    (core/checks.motor_checks) as check_* columns."""
+    |speed|, the least ratio of the envelope's torque to the demand, the RMS current, and the
+    motor's checks (core/checks.motor_checks: the margins and currents of both motors in one
+    call each)."""
     total = np.abs(torque)
     peak = total.max(0)
+    margins, outside = motor.speed_margins(torque, speed)
+    current = np.sqrt(np.mean(np.square(motor.currents(torque, speed)), 0))
     out = {"peak_torque_Nm": peak, "rms_torque_Nm": np.sqrt(np.mean(torque**2, 0)),
            "safety_factor": motor.peak_torque_Nm / peak, "peak_speed_rad_s": np.abs(speed).max(0),
-           "torque_speed_margin": np.min(motor.torque_limit(speed) / np.maximum(total, 1e-12), 0)}
-    per_motor = [motor_checks(motor, checks, torque[:, j], speed[:, j], peak[j])
+           "torque_speed_margin": np.min(motor.torque_limit(speed) / np.maximum(total, 1e-12), 0),
+           "rms_current_A": current}
+    per_motor = [checks_of(motor, checks, peak[j], margins[:, j], outside[:, j], current[j])
                  for j in range(torque.shape[1])]
     out["speed_margin"] = np.array([c["speed"]["least_margin"] if c["speed"]["least_margin"]
                                     is not None else np.inf for c in per_motor])
@@ -104,7 +108,7 @@ def _evaluate_group(designs: list[Params], path: str, model: str) -> list[dict]:
         figures = motor_figures(p.motor, p.checks, total[:, i], qd[:, i])
         checks = figures.pop("checks")
         if p.motor.has_thermal_model:    # the winding at the cycle's RMS current
-            heat = thermal_margin(p.motor, rms_current(p.motor, total[:, i], qd[:, i]))
+            heat = thermal_margin(p.motor, figures["rms_current_A"])
             figures["thermal_margin_K"] = heat.margin_K
             figures["time_to_winding_limit_s"] = heat.time_to_limit_s
         row = {"stride_speed_m_s": 2.0 * p.gait.a_m * p.gait.frequency_hz}

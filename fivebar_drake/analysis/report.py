@@ -8,7 +8,7 @@ from pathlib import Path
 
 from fivebar_drake.analysis.design_report import design_assumptions, design_lines
 from fivebar_drake.analysis.torques import Analysis
-from fivebar_drake.core.files import write_atomic
+from fivebar_drake.core.files import json_ready, write_atomic
 from fivebar_drake.core.footpath import foot_path
 from fivebar_drake.mechanisms.fivebar import LINK_NAMES, MOTORS, physical_izz
 from fivebar_drake.robots.quadruped.config import sampling_error
@@ -153,20 +153,6 @@ def markdown(analysis: Analysis, sampled: dict | None = None) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _defined(value, path: str, undefined: dict):
-    """The report's data with every non-finite number null, its path noted in undefined, so
-    report.json is always written (JSON has no NaN) and says where a figure does not exist."""
-    if isinstance(value, dict):
-        return {k: _defined(v, f"{path}.{k}" if path else str(k), undefined)
-                for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [_defined(v, f"{path}[{i}]", undefined) for i, v in enumerate(value)]
-    if isinstance(value, float) and not math.isfinite(value):
-        undefined[path] = True
-        return None
-    return value
-
-
 def _maybe(value, fmt: str) -> str:
     return "n/a" if value is None else format(value, fmt)
 
@@ -177,8 +163,8 @@ def write_report(analysis: Analysis, out_dir: Path, sampled: dict | None = None)
     their paths."""
     sampled = sampled or sampling_error(analysis.params, analysis.samples.path)
     data = dict(analysis.results, assumptions=assumptions(analysis), sampling_error=sampled)
-    undefined = {}
-    data = _defined(data, "", undefined)
+    undefined = []
+    data = json_ready(data, undefined)
     data["undefined"] = {path: "not defined for this design (a singular pose or a mode that "
                                "is no assembly): left null" for path in undefined}
     texts = (markdown(analysis, sampled), json.dumps(data, indent=2, allow_nan=False) + "\n")

@@ -119,14 +119,24 @@ def motor_checks(motor: Motor, checks: Checks, demand_Nm, speed_rad_s, torque_fi
     and the deciding check."""
     demand = np.asarray(demand_Nm, dtype=float)
     delivered = demand if delivered_Nm is None else np.asarray(delivered_Nm, dtype=float)
+    margins, outside = motor.speed_margins(demand, speed_rad_s)
+    rms = float(np.sqrt(np.mean(np.square(motor.currents(delivered, speed_rad_s)))))
+    return checks_of(motor, checks, torque_figure_Nm, margins, outside, rms)
+
+
+def checks_of(motor: Motor, checks: Checks, torque_figure_Nm: float, margins, outside,
+              rms_current_A: float) -> dict:
+    """motor_checks from the figures already computed: the torque figure (N*m), the speed
+    margins and outside flags of the operating points (Motor.speed_margins) and the RMS current
+    (A, Motor.currents)."""
     out = {"torque": torque_check(checks, motor.peak_torque_Nm, torque_figure_Nm),
-           "speed": speed_check(checks, *motor.speed_margins(demand, speed_rad_s))}
+           "speed": speed_check(checks, margins, outside)}
     continuous = getattr(motor, "rated_continuous_current_A", None)
     if continuous is None:
         out["thermal"] = thermal_check(checks, None, 0.0)
     else:
-        rms = float(np.sqrt(np.mean(np.square(motor.currents(delivered, speed_rad_s)))))
-        steady = float(motor.steady_winding_C(rms)) if motor.has_thermal_model else None
-        out["thermal"] = thermal_check(checks, continuous, rms, steady)
+        steady = (float(motor.steady_winding_C(rms_current_A)) if motor.has_thermal_model
+                  else None)
+        out["thermal"] = thermal_check(checks, continuous, rms_current_A, steady)
     out["verdict"], out["deciding_check"] = worst_check(out)
     return out

@@ -6,6 +6,7 @@ file or the new complete one, never a truncated one), console lines that survive
 from __future__ import annotations
 
 import contextlib
+import math
 import os
 import stat
 import sys
@@ -109,6 +110,21 @@ def write_atomic(path, text: str) -> Path:
             f.flush()
             os.fsync(f.fileno())
     return path
+
+
+def json_ready(value, undefined: list | None = None, path: str = ""):
+    """value (nested dicts, lists, numbers) with every non-finite float as None, so json.dumps
+    with allow_nan=False takes it; the dotted path of each one is appended to undefined."""
+    if isinstance(value, dict):
+        return {k: json_ready(v, undefined, f"{path}.{k}" if path else str(k))
+                for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [json_ready(v, undefined, f"{path}[{i}]") for i, v in enumerate(value)]
+    if isinstance(value, float) and not math.isfinite(value):
+        if undefined is not None:
+            undefined.append(path)
+        return None
+    return value
 
 
 def say(text: str, stream=None) -> None:

@@ -243,7 +243,8 @@ class Motor:
                                np.ascontiguousarray(speed.ravel()))
         return m.reshape(torque.shape), out.reshape(torque.shape)
 
-    def _check_common(self) -> None:
+    def _check_fields(self) -> None:
+        """The fields every actuator has, before the law is built from them."""
         check_number("motor.gear_ratio", self.gear_ratio, 0.0, MAX_GEAR_RATIO, low_open=True)
         check_number("motor.gear_efficiency", self.gear_efficiency, 0.0, 1.0, low_open=True)
         check_number("motor.rotor_inertia_kg_m2", self.rotor_inertia_kg_m2, 0.0,
@@ -251,6 +252,9 @@ class Motor:
         check_number("motor.coulomb_friction_Nm", self.coulomb_friction_Nm, 0.0, MAX_TORQUE_NM)
         check_number("motor.viscous_friction_Nm_s", self.viscous_friction_Nm_s, 0.0,
                      MAX_TORQUE_NM)
+
+    def _check_output(self) -> None:
+        """The output side the law gives: within bounds, and able to turn against friction."""
         peak, no_load = self.peak_torque_Nm, self.no_load_speed_rad_s
         require(peak <= MAX_TORQUE_NM and no_load <= MAX_SPEED_RAD_S, "motor.gear_ratio",
                 self.gear_ratio, f"gives {peak:g} N m and {no_load:g} rad/s at the output, "
@@ -296,6 +300,7 @@ class BldcMotor(Motor):
             check_number(f"motor.{name}", getattr(self, name), 0.0, high, low_open=True)
         check_number("motor.winding_resistance_ohm", self.winding_resistance_ohm,
                      MIN_RESISTANCE_OHM, MAX_RESISTANCE_OHM)
+        self._check_fields()
         self._check_table()
         object.__setattr__(self, "_law", ActuatorLaw(
             gear=float(self.gear_ratio), efficiency=float(self.gear_efficiency),
@@ -306,7 +311,7 @@ class BldcMotor(Motor):
             table_current=np.array(self.current_table_A or (), dtype=float),
             table_torque=np.array(self.torque_table_Nm or (), dtype=float),
             coulomb=float(self.coulomb_friction_Nm), viscous=float(self.viscous_friction_Nm_s)))
-        self._check_common()
+        self._check_output()
         stall = self._law.phase_voltage / self.winding_resistance_ohm
         require(stall >= self.peak_current_A, "motor.peak_current_A", self.peak_current_A,
                 f"the bus drives at most V_bus / sqrt(3) / R = {stall:.4g} A through the "
@@ -406,13 +411,14 @@ class LineMotor(Motor):
                      MAX_TORQUE_NM, low_open=True)
         check_number("motor.motor_no_load_speed_rad_s", self.motor_no_load_speed_rad_s, 0.0,
                      MAX_SPEED_RAD_S * MAX_GEAR_RATIO, low_open=True)
+        self._check_fields()
         object.__setattr__(self, "_law", ActuatorLaw(
             gear=float(self.gear_ratio), efficiency=float(self.gear_efficiency),
             kt=float(self.motor_stall_torque_Nm), resistance=1.0, phase_voltage=1.0,
             back_emf=1.0 / self.motor_no_load_speed_rad_s, peak_current=1.0,
             table_current=np.zeros(0), table_torque=np.zeros(0),
             coulomb=float(self.coulomb_friction_Nm), viscous=float(self.viscous_friction_Nm_s)))
-        self._check_common()
+        self._check_output()
 
     @property
     def law(self) -> ActuatorLaw:

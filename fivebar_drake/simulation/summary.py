@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from fivebar_drake.core.checks import CHECK_ORDER, SEVERITY, motor_checks
-from fivebar_drake.core.files import write_atomic
+from fivebar_drake.core.files import json_ready, write_atomic
 from fivebar_drake.core.footpath import cycle_phase, evaluate, stance_loads
 from fivebar_drake.core.rotation import body_rotation, tilt_deg
 from fivebar_drake.mechanisms.fivebar import (MOTORS, forward, link_jacobians, static_torques,
@@ -202,8 +202,8 @@ def motor_summary(sig: Signals, params: Params, win, cycle, cycles: int, i: int,
     sf = _ratio(motor.peak_torque_Nm, demand_p99)
     checks = motor_checks(motor, params.checks, demand, speed, demand_p99, applied) if \
         demand.size else None
-    saturated = _mean(sig.clipped_peak[win, i, j] + sig.clipped_line[win, i, j])
-    unsaturated = demand[(sig.clipped_peak[win, i, j] + sig.clipped_line[win, i, j]) == 0]
+    clipped = sig.clipped_peak[win, i, j] + sig.clipped_line[win, i, j]
+    saturated, unsaturated = _mean(clipped), demand[clipped == 0]
     return {
         "checks": checks, "unsaturated_demand_p99_Nm": _p(unsaturated),
         "peak_torque_Nm": _peak(applied), "p99_torque_Nm": _p(applied),
@@ -504,21 +504,10 @@ def markdown(s: dict, params: Params) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _finite(value):
-    """The summary with non-finite numbers (a diverged run) as null, so the JSON stays valid."""
-    if isinstance(value, dict):
-        return {k: _finite(v) for k, v in value.items()}
-    if isinstance(value, list):
-        return [_finite(v) for v in value]
-    if isinstance(value, float) and not np.isfinite(value):
-        return None
-    return value
-
-
 def write_summary(summary: dict, params: Params, out_dir: Path) -> list[Path]:
     """Write SUMMARY_FILES into out_dir, each atomically, summary.json last: call it after every
     other output of the run is written, so a summary.json always describes complete files."""
     texts = (markdown(summary, params),
-             json.dumps(_finite(summary), indent=2, allow_nan=False) + "\n")
+             json.dumps(json_ready(summary), indent=2, allow_nan=False) + "\n")
     out_dir.mkdir(parents=True, exist_ok=True)
     return [write_atomic(out_dir / name, text) for name, text in zip(SUMMARY_FILES, texts)]

@@ -18,7 +18,7 @@ import os
 import sys
 import tempfile
 import time
-from contextlib import contextmanager
+from contextlib import contextmanager, nullcontext
 from dataclasses import dataclass
 from pathlib import Path
 from urllib.parse import urlsplit
@@ -121,7 +121,7 @@ def _refuse(out: Path, name: str, why: str) -> ParameterError:
                           "--out", str(out / name))
 
 
-def _previous_rows(spec: SweepSpec, out: Path, header: list[str],
+def _previous_rows(fingerprint: str, out: Path, header: list[str],
                    points: list[dict]) -> tuple[list[dict] | None, int]:
     """What out holds of this sweep, read only: (None: no sweep.json, a new sweep; else the
     rows of points.csv that belong to it, the number of rows dropped). Rows that do not belong
@@ -141,7 +141,7 @@ def _previous_rows(spec: SweepSpec, out: Path, header: list[str],
         raise _refuse(out, SPEC_FILE, "nested too deeply") from None
     if not isinstance(old, dict) or not isinstance(old.get("fingerprint"), str):
         raise _refuse(out, SPEC_FILE, "not a sweep record (an object with a fingerprint)")
-    if old["fingerprint"] != spec.fingerprint():
+    if old["fingerprint"] != fingerprint:
         raise ParameterError(f"{out} holds the results of another sweep ({old.get('spec')}), or "
                              "the spec or a file it reads (config, scenario, the scenario's "
                              "params_file) changed since: choose another --out or remove the "
@@ -240,7 +240,8 @@ def run_sweep(spec: SweepSpec, out: str | Path, workers: int | None = None,
     header = columns(spec.fidelity, spec.names)
     check_output_folder(out)
     points = spec.points()
-    rows, dropped = _previous_rows(spec, out, header, points)
+    fingerprint = spec.fingerprint()          # reads the spec's files once
+    rows, dropped = _previous_rows(fingerprint, out, header, points)
     if dropped and progress:
         say(f"{out / TABLE_FILE}: {dropped} row(s) do not belong to this sweep (a point it does "
             "not have, repeated, other values, or cut short): computing them again", sys.stderr)
@@ -248,17 +249,17 @@ def run_sweep(spec: SweepSpec, out: str | Path, workers: int | None = None,
     todo = [(i, p) for i, p in enumerate(points) if i not in done]
     bar = Progress(len(points), len(done), progress)
     computed = 0
-    with _client(workers, scheduler, client) if todo else _no_client() as dask:
+    with _client(workers, scheduler, client) if todo else nullcontext() as dask:
         out.mkdir(parents=True, exist_ok=True)     # the inputs and the scheduler are good
         if rows is None:
-            write_atomic(out / SPEC_FILE, json.dumps({"fingerprint": spec.fingerprint(),
+            write_atomic(out / SPEC_FILE, json.dumps({"fingerprint": fingerprint,
                                                       "spec": spec.source, "columns": header},
                                                      indent=1))
         _write_table(out / TABLE_FILE, header, sorted(rows or (), key=lambda r: int(r["point"])))
         if todo:
             computed = _compute(dask, spec, params, scenario, todo, out / TABLE_FILE, header,
                                 bar)
-    rows, _ = _previous_rows(spec, out, header, points)
+    rows, _ = _previous_rows(fingerprint, out, header, points)
     rows = sorted(rows, key=lambda r: int(r["point"]))
     _write_table(out / TABLE_FILE, header, rows)
     return SweepResult(table=out / TABLE_FILE, rows=rows, computed=computed,
@@ -266,20 +267,16 @@ def run_sweep(spec: SweepSpec, out: str | Path, workers: int | None = None,
                        dropped=dropped)
 
 
-@contextmanager
-def _no_client():
-    yield None
-
-
 def finished_points(spec: SweepSpec, out: Path) -> tuple[int, int]:
     """(points of the sweep in out's table, points of the sweep), for a message after an
     interruption."""
+    points = spec.points()
     try:
-        rows, _ = _previous_rows(spec, Path(out), columns(spec.fidelity, spec.names),
-                                 spec.points())
+        rows, _ = _previous_rows(spec.fingerprint(), Path(out),
+                                 columns(spec.fidelity, spec.names), points)
     except ParameterError:
         rows = None
-    return len(rows or ()), len(spec.points())
+    return len(rows or ()), len(points)
 
 
 def _compute(client, spec, params, scenario, todo, table: Path, header, bar: Progress) -> int:

@@ -40,6 +40,8 @@ def refused(capsys, argv, *words):
     ("vary:\n  gait.frequency_hz: [500.0]\n", ["gait.frequency_hz", "spec.yaml"]),
     ("vary: {gait.a_m: [0.04]}\nvary: {gait.a_m: [0.05]}\n", ["written twice"]),
     ("a: &x [1, 2]\nvary: {gait.a_m: *x}\n", ["aliases"]),
+    (SPEC + "fidelity: simulation\nstep_check: 5\n", ["step_check = 5", "true or false"]),
+    (SPEC + "step_check: true\n", ["step_check", "simulation points"]),
 ])
 def test_bad_specs_exit_2_and_write_nothing(tmp_path, capsys, text, words):
     spec, out = write(tmp_path, text), tmp_path / "out"
