@@ -40,7 +40,7 @@ def test_analyze_end_to_end(tmp_path, capsys):
             assert r["verdict"] == expect
     assert data["parameters"]["gait"]["samples"] == 60
     home = data["force_capability"]["home_pose"]
-    assert sorted(home) == ["in_in", "in_out", "out_in", "out_out"]
+    assert sorted(home) == ["knees_back", "knees_forward", "knees_in", "knees_out"]
     for forces in home.values():
         assert sorted(forces) == ["isotropic_N", "max_horizontal_N", "max_vertical_N"]
         # every direction includes the vertical and the horizontal one

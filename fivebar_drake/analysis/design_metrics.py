@@ -8,13 +8,12 @@ from __future__ import annotations
 from dataclasses import dataclass
 import numpy as np
 
-from fivebar_drake.analysis.force_capability import (MODE_NAMES, home_capability, max_force,
-                                                     support_available)
+from fivebar_drake.analysis.force_capability import home_capability, max_force, support_available
 from fivebar_drake.analysis.gear_ratio import GearTrade, RATIO_RANGE, gear_trade
 from fivebar_drake.analysis.joint_loads import JOINT_LINKS, JOINT_NAMES, JointLoads, joint_loads
 from fivebar_drake.core.thermal import Thermal, rms_current, thermal_margin
 from fivebar_drake.mechanisms.fivebar import (ALL_MODES, DynamicsModel, GaitSamples,
-                                              MOTORS, TorqueBreakdown, UnreachableError,
+                                              MODE_ALIASES, MODE_NAMES, MOTORS, TorqueBreakdown, UnreachableError,
                                               foot_jacobian, inverse)
 from fivebar_drake.robots.quadruped.params import Params
 
@@ -76,6 +75,7 @@ def _home(params: Params) -> dict:
                 why[name] = str(err)
     return {"home_foot_m": list(foot), "peak_torque_Nm": params.motor.peak_torque_Nm,
             "home_pose": home, "home_pose_null_why": why, "support_ranking": ranked,
+            "former_mode_names": MODE_ALIASES,
             "most_support_over_next": (vertical[ranked[0]] / vertical[ranked[1]]
                                        if len(ranked) > 1 else None)}
 

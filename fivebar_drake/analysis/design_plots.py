@@ -8,13 +8,12 @@ from matplotlib.colors import LogNorm
 import numpy as np
 
 from fivebar_drake.analysis.design_metrics import GEAR_MODEL, PHYSICAL
-from fivebar_drake.analysis.force_capability import (CAPABILITY_KEYS, capability_map, mode_name,
-                                                     workspace_grid)
+from fivebar_drake.analysis.force_capability import CAPABILITY_KEYS, capability_map, workspace_grid
 from fivebar_drake.analysis.gear_ratio import EFFECTS, safety_factors
 from fivebar_drake.analysis.joint_loads import JOINT_NAMES
 from fivebar_drake.analysis.torques import Analysis
 from fivebar_drake.core.thermal import winding_temperature
-from fivebar_drake.mechanisms.fivebar import ALL_MODES, MOTORS
+from fivebar_drake.mechanisms.fivebar import ALL_MODES, MOTORS, mode_name
 
 
 MODEL_STYLE = {"full": "-", "full_trot": "--"}

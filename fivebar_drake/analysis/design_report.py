@@ -4,9 +4,9 @@ assembly modes, torque-speed envelope, thermal check, hinge loads, gear-ratio tr
 from __future__ import annotations
 
 from fivebar_drake.analysis.design_metrics import GEAR_MODEL, PHYSICAL
-from fivebar_drake.analysis.force_capability import CAPABILITY_KEYS, MODE_NAMES
+from fivebar_drake.analysis.force_capability import CAPABILITY_KEYS
 from fivebar_drake.analysis.joint_loads import JOINT_NAMES
-from fivebar_drake.mechanisms.fivebar import MOTORS
+from fivebar_drake.mechanisms.fivebar import MODE_NAMES, MOTORS
 from fivebar_drake.robots.quadruped.params import Params
 
 
@@ -45,7 +45,7 @@ def design_lines(results: dict, params: Params) -> list[str]:
     x, y = (v * 1e3 for v in fc["home_foot_m"])
     lines = ["", "## Force capability", "",
              f"Foot forces the motors (±{fc['peak_torque_Nm']:g} N m) hold statically at the home "
-             f"foot position ({x:g}, {y:g}) mm, per assembly mode (knee C, knee D):", "",
+             f"foot position ({x:g}, {y:g}) mm, per assembly mode (knees_out: knee C forward, knee D back, the diamond; knees_in: both toward the leg's centre line; knees_forward / knees_back: both knees on one side):", "",
              "| mode | largest vertical (N) | largest horizontal (N) | every direction (N) |",
              "|---|---|---|---|"]
     for mode in MODE_NAMES:
@@ -58,7 +58,7 @@ def design_lines(results: dict, params: Params) -> list[str]:
                    if ranked else "No assembly mode reaches the home position")
               + (f", {fc['most_support_over_next']:.2f}x the next, {ranked[1]} "
                  f"({support[ranked[1]]:.1f} N)" if len(ranked) > 1 else "")
-              + f". The gait runs in {', '.join(MODE_NAMES[i] for i in used)}.",
+              + f". The gait runs in {', '.join(used)}.",
               "", "Along the gait (vertical support force available / foot load, least over the "
               "cycle):", "", "| model | at rest | while moving |", "|---|---|---|"]
     for name in PHYSICAL:

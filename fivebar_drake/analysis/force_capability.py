@@ -14,7 +14,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 import numpy as np
 
-from fivebar_drake.mechanisms.fivebar import ALL_MODES, LegGeometry, foot_jacobian, inverse
+from fivebar_drake.mechanisms.fivebar import (ALL_MODES, MODE_NAMES, LegGeometry, foot_jacobian,
+                                              inverse)
 
 
 CAPABILITY_KEYS = ("max_vertical_N", "max_horizontal_N", "isotropic_N")
@@ -25,14 +26,6 @@ def workspace_grid(leg: LegGeometry, nx: int = 241, ny: int = 161):
     y from -R to 0.4 R, R = AC + CE + EF + the motors' spacing."""
     reach = leg.ac_m + leg.ce_m + leg.ef_m + abs(leg.motor_b_m[0] - leg.motor_a_m[0])
     return np.linspace(-reach, reach, nx), np.linspace(-reach, 0.4 * reach, ny)
-
-
-def mode_name(mode) -> str:
-    """An assembly mode (knee C, knee D), +1 out, -1 in, as 'out_in' etc."""
-    return "_".join("out" if m > 0 else "in" for m in mode)
-
-
-MODE_NAMES = tuple(mode_name(m) for m in ALL_MODES)
 
 
 def max_force(jf, peak_torque_Nm: float, direction) -> np.ndarray:

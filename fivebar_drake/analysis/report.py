@@ -140,8 +140,7 @@ def markdown(analysis: Analysis, sampled: dict | None = None) -> str:
     path = analysis.results["path"]
     angles = ", ".join(f"{j} {a:.1f} deg" for j, a in path["min_transmission_angle_deg"].items())
     lines += ["", "## Along the path", "",
-              f"- assembly modes used (index into kinematics.ALL_MODES): "
-              f"{path['assembly_modes_used']}",
+              f"- assembly modes used: {', '.join(path['assembly_modes_used'])}",
               f"- smallest transmission angle from in-line: {angles}",
               f"- largest condition number of J_F: {path['max_cond_jf']:.2f}; smallest |det J_F|: "
               f"{path['min_abs_det_jf_m2']:.3e} m^2"]

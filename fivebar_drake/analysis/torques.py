@@ -9,7 +9,7 @@ import numpy as np
 
 from fivebar_drake.analysis.design_metrics import DesignMetrics, design_metrics, sample_at
 from fivebar_drake.core.checks import motor_checks, verdict
-from fivebar_drake.mechanisms.fivebar import (DynamicsModel, GaitSamples, MOTORS,
+from fivebar_drake.mechanisms.fivebar import (DynamicsModel, GaitSamples, MODE_NAMES, MOTORS,
                                               SingularityMeasures, TorqueBreakdown, sample_gait,
                                               singularity_measures)
 from fivebar_drake.robots.quadruped.leg_loads import full_model, seed_model, trot_model
@@ -80,7 +80,7 @@ def analyze(params: Params, path: str = "seed_ellipse") -> Analysis:
             "gait": path,
             "samples": params.gait.samples,
             "dt_s": params.gait.period_s / params.gait.samples,
-            "assembly_modes_used": sorted({int(i) for i in samples.mode_index}),
+            "assembly_modes_used": [MODE_NAMES[i] for i in sorted({int(i) for i in samples.mode_index})],
             "min_transmission_angle_deg": {
                 j: float(np.degrees(np.min(np.minimum(a, np.pi - a))))
                 for j, a in (("C", measures.angle_c), ("D", measures.angle_d),

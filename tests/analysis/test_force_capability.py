@@ -6,11 +6,12 @@ closed forms."""
 import numpy as np
 import pytest
 
-from fivebar_drake.analysis.force_capability import (CAPABILITY_KEYS, MODE_NAMES, capability_map,
+from fivebar_drake.analysis.force_capability import (CAPABILITY_KEYS, capability_map,
                                                      force_capability, home_capability,
                                                      support_available)
 from fivebar_drake.analysis.torques import analyze
-from fivebar_drake.mechanisms.fivebar import ALL_MODES, foot_jacobian, inverse, sample_gait
+from fivebar_drake.mechanisms.fivebar import (ALL_MODES, MODE_NAMES, foot_jacobian, inverse,
+                                              sample_gait)
 
 PEAK = 5.0
 
@@ -81,7 +82,8 @@ def test_support_while_moving_by_search(params, rng):
 def test_home_pose_modes_in_the_analysis(params):
     home = analyze(params).results["force_capability"]
     assert home["home_foot_m"] == [params.gait.x_center_m, params.gait.y_home_m]
-    assert list(home["home_pose"]) == ["out_out", "out_in", "in_out", "in_in"] == list(MODE_NAMES)
+    assert list(home["home_pose"]) == ["knees_out", "knees_forward", "knees_back", "knees_in"] \
+        == list(MODE_NAMES)
     for mode, name in zip(ALL_MODES, MODE_NAMES):
         jf = foot_jacobian(params.leg, inverse(params.leg, np.array(home["home_foot_m"]), mode))
         want = brute_force(jf, params.motor.peak_torque_Nm)

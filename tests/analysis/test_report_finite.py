@@ -56,5 +56,5 @@ def test_report_is_written_and_finite(name, tmp_path, capsys):
     assert None not in home["support_ranking"]
     if name.startswith("coaxial, equal"):
         # two modes put both knees on one point: no assembly, never offered
-        assert sorted(home["home_pose_null_why"]) == ["in_out", "out_in"]
+        assert sorted(home["home_pose_null_why"]) == ["knees_back", "knees_forward"]
         assert all("coincide" in why for why in home["home_pose_null_why"].values())

@@ -13,8 +13,9 @@ from fivebar_drake.mechanisms.fivebar.jacobians import (LinkJacobians, bias_acce
                                                          com_fractions, foot_from, foot_jacobian,
                                                          link_jacobians, link_jacobians_at,
                                                          point_jacobians, pose_jacobians)
-from fivebar_drake.mechanisms.fivebar.kinematics import (ALL_MODES, KNEES_OUT, LegPose,
-                                                          UnreachableError, forward, forward_points,
+from fivebar_drake.mechanisms.fivebar.kinematics import (ALL_MODES, KNEES_OUT, MODE_ALIASES,
+                                                          MODE_NAMES, LegPose, UnreachableError,
+                                                          mode_name, forward, forward_points,
                                                           forward_pose, inverse, inverse_pose,
                                                           knee_modes, reachable)
 from fivebar_drake.mechanisms.fivebar.leg import FiveBarLeg
@@ -23,7 +24,7 @@ from fivebar_drake.mechanisms.fivebar.singularity import (SingularityMeasures,
                                                            singularity_measures, workspace)
 
 __all__ = ["ALL_MODES", "DynamicsModel", "FiveBarLeg", "GaitSamples", "JOINTS", "KNEES_OUT",
-           "LINK_NAMES", "LegGeometry", "LegPose", "LinkInertia", "LinkJacobians", "MOTORS",
+           "LINK_NAMES", "MODE_ALIASES", "MODE_NAMES", "mode_name", "LegGeometry", "LegPose", "LinkInertia", "LinkJacobians", "MOTORS",
            "SingularityMeasures", "TorqueBreakdown", "UnreachableError", "bias_accelerations",
            "bias_at", "com_fractions", "coriolis", "coriolis_at", "foot_from", "foot_jacobian", "forward",
            "forward_points", "forward_pose", "inverse", "inverse_pose", "knee_modes", "link_jacobians", "link_jacobians_at",

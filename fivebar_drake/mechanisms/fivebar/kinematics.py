@@ -5,10 +5,20 @@ angles from +x, counter-clockwise positive. Motor angles q = [theta_A, theta_B] 
 Points are arrays of shape (..., 2). The foot F lies on the extension of D->E beyond E:
 F = E + (EF/DE) (E - D).
 
-Assembly modes: knee C is *out* when it lies on the far side of line A->E from B (left of A for a
-foot below the hips), knee D is *out* when it lies on the far side of line B->F from A. A mode is
-a pair (c, d) with +1 = out, -1 = in. The E branch of forward kinematics is the side of line C->D
-on which E lies (sign of cross(D - C, E - C)); the seed's rule is "E with the lower y".
+Assembly modes, named by what a person sees. On the robot the leg plane's -x is forward
+(robots/quadruped/legs.py); motor A is the front one (x_A <= x_B). Each knee is bent *forward* or
+*back*: knee C is forward when it lies on the forward side of the line from its hip A to the
+point E it drives, knee D when it lies on the forward side of the line from B to the foot F (for
+a foot below the hips: C left of line A->E in the seed's picture; in general, the turn from
+A->E to A->C is clockwise, cross(E - A, C - A) < 0, and likewise cross(F - B, D - B) < 0 for D).
+The definition uses neither motor's position relative to the other, so a knee keeps its name as
+the hip spacing goes to 0 (coaxial hips). A mode is a pair (c, d) with c = +1 for C forward and
+d = +1 for D back, i.e. +1 = the knee away from the leg's centre line ("out"):
+MODE_NAMES = knees_out (C forward, D back: the diamond), knees_forward, knees_back,
+knees_in (C back, D forward: the knees cross the centre line). The former names out_out,
+out_in, in_out, in_in (knee C, knee D) map to them in MODE_ALIASES (written into report.json
+for readers of older reports). The E branch of forward kinematics is the side of line C->D on which E lies
+(sign of cross(D - C, E - C)); the seed's rule is "E with the lower y".
 """
 
 from __future__ import annotations
@@ -22,6 +32,14 @@ from fivebar_drake.mechanisms.fivebar.geometry import LegGeometry
 
 KNEES_OUT = (1, 1)
 ALL_MODES = ((1, 1), (1, -1), (-1, 1), (-1, -1))
+MODE_NAMES = ("knees_out", "knees_forward", "knees_back", "knees_in")   # of ALL_MODES
+MODE_ALIASES = {"out_out": "knees_out", "out_in": "knees_forward", "in_out": "knees_back",
+                "in_in": "knees_in"}   # the names before 2026-11 (knee C, knee D: out/in)
+
+
+def mode_name(mode) -> str:
+    """The name (MODE_NAMES) of an assembly mode (c, d)."""
+    return MODE_NAMES[ALL_MODES.index(tuple(int(m) for m in mode))]
 
 
 class UnreachableError(ValueError):
@@ -167,7 +185,7 @@ def inverse(leg: LegGeometry, foot, mode=KNEES_OUT, strict=True) -> LegPose:
             i = int(np.flatnonzero(collapsed)[0])
             raise UnreachableError(
                 f"foot target {(foot.reshape(-1, 2)[i] * 1e3).round(3).tolist()} mm in mode "
-                f"{tuple(int(m) for m in mode)}: the knees C and D coincide, which is no "
+                f"{mode_name(mode)}: the knees C and D coincide, which is no "
                 f"assembly ({int(np.count_nonzero(collapsed))} of {collapsed.size} poses)")
         for a in (ta, tb, cx, cy, dx, dy, ex, ey):
             a[collapsed] = np.nan
@@ -191,7 +209,8 @@ def reachable(leg: LegGeometry, foot, mode=KNEES_OUT) -> np.ndarray:
 
 
 def knee_modes(leg: LegGeometry, pose: LegPose) -> tuple[np.ndarray, np.ndarray]:
-    """Assembly mode (c, d) of each pose: +1 knee out, -1 knee in (see module docstring)."""
+    """Assembly mode (c, d) of each pose: c = +1 knee C forward, d = +1 knee D back (the knee
+    away from the centre line), -1 otherwise (see module docstring)."""
     ax, ay = leg.motor_a_m
     bx, by = leg.motor_b_m
     c, d, e, f = pose.c, pose.d, pose.e, pose.f
