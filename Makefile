@@ -33,6 +33,9 @@ demo: $(STAMP)
 	$(BIN)/fivebar-drake sweep fivebar_drake/data/sweep_example.yaml --out $(OUT)/sweep
 	for m in ballscrew_leg scara parallel4; do \
 		$(BIN)/fivebar-drake analyze --mechanism $$m --out $(OUT)/$$m || exit 1; done
+	for r in doggo minitaur; do \
+		$(BIN)/fivebar-drake analyze --config fivebar_drake/data/$$r.toml --gait trot \
+			--out $(OUT)/robots/$$r || exit 1; done
 
 test: $(STAMP)
 	$(BIN)/pytest

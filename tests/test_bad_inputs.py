@@ -102,10 +102,33 @@ def c_png_folder(t):
     return ["compare", good_run(t), "--out", str(t / "c.md")]
 
 
+def published(table: str):
+    """A [published] table put before [checks] of the default parameter file."""
+    return r"^\[checks\]", table + "\n\n[checks]"
+
+
 # (argv builder taking tmp_path, what the message names (a file name or option; {t}: tmp_path),
 #  expected parts)
 CASES = {
     # parameter files
+    "published: unknown figure": conf(
+        "analyze", *published("[published.top_speed]\nvalue = 1.0\nsource = 'a paper'"),
+        "published.top_speed = 'top_speed': must be one of ['extension_range_m'"),
+    "published: range reversed": conf(
+        "analyze", *published("[published.extension_range_m]\nvalue = [0.25, 0.08]\n"
+                              "source = 'a paper'"),
+        "published.extension_range_m.value = [0.25, 0.08]: a range must be [low, high]"),
+    "published: no source": conf(
+        "analyze", *published("[published.no_load_speed_rad_s]\nvalue = 12.0"),
+        "published.no_load_speed_rad_s = ", "must be a table with value, source"),
+    "published: a pair for a number": conf(
+        "analyze", *published("[published.peak_output_torque_Nm]\nvalue = [1.0, 2.0]\n"
+                              "source = 'a paper'"),
+        "published.peak_output_torque_Nm.value = [1.0, 2.0]: must be one number"),
+    "published: negative value": conf(
+        "analyze", *published("[published.peak_output_torque_Nm]\nvalue = -5.0\n"
+                              "source = 'a paper'"),
+        "published.peak_output_torque_Nm.value = -5.0: must be a positive finite number"),
     "config missing": (lambda t: ["analyze", "--config", str(t / "nope.toml")], "nope.toml",
                        "parameter file not found"),
     "config is a folder": (lambda t: ["analyze", "--config", str(t)], "{t}:",

@@ -145,11 +145,32 @@ def markdown(analysis: Analysis, sampled: dict | None = None) -> str:
               f"- largest condition number of J_F: {path['max_cond_jf']:.2f}; smallest |det J_F|: "
               f"{path['min_abs_det_jf_m2']:.3e} m^2"]
     lines += design_lines(analysis.results, p)
+    lines += published_lines(analysis.results["published"])
     lines += ["", "## Assumptions", ""]
     lines += [f"- {a}" for a in assumptions(analysis)]
     lines += ["", "## Plots", ""]
     lines += [f"![{name}]({name}.png)" for name in FIGURE_NAMES]
     return "\n".join(lines) + "\n"
+
+
+def published_lines(rows: list[dict]) -> list[str]:
+    """The table of the parameter file's published figures beside the toolkit's (none: no
+    lines)."""
+    if not rows:
+        return []
+    def text(v):
+        return " .. ".join(f"{x:.4g}" for x in v) if isinstance(v, list) else f"{v:.4g}"
+    lines = ["", "## Published figures", "",
+             "The robot's published figures ([published] of the parameter file) against the same "
+             "figures computed from its data:", "",
+             "| figure | published | computed | unit | difference | reproduced | source | note |",
+             "|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        lines.append(f"| {r['what']} | {text(r['published'])} | {text(r['computed'])} | "
+                     f"{r['unit']} | {r['relative_difference']:.1%} | "
+                     f"{'yes' if r['reproduced'] else 'NO'} (within {r['tolerance']:.0%}) | "
+                     f"{r['source']} | {r['note']} |")
+    return lines
 
 
 def _maybe(value, fmt: str) -> str:

@@ -14,6 +14,7 @@ from fivebar_drake.mechanisms.fivebar import (DynamicsModel, GaitSamples, MODE_N
                                               singularity_measures)
 from fivebar_drake.robots.quadruped.leg_loads import full_model, seed_model, trot_model
 from fivebar_drake.robots.quadruped.params import Params
+from fivebar_drake.robots.quadruped.published import compare_published
 
 
 @dataclass(frozen=True)
@@ -97,6 +98,7 @@ def analyze(params: Params, path: str = "seed_ellipse") -> Analysis:
                   "reflected_inertia_kg_m2": params.motor.reflected_inertia_kg_m2,
                   "envelope": params.motor.envelope()},
         **metrics.results,
+        "published": compare_published(params),
         "parameters": dataclasses.asdict(params),
     }
     return Analysis(params=params, samples=samples, models=models, torques=tbs,

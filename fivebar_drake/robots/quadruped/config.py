@@ -16,6 +16,7 @@ from fivebar_drake.core.validation import MAX_SAMPLES, ParameterError, require
 from fivebar_drake.mechanisms.fivebar import (KNEES_OUT, LegGeometry, LinkInertia,
                                               UnreachableError, inverse, sample_gait)
 from fivebar_drake.robots.quadruped.params import Body, Params, Robot
+from fivebar_drake.robots.quadruped.published import published_from
 
 
 # Central differences over N samples per cycle: the peak joint speed and acceleration are
@@ -25,14 +26,16 @@ from fivebar_drake.robots.quadruped.params import Body, Params, Robot
 REFERENCE_REFINEMENT = 8
 SAMPLING_ERROR_WARN = 0.05   # the speed check and safety factors move visibly beyond this
 SECTIONS = ("leg", "links", "robot", "gait", "motor", "checks", "body")   # the file's sections
+OPTIONAL_SECTIONS = ("published",)                                        # and those it may have
 
 
 def params_from_dict(data: dict) -> Params:
     """Build and validate Params from the nested dict of a parameter file."""
-    unknown, missing = sorted(set(data) - set(SECTIONS)), sorted(set(SECTIONS) - set(data))
+    unknown = sorted(set(data) - set(SECTIONS) - set(OPTIONAL_SECTIONS))
+    missing = sorted(set(SECTIONS) - set(data))
     if unknown or missing:
         raise ParameterError(f"parameter file sections: unknown {unknown}, missing {missing}; "
-                             f"expected {sorted(SECTIONS)}")
+                             f"expected {sorted(SECTIONS)}, optionally {list(OPTIONAL_SECTIONS)}")
     require(isinstance(data["links"], dict), "[links]", data["links"], "must hold [links.AC] ...")
     params = Params(
         leg=build_section(LegGeometry, data["leg"], "leg"),
@@ -43,6 +46,7 @@ def params_from_dict(data: dict) -> Params:
         motor=build_motor(data["motor"]),
         checks=build_section(Checks, data["checks"], "checks"),
         body=build_section(Body, data["body"], "body"),
+        published=published_from(data.get("published", {})),
     )
     check_gait_reachable(params)
     return params

@@ -3,7 +3,7 @@ its unit); loading it from TOML is in config.py."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from fivebar_drake.core.checks import Checks
 from fivebar_drake.core.footpath import Gait
@@ -85,6 +85,7 @@ class Params:
     motor: BldcMotor
     checks: Checks
     body: Body
+    published: dict = field(default_factory=dict)   # [published]: robots/quadruped/published.py
 
     @property
     def fivebar_leg(self) -> FiveBarLeg:

@@ -1,0 +1,116 @@
+"""Figures published for a real robot, kept in its parameter file's optional [published] table
+beside the numbers they came from, and the same figures as the toolkit computes them from the
+file's data, so a report shows which published figures the model reproduces.
+
+[published.NAME] has `value` (a number, or [low, high] for a range), `source` (where it is
+published) and optionally `tolerance` (relative, default DEFAULT_TOLERANCE) and `note` (why the
+figures may differ: a different reading, a different model). NAME is one of
+FIGURES: a figure the toolkit can compute independently of the value given.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+import math
+import numpy as np
+
+from fivebar_drake.core.validation import require
+from fivebar_drake.mechanisms.fivebar import KNEES_OUT, reachable
+
+DEFAULT_TOLERANCE = 0.02
+EXTENSION_SAMPLES = 20001     # foot distances tried below the hip axis: ~25 um apart on a 0.5 m leg
+
+
+def extension_range_m(params) -> list[float]:
+    """Least and most leg extension (m): the foot's distance from the hip axis (the leg plane's
+    origin) along the line straight below it, over the foot points the knees-out assembly reaches
+    by geometry alone (to EXTENSION_SAMPLES points; mechanical stops aside)."""
+    leg = params.leg
+    reach = leg.ac_m + leg.ce_m + leg.ef_m + abs(leg.motor_b_m[0] - leg.motor_a_m[0])
+    r = np.linspace(0.0, reach, EXTENSION_SAMPLES)
+    ok = reachable(leg, np.stack([np.zeros_like(r), -r], axis=-1), KNEES_OUT)
+    return [float(r[ok].min()), float(r[ok].max())] if ok.any() else [math.nan, math.nan]
+
+
+def kt_torque_at_peak_current_Nm(params) -> float:
+    """Output torque k_t alone gives at the peak current (N m): N eta k_t I_peak, no saturation."""
+    m = params.motor
+    return m.gear_ratio * m.gear_efficiency * m.torque_constant_Nm_per_A * m.peak_current_A
+
+
+FIGURES = {   # name -> (what, unit, the toolkit's figure from Params)
+    "extension_range_m": ("leg extension range (foot below the hip axis)", "m",
+                          extension_range_m),
+    "peak_output_torque_Nm": ("peak output torque at the peak current (with the torque-current "
+                              "table where given)", "N m", lambda p: p.motor.peak_torque_Nm),
+    "kt_torque_at_peak_current_Nm": ("output torque k_t alone gives at the peak current", "N m",
+                                     kt_torque_at_peak_current_Nm),
+    "no_load_speed_rad_s": ("no-load output speed of the voltage limit", "rad/s",
+                            lambda p: p.motor.no_load_speed_rad_s),
+}
+
+
+@dataclass(frozen=True)
+class Published:
+    """One published figure: value (float, or (low, high)), its source, the relative tolerance
+    within which the toolkit's figure reproduces it."""
+
+    value: float | tuple[float, float]
+    source: str
+    tolerance: float = DEFAULT_TOLERANCE
+    note: str = ""
+
+
+def published_from(table, section: str = "published") -> dict[str, Published]:
+    """The [published] table of a parameter file as {NAME: Published}, validated (the names,
+    numbers, ranges and sources) with errors naming the key."""
+    require(isinstance(table, dict), f"[{section}]", table, "must be a table of [published.NAME]")
+    out = {}
+    for name, entry in table.items():
+        field = f"{section}.{name}"
+        require(name in FIGURES, field, name, f"must be one of {list(FIGURES)}")
+        require(isinstance(entry, dict) and {"value", "source"} <= set(entry)
+                and set(entry) <= {"value", "source", "tolerance", "note"}, field, entry,
+                "must be a table with value, source and optionally tolerance and note")
+        value = entry["value"]
+        numbers = value if isinstance(value, list) else [value]
+        require(len(numbers) in (1, 2) and all(
+            isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+            and v > 0 for v in numbers), f"{field}.value", value,
+            "must be a positive finite number or a [low, high] pair of them")
+        require(len(numbers) == 1 or numbers[0] < numbers[1], f"{field}.value", value,
+                "a range must be [low, high] with low < high")
+        require((len(numbers) == 2) == (name == "extension_range_m"), f"{field}.value", value,
+                "must be a [low, high] pair" if name == "extension_range_m"
+                else "must be one number")
+        require(isinstance(entry["source"], str) and entry["source"].strip(), f"{field}.source",
+                entry["source"], "must name where the figure is published")
+        require(isinstance(entry.get("note", ""), str), f"{field}.note", entry.get("note"),
+                "must be text")
+        tolerance = entry.get("tolerance", DEFAULT_TOLERANCE)
+        require(isinstance(tolerance, (int, float)) and not isinstance(tolerance, bool)
+                and 0 < tolerance < 1, f"{field}.tolerance", tolerance, "must be in (0, 1)")
+        out[name] = Published(tuple(float(v) for v in numbers) if len(numbers) == 2
+                              else float(numbers[0]), entry["source"], float(tolerance),
+                              entry.get("note", ""))
+    return out
+
+
+def compare_published(params) -> list[dict]:
+    """Each published figure of params.published beside the toolkit's: {figure, what, unit,
+    published, computed, relative_difference (the largest over a range's ends), reproduced
+    (within the tolerance), tolerance, source, note}."""
+    rows = []
+    for name, pub in params.published.items():
+        what, unit, compute = FIGURES[name]
+        computed = compute(params)
+        want = np.atleast_1d(np.asarray(pub.value, dtype=float))
+        got = np.atleast_1d(np.asarray(computed, dtype=float))
+        diff = float(np.max(np.abs(got - want) / want))
+        rows.append({"figure": name, "what": what, "unit": unit,
+                     "published": list(pub.value) if isinstance(pub.value, tuple) else pub.value,
+                     "computed": computed, "relative_difference": diff,
+                     "reproduced": bool(diff <= pub.tolerance), "tolerance": pub.tolerance,
+                     "source": pub.source, "note": pub.note})
+    return rows
+
