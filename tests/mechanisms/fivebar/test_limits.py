@@ -194,3 +194,16 @@ def test_the_sdf_joint_ranges_are_the_limits(params):
     Parser(plant).AddModelsFromString(single_leg_sdf(free, None, None), "sdf")
     plant.Finalize()
     assert np.isinf(plant.GetJointByName("leg_C").position_upper_limits()[0])
+
+
+def test_a_sweep_design_past_a_limit_is_named_and_the_others_kept(params):
+    """Designs varying a limit (as a sweep does): the seed's ellipse reaches 230 mm from the
+    hips, so 0.22 m cuts it and 0.25 m does not; the kept design's figures are those without
+    limits."""
+    from fivebar_drake.analysis.design_points import evaluate_designs
+
+    free = dataclasses.replace(params, leg=dataclasses.replace(params.leg, limits=LegLimits()))
+    designs = [with_changes(params, {"limits.extension_max_m": v}) for v in (0.25, 0.22)]
+    kept, cut = evaluate_designs(designs + [free], "seed_ellipse", "full")[:2]
+    assert "[limits].extension_max_m" in cut["error"] and "seed_ellipse" in cut["error"]
+    assert kept == evaluate_designs([free], "seed_ellipse", "full")[0]
