@@ -181,7 +181,7 @@ def limits_text(report: dict) -> str:
     return "limits reached: " + "; ".join(
         f"{h['leg']} {h['limit']} first at t = {h['first_t_s']:.3f} s, {h['share_of_time']:.1%} "
         f"of the time, worst {h['worst_value']:.4g} {h['unit']} (bound {h['bound']:.4g} "
-        f"{h['unit']}, [{h['field']}])" for h in report["hits"])
+        f"{h['unit']}, {h['field']})" for h in report["hits"])
 
 
 def foot_forces(generalized, layout: RobotLayout, params: Params, pose, down) -> np.ndarray:

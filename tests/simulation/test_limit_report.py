@@ -76,7 +76,7 @@ def test_a_run_that_reaches_limits_names_leg_limit_and_time(touched):
     assert ref["knee"].min() > 66.8 - 0.02
     assert ref["knee"].min() < 66.8 + LIMIT_REACHED["deg"]          # it did reach the stop
     text = markdown(summary, record.params)
-    assert "limits reached: " in text and "[limits.knee_min_deg]" in text
+    assert "limits reached: " in text and "deg, limits.knee_min_deg)" in text
 
 
 def test_the_default_run_reaches_no_limit():
