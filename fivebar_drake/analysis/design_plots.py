@@ -3,8 +3,12 @@ gait, torque-speed envelope, winding temperature, hinge loads and the gear-ratio
 
 from __future__ import annotations
 
+import dataclasses
+
 import matplotlib.pyplot as plt
 from matplotlib.colors import LogNorm
+from matplotlib.lines import Line2D
+from matplotlib.patches import Patch
 import numpy as np
 
 from fivebar_drake.analysis.design_metrics import GEAR_MODEL, PHYSICAL
@@ -13,7 +17,8 @@ from fivebar_drake.analysis.gear_ratio import EFFECTS, safety_factors
 from fivebar_drake.analysis.joint_loads import JOINT_NAMES
 from fivebar_drake.analysis.torques import Analysis
 from fivebar_drake.core.thermal import winding_temperature
-from fivebar_drake.mechanisms.fivebar import ALL_MODES, MOTORS, mode_name
+from fivebar_drake.mechanisms.fivebar import (ALL_MODES, KNEES_OUT, MOTORS, LegGeometry, LegLimits,
+                                              inverse, limit_tests, mode_name, past_any)
 
 
 MODEL_STYLE = {"full": "-", "full_trot": "--"}
@@ -22,6 +27,36 @@ EFFECT_STYLE = {"peak only": dict(ls=":", lw=2.5), "torque-speed line": dict(lw=
                 "reflected inertia": dict(ls="--", lw=1.5), "both": dict(lw=1.5, color="r")}
 CAPABILITY_TITLES = dict(zip(CAPABILITY_KEYS, ("largest vertical force", "largest horizontal "
                                                "force", "force available in every direction")))
+
+
+def draw_limits(ax, leg: LegGeometry, x, y, mode=KNEES_OUT) -> bool:
+    """Draw on ax (mm) where the leg's limits cut the mode's geometric reach on the grid x by y
+    (m): the cut region filled grey and each limit's boundary (limits.py) dashed, with legend
+    entries; False if the leg has no limits."""
+    free = dataclasses.replace(leg, limits=LegLimits())
+    foot = np.stack(np.meshgrid(x, y), axis=-1)
+    pose = inverse(free, foot, mode, strict=False)
+    tests = limit_tests(leg, pose)
+    if not tests:
+        return False
+    reach = ~np.isnan(pose.q).any(axis=-1)
+    cut = reach & past_any(tests, reach.shape)
+    xm, ym = np.asarray(x) * 1e3, np.asarray(y) * 1e3
+    ax.contourf(xm, ym, cut.astype(float), levels=[0.5, 1.5], colors=["0.55"], alpha=0.55)
+    handles = [Patch(color="0.55", alpha=0.55, label="reachable, cut by the limits")]
+    colors = plt.get_cmap("tab10").colors
+    for k, test in enumerate(tests):
+        excess = np.where(reach, test.excess, np.nan)
+        if np.nanmin(excess) < 0 < np.nanmax(excess):
+            color = colors[k % len(colors)]
+            ax.contour(xm, ym, excess, levels=[0.0], colors=[color], linewidths=1.2,
+                       linestyles="--")
+            sign = ">=" if test.side < 0 else "<="
+            handles.append(Line2D([], [], color=color, ls="--", label=f"{test.name} {sign} "
+                                  f"{test.bound * test.scale:.4g} {test.unit}"))
+    ax.legend(handles=ax.get_legend_handles_labels()[0] + handles, fontsize=7, ncol=3,
+              loc="upper center", bbox_to_anchor=(0.5, -0.1))
+    return True
 
 
 def force_capability_maps(an: Analysis) -> plt.Figure:
@@ -49,9 +84,11 @@ def force_capability_maps(an: Analysis) -> plt.Figure:
     for ax in axes[:, 0]:
         ax.set_ylabel("y (mm)")
     fig.colorbar(mesh, ax=axes, shrink=0.6, label="foot force (N), torque box through J_F^-T")
+    limited = " (blank: out of reach or past the leg's limits)" if p.limits.given else ""
     fig.suptitle("Static foot-force capability per assembly mode (motors "
                  f"±{p.motor.peak_torque_Nm:g} N·m); contours: weight share {weight:.1f} N "
-                 f"(white), trot peak {trot:.1f} N (cyan); green: gait path and home point")
+                 f"(white), trot peak {trot:.1f} N (cyan); green: gait path and home point"
+                 + limited)
     return fig
 
 

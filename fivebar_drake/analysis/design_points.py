@@ -66,7 +66,7 @@ def evaluate_designs(designs: list[Params], path: str = "seed_ellipse",
     core/checks.motor_checks), deciding_check, torque_verdict; and stride_speed_m_s (2 a f, the
     foot's mean ground speed on the stride), and with the motor's thermal model thermal_margin_K
     and time_to_winding_limit_s (core.thermal.thermal_margin at the RMS current). A design
-    whose path leaves the workspace gets {"error": ...} instead."""
+    whose path leaves the workspace or the leg's limits gets {"error": ...} instead."""
     rows: list[dict | None] = [None] * len(designs)
     groups: dict = {}
     for i, params in enumerate(designs):
@@ -91,7 +91,7 @@ def _evaluate_group(designs: list[Params], path: str, model: str) -> list[dict]:
     except UnreachableError as err:    # some designs out of reach: each alone, to name them
         if len(designs) > 1:
             return [row for p in designs for row in _evaluate_group([p], path, model)]
-        return [{"error": f"the {path} path leaves the workspace: {err}"}]
+        return [{"error": f"the {path} path leaves the workspace or the leg's limits: {err}"}]
     dt = np.array([p.gait.period_s / p.gait.samples for p in designs])[:, None]
     qd, qdd = periodic_derivatives(pose.q, dt)
     if model == "full":

@@ -96,7 +96,7 @@ def total_torque(an: Analysis) -> plt.Figure:
 def workspace_map(an: Analysis) -> plt.Figure:
     leg = an.params.leg
     ws = workspace(leg, *workspace_grid(leg))
-    fig, ax = plt.subplots(figsize=(8, 6))
+    fig, ax = plt.subplots(figsize=(8, 7.5))
     mesh = ax.pcolormesh(ws.x * 1e3, ws.y * 1e3, np.log10(ws.measures.cond_jf), cmap="viridis",
                          shading="auto", vmax=2.0)
     fig.colorbar(mesh, ax=ax, label="log10 cond(J_F)  (0 = isotropic, high = near singular)")
@@ -107,9 +107,12 @@ def workspace_map(an: Analysis) -> plt.Figure:
         chain = np.array([leg.a, pose.c[k], pose.e[k], pose.f[k], pose.e[k], pose.d[k], leg.b])
         ax.plot(chain[:, 0] * 1e3, chain[:, 1] * 1e3, "wo-", lw=2, ms=4, alpha=alpha,
                 label="leg at t = 0 and T/4" if k == 0 else None)
+    limited = design_plots.draw_limits(ax, leg, ws.x, ws.y)
     ax.set(xlabel="x (mm)", ylabel="y (mm)", aspect="equal",
-           title="Foot workspace (knees-out mode) and conditioning")
-    ax.legend(loc="upper right", fontsize=8)
+           title="Foot workspace (knees-out mode) " + ("within the leg's limits " if limited
+                                                       else "") + "and conditioning")
+    if not limited:
+        ax.legend(loc="upper right", fontsize=8)
     fig.tight_layout()
     return fig
 

@@ -43,6 +43,10 @@ def assumptions(analysis: Analysis) -> list[str]:
         "Safety factor = motor torque / peak dynamic torque; verdict: SF >= "
         f"{p.checks.sf_pass:g} pass, {p.checks.sf_warn:g} <= SF < {p.checks.sf_pass:g} warn, "
         "else fail.",
+        "The leg's limits ([limits] of the parameter file): " + (
+            ", ".join(f"{k} = {v:g}" for k, v in p.limits.given.items())
+            + "; the IK, the foot paths, the workspace and force-capability maps respect them (a "
+            "pose past one counts as out of reach)" if p.limits.given else "none set"),
         *design_assumptions(p),
     ]
 

@@ -13,6 +13,13 @@ def wrap(angle):
     return (angle + np.pi) % (2.0 * np.pi) - np.pi
 
 
+def angle_between(u, v) -> np.ndarray:
+    """Unsigned angle (rad, 0 .. pi) between planar vectors u and v (..., 2)."""
+    u, v = np.asarray(u, dtype=float), np.asarray(v, dtype=float)
+    cross = u[..., 0] * v[..., 1] - u[..., 1] * v[..., 0]
+    return np.abs(np.arctan2(cross, np.sum(u * v, axis=-1)))
+
+
 @jit
 def body_rotation(quaternion_wxyz):
     """Rotation matrix (3, 3) of a floating body's quaternion [w, x, y, z] as stored in the

@@ -61,7 +61,15 @@ def axis(xyz: str, *children, tag: str = "axis") -> str:
     return element(tag, element("xyz", xyz), *children)
 
 
-PASSIVE = element("limit", element("effort", "0"))   # a joint no actuator drives
+def limit(effort=None, lower=None, upper=None) -> str:
+    """<limit> of a joint (inside its <axis>): its range lower .. upper (rad or m; None or
+    infinite: that side left open) and its effort (N*m or N; None: not given, 0: no actuator)."""
+    parts = [element(tag, fmt(v)) for tag, v in (("lower", lower), ("upper", upper))
+             if v is not None and abs(v) != float("inf")]
+    return element("limit", *parts, *(() if effort is None else (element("effort", fmt(effort)),)))
+
+
+PASSIVE = limit(effort=0)   # a joint no actuator drives
 
 
 def joint(name: str, kind: str, parent: str, child: str, *children) -> str:

@@ -46,12 +46,13 @@ class LoopCut:
 class SdfLook:
     """How the robot dresses a mechanism's SDF: link cross-section width (m); the tool's
     collision and visual elements, with "{pose}" where the mechanism puts the tool point's
-    <pose>; an actuated joint's <limit> (inside its <axis>) and drive (the elements after the
-    <axis>: rotor inertia, gear ratio)."""
+    <pose>; an actuated joint's effort limit (N*m or N; the mechanism writes the <limit> with
+    its own joint ranges) and drive (the elements after the <axis>: rotor inertia, gear
+    ratio)."""
 
     link_width_m: float
     tool_xml: str
-    limit_xml: str
+    effort_limit: float
     drive_xml: str
 
 

@@ -14,6 +14,7 @@ from fivebar_drake.core.drake_configs import check_plant_config_values, config_w
 from fivebar_drake.core.motor import MotorModel
 from fivebar_drake.core.validation import ParameterError, check_number, require
 from fivebar_drake.robots.quadruped.closure import design_closure
+from fivebar_drake.robots.quadruped.config import check_path
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.plant import ClosureDesign, RobotLayout, add_robot
 from fivebar_drake.simulation.scenario import Scenario
@@ -86,7 +87,9 @@ def check_run(scenario: Scenario, params: Params) -> ClosureDesign:
     parameters and the plant's step (ParameterError naming the field): the step against the
     motor model's period, the foot contact's time scale and the number of steps; the recorded
     interval against the step and the gait, the pose rate against the interval; the load
-    transfer against the stance."""
+    transfer against the stance; the scenario's foot path (with its own fields) in the workspace
+    and within the leg's limits."""
+    check_path(params, scenario.gait)
     design = closure_design(scenario, params)
     step = design.time_step_s
     check_plant_config(scenario, step)

@@ -11,7 +11,8 @@ spike counts for the time it lasts. Per leg and motor, over the poses the robot 
 - the applied torque split into contact, links (M q'' + c + G of the links), rotor (N^2 J q'')
   and friction.
 Statistics cover the whole gait cycles after the ramp; a run with fewer than MIN_CYCLES of them,
-or one that stopped early, gets the verdict "insufficient".
+or one that stopped early, gets the verdict "insufficient". The leg's limits (limits.py) are
+checked over the whole run: which leg reached which limit, when first, for how long, how far.
 """
 
 from __future__ import annotations
@@ -27,8 +28,8 @@ from fivebar_drake.core.checks import CHECK_ORDER, SEVERITY, motor_checks
 from fivebar_drake.core.files import json_ready, write_atomic
 from fivebar_drake.core.footpath import cycle_phase, evaluate, stance_loads
 from fivebar_drake.core.rotation import body_rotation, tilt_deg
-from fivebar_drake.mechanisms.fivebar import (MOTORS, forward, link_jacobians, static_torques,
-                                              torques)
+from fivebar_drake.mechanisms.fivebar import (MOTORS, LimitTest, forward, limit_tests,
+                                              link_jacobians, static_torques, torques)
 from fivebar_drake.robots.quadruped.leg_loads import full_model, seed_model
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.plant import RobotLayout
@@ -46,6 +47,11 @@ SWING_CONTACT_N = 1.0     # a swing foot pressing harder than this (~1.5 % of th
 # touchdown (the trot path lifts a foot 1.4 mm by 10 % of its swing, 18 mm by 70 %).
 MID_SWING = (0.1, 0.7)
 
+# A limit counts as reached within this of its bound, in the field's unit: Drake's joint limits
+# (the motor ranges and the least knee angle, sdf.py) stop a joint at its bound, so a stopped
+# joint lies at it, not past it.
+LIMIT_REACHED = {"deg": 0.1, "m": 1e-4}
+
 
 @dataclass(frozen=True)
 class Signals:
@@ -56,7 +62,8 @@ class Signals:
     foot_force_plane (rows, legs, 2) N (leg plane), foot_force_world (rows, legs, 3); gap (rows, legs) m (worst per interval);
     stance (rows, legs) scheduled stance; swing_fraction (rows, legs) how far through its
     scheduled swing a foot is (0 .. 1; nan in stance); swing_contact (rows, legs) foot pressing
-    the ground with more than SWING_CONTACT_N in scheduled swing."""
+    the ground with more than SWING_CONTACT_N in scheduled swing; limits: the leg's limit tests
+    (limits.py) over the poses (rows, legs)."""
 
     t: np.ndarray
     body_p: np.ndarray
@@ -81,6 +88,7 @@ class Signals:
     stance: np.ndarray
     swing_fraction: np.ndarray
     swing_contact: np.ndarray
+    limits: list[LimitTest]
 
 
 def signals(record: SimulationRecord) -> Signals:
@@ -138,7 +146,42 @@ def signals(record: SimulationRecord) -> Signals:
         clipped_line=per_leg(table["clipped_line"]), foot_force_plane=force,
         foot_force_world=force_world, gap=table["gap"],
         stance=stance, swing_fraction=swing_fraction,
-        swing_contact=(~stance) & gaiting & (force_world[..., 2] > SWING_CONTACT_N))
+        swing_contact=(~stance) & gaiting & (force_world[..., 2] > SWING_CONTACT_N),
+        limits=limit_tests(params.leg, pose))
+
+
+def limit_report(sig: Signals, params: Params, legs) -> dict:
+    """The run against the leg's limits: the limits set ([limits], the file's units) and each
+    (leg, limit) reached (within LIMIT_REACHED of its bound, or past it) in some recorded
+    interval: its field, bound and unit, the time of the first such interval (its end, s), the
+    share of the run's intervals, and the worst value with its time."""
+    hits = []
+    for test in sig.limits:
+        reached = test.excess * test.scale > -LIMIT_REACHED[test.unit]
+        for i, leg in enumerate(legs):
+            rows = np.flatnonzero(reached[:, i])
+            if not rows.size:
+                continue
+            worst = rows[np.argmax(test.excess[rows, i])]
+            hits.append({"leg": leg, "limit": test.name, "field": f"limits.{test.field}",
+                         "bound": test.bound * test.scale, "unit": test.unit,
+                         "first_t_s": float(sig.t[rows[0]]),
+                         "share_of_time": rows.size / len(sig.t),
+                         "worst_value": float(test.value[worst, i] * test.scale),
+                         "worst_t_s": float(sig.t[worst])})
+    return {"set": params.limits.given, "hits": hits}
+
+
+def limits_text(report: dict) -> str:
+    """The limit report (limit_report) in one line."""
+    if not report["set"]:
+        return "limits: none set ([limits] of the parameter file)"
+    if not report["hits"]:
+        return f"limits: none reached ({len(report['set'])} set in [limits])"
+    return "limits reached: " + "; ".join(
+        f"{h['leg']} {h['limit']} first at t = {h['first_t_s']:.3f} s, {h['share_of_time']:.1%} "
+        f"of the time, worst {h['worst_value']:.4g} {h['unit']} (bound {h['bound']:.4g} "
+        f"{h['unit']}, {h['field']})" for h in report["hits"])
 
 
 def foot_forces(generalized, layout: RobotLayout, params: Params, pose, down) -> np.ndarray:
@@ -314,6 +357,7 @@ def summarize(sig: Signals, record: SimulationRecord, seed_analysis: dict) -> di
                   "no_load_speed_rad_s": params.motor.no_load_speed_rad_s,
                   "continuous_torque_Nm": params.motor.continuous_torque_Nm},
         "step_check": None,
+        "limits": limit_report(sig, params, leg_names),
         "legs": legs,
     }
     summary["answer"] = answer(summary, params)
@@ -474,7 +518,7 @@ def markdown(s: dict, params: Params) -> str:
         f"{s['gait_speed_m_s']:.3f} m/s; largest tilt {s['max_tilt_deg']:.1f} deg; swing feet "
         f"clear of the ground {clear * 100:.0f} % of scheduled swing, on it {drag * 100:.0f} % of "
         f"mid-swing (worst legs; the rest is early touchdown); worst loop gap "
-        f"{s['max_loop_gap_m'] * 1e3:.4f} mm",
+        f"{s['max_loop_gap_m'] * 1e3:.4f} mm", f"- {limits_text(s['limits'])}",
         "", "| leg | motor | demand p99 | demand peak | applied p99 | RMS | seed static | "
         "trot static | J^T F peak | dyn/seed | dyn/trot | SF | verdict | clipped | p99 speed "
         "(rad/s) |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]

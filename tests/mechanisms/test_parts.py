@@ -6,6 +6,7 @@ torques), Drake model (no loop gap at the tree coordinates of IK poses) and SDF 
 parses them into one actuator per motor and the tree's coordinates)."""
 
 from collections.abc import Callable
+import dataclasses
 from dataclasses import dataclass
 from functools import cache
 
@@ -17,7 +18,7 @@ from pydrake.systems.framework import DiagramBuilder
 
 from fivebar_drake.mechanisms import ballscrew_leg, scara
 from fivebar_drake.mechanisms.base import SdfLook, missing_parts
-from fivebar_drake.mechanisms.fivebar import sample_gait
+from fivebar_drake.mechanisms.fivebar import LegLimits, sample_gait
 from fivebar_drake.mechanisms.parallel4.mechanism import Parallel4
 from fivebar_drake.mechanisms.registry import MECHANISMS
 from fivebar_drake.robots.quadruped.closure import Ball, fixed_leg
@@ -42,7 +43,8 @@ class Example:
 
 
 def fivebar_leg() -> Example:
-    params = load_params()
+    loaded = load_params()      # the geometry's parts: without the leg's limits (test_limits.py)
+    params = dataclasses.replace(loaded, leg=dataclasses.replace(loaded.leg, limits=LegLimits()))
     model = full_model(params)
 
     def drake(pose):
@@ -202,8 +204,7 @@ def test_drake_model_closes_its_loops_at_ik_poses(name):
 def test_sdf_elements_parse_into_one_actuator_per_motor(name):
     example = example_of(name)
     m = example.mechanism
-    look = SdfLook(link_width_m=0.01, tool_xml="", limit_xml="<limit><effort>1</effort></limit>",
-                   drive_xml="")
+    look = SdfLook(link_width_m=0.01, tool_xml="", effort_limit=1.0, drive_xml="")
     text = ("<sdf version='1.9' xmlns:drake='http://drake.mit.edu'><model name='m'>"
             "<link name='base'/><joint name='weld' type='fixed'><parent>world</parent>"
             f"<child>base</child></joint>{m.sdf_elements('m', 'base', 'base', Ball(), None, look)}"

@@ -7,10 +7,12 @@ from __future__ import annotations
 from dataclasses import dataclass
 import numpy as np
 
-from fivebar_drake.core.footpath import Gait, cycle_times, evaluate
+from fivebar_drake.core.footpath import (FootPath, Gait, PathPoints, cycle_times, evaluate,
+                                         foot_path)
 from fivebar_drake.core.rotation import wrap
 from fivebar_drake.mechanisms.fivebar.geometry import LegGeometry
-from fivebar_drake.mechanisms.fivebar.kinematics import ALL_MODES, KNEES_OUT, LegPose, inverse
+from fivebar_drake.mechanisms.fivebar.kinematics import (ALL_MODES, KNEES_OUT, LegPose,
+                                                         UnreachableError, inverse)
 
 
 def track_modes(leg: LegGeometry, foot, start_mode=KNEES_OUT) -> tuple[LegPose, np.ndarray]:
@@ -68,12 +70,24 @@ class GaitSamples:
     mode_index: np.ndarray
 
 
-def sample_gait(leg: LegGeometry, gait: Gait, path: str = "seed_ellipse") -> GaitSamples:
-    """Sample one cycle of the foot path at t_k = k T / N, solve IK with mode tracking and
-    differentiate."""
-    t = cycle_times(gait)
+def path_poses(leg: LegGeometry, gait: Gait, path: FootPath | str,
+               t) -> tuple[PathPoints, LegPose, np.ndarray]:
+    """The foot path (a FootPath or its kind) at times t (n,) s, its poses with mode tracking
+    from knees out (track_modes) and the mode index per sample. UnreachableError located at the
+    first sample out of reach or past a limit (its index, time and foot target; the limit)."""
     points = evaluate(gait, path, t)
-    pose, mode_index = track_modes(leg, points.pos)
+    try:
+        pose, mode_index = track_modes(leg, points.pos)
+    except UnreachableError as err:
+        raise err.at_sample(f"{foot_path(path).kind} path", t) from None
+    return points, pose, mode_index
+
+
+def sample_gait(leg: LegGeometry, gait: Gait, path: str = "seed_ellipse") -> GaitSamples:
+    """Sample one cycle of the foot path at t_k = k T / N, solve IK with mode tracking
+    (path_poses) and differentiate."""
+    t = cycle_times(gait)
+    points, pose, mode_index = path_poses(leg, gait, path, t)
     qd, qdd = periodic_derivatives(pose.q, gait.period_s / gait.samples)
     return GaitSamples(path=path, t=t, foot=points.pos, stance=points.stance, pose=pose, qd=qd,
                        qdd=qdd, mode_index=mode_index)

@@ -19,6 +19,8 @@ knees_in (C back, D forward: the knees cross the centre line). The former names 
 out_in, in_out, in_in (knee C, knee D) map to them in MODE_ALIASES (written into report.json
 for readers of older reports). The E branch of forward kinematics is the side of line C->D on which E lies
 (sign of cross(D - C, E - C)); the seed's rule is "E with the lower y".
+The inverse kinematics respects the leg's mechanical limits (limits.py): a pose past one is
+unreachable.
 """
 
 from __future__ import annotations
@@ -28,6 +30,7 @@ import numpy as np
 
 from fivebar_drake.core.compiled import jit
 from fivebar_drake.mechanisms.fivebar.geometry import LegGeometry
+from fivebar_drake.mechanisms.fivebar.limits import first_past, limit_tests, past_any
 
 
 KNEES_OUT = (1, 1)
@@ -43,7 +46,23 @@ def mode_name(mode) -> str:
 
 
 class UnreachableError(ValueError):
-    """A foot target or motor pose for which the linkage cannot close."""
+    """A foot target or motor pose for which the linkage cannot close or that lies past a
+    limit: why (reason), the flat index of the first such pose (None if not known), the
+    [limits] field it lies past ("" for a reach) and where it is on a path ("" if not known)."""
+
+    def __init__(self, reason: str, index: int | None = None, field: str = "", where: str = ""):
+        super().__init__(f"{where}: {reason}" if where else reason)
+        self.reason, self.index, self.field, self.where = reason, index, field, where
+
+    def at_sample(self, path: str, times) -> UnreachableError:
+        """The same error located on one path of poses sampled at times (n,) s: where = "path,
+        sample i of n at t = ... s"."""
+        t = np.ravel(times)
+        if self.index is None or self.index >= t.size:
+            return self
+        return UnreachableError(self.reason, self.index, self.field,
+                                f"{path}, sample {self.index} of {t.size} at "
+                                f"t = {t[self.index]:.4f} s")
 
 
 def _cross(ax, ay, bx, by):
@@ -120,7 +139,7 @@ def _require_reach(x, p0x, p0y, r0, p1x, p1y, r1, what):
         raise UnreachableError(
             f"{what(i)} = {dist[i] * 1e3:.3f} mm is outside the reach "
             f"{abs(r0 - r1) * 1e3:.3f} .. {(r0 + r1) * 1e3:.3f} mm"
-            f" ({int(np.count_nonzero(bad))} of {bad.size} poses out of reach)")
+            f" ({int(np.count_nonzero(bad))} of {bad.size} poses out of reach)", i)
 
 
 def _flat(x):
@@ -170,7 +189,8 @@ def forward(leg: LegGeometry, q, e_branch=None) -> LegPose:
 def inverse(leg: LegGeometry, foot, mode=KNEES_OUT, strict=True) -> LegPose:
     """Closed-form inverse kinematics (inverse_points) for foot targets (..., 2) in m in one
     assembly mode (c, d). Raises UnreachableError naming the first target out of reach, or
-    with strict=False gives NaN there. A pose whose knees C and D coincide (within
+    with strict=False gives NaN there; so for a pose past one of the leg's limits (limits.py;
+    the error names the limit, the value and the bound). A pose whose knees C and D coincide (within
     COINCIDENT_KNEES_M: two modes of a coaxial leg with equal upper links) is no assembly: the
     loop collapses to a serial chain and the motors cannot hold the foot; it counts as out of
     reach."""
@@ -186,7 +206,7 @@ def inverse(leg: LegGeometry, foot, mode=KNEES_OUT, strict=True) -> LegPose:
             raise UnreachableError(
                 f"foot target {(foot.reshape(-1, 2)[i] * 1e3).round(3).tolist()} mm in mode "
                 f"{mode_name(mode)}: the knees C and D coincide, which is no "
-                f"assembly ({int(np.count_nonzero(collapsed))} of {collapsed.size} poses)")
+                f"assembly ({int(np.count_nonzero(collapsed))} of {collapsed.size} poses)", i)
         for a in (ta, tb, cx, cy, dx, dy, ex, ey):
             a[collapsed] = np.nan
     if strict:
@@ -197,7 +217,20 @@ def inverse(leg: LegGeometry, foot, mode=KNEES_OUT, strict=True) -> LegPose:
         _require_reach(dx, bx, by, leg.bd_m, fx, fy, leg.de_m + leg.ef_m, what("BF"))
         _require_reach(cx, ax, ay, leg.ac_m, ex, ey, leg.ce_m, what("AE"))
     q = np.stack([ta, tb], axis=-1).reshape(shape + (2,))
-    return _pose(shape, q, cx, cy, dx, dy, ex, ey, fx, fy)
+    pose = _pose(shape, q, cx, cy, dx, dy, ex, ey, fx, fy)
+    tests = limit_tests(leg, pose)
+    past = past_any(tests, shape)
+    if not np.any(past):
+        return pose
+    i = int(np.flatnonzero(past)[0])
+    if strict:
+        test = first_past(tests, i)
+        raise UnreachableError(
+            f"foot target {(foot.reshape(-1, 2)[i] * 1e3).round(3).tolist()} mm in mode "
+            f"{tuple(int(m) for m in mode)}: {test.text(np.ravel(test.value)[i])} "
+            f"({int(np.count_nonzero(past))} of {past.size} poses past a limit)", i, test.field)
+    nan = lambda v: np.where(past[..., None], np.nan, v)  # noqa: E731
+    return LegPose(nan(pose.q), nan(pose.c), nan(pose.d), nan(pose.e), pose.f)
 
 
 COINCIDENT_KNEES_M = 1e-9   # knees this close are one point: no closed loop

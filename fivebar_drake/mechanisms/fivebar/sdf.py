@@ -6,15 +6,18 @@ axis is the hinge axis, so a joint angle about +z is the seed's counter-clockwis
 Each link's frame sits at its first joint with x along the link in the zero configuration; the
 knee joints C and D measure the lower link relative to the upper one. The loop is cut at E
 (loop_cut): E on CE meets E on DE, with frames `<prefix>_E_on_CE` and `<prefix>_E_on_DE` (z along
-the hinge); the closure writes what joins them. Only the foot (the tool) collides.
+the hinge); the closure writes what joins them. Only the foot (the tool) collides. The leg's
+limits give the joints their ranges (limits.joint_ranges: the motors' ranges at A and B, the
+least knee angle at C and D).
 """
 
 from __future__ import annotations
 
-from fivebar_drake.core.sdf import PASSIVE, axis, box, element, inertial, joint, pose, visual
+from fivebar_drake.core.sdf import axis, box, element, inertial, joint, limit, pose, visual
 from fivebar_drake.mechanisms.base import Bushing, LoopCut, SdfLook
 from fivebar_drake.mechanisms.fivebar.geometry import (LINK_NAMES, LegGeometry, LinkInertia,
                                                         physical_izz)
+from fivebar_drake.mechanisms.fivebar.limits import joint_ranges
 
 COLORS = {"AC": "0.85 0.35 0.2 1", "BD": "0.2 0.45 0.85 1", "CE": "0.95 0.6 0.3 1",
           "DE": "0.35 0.65 0.95 1"}
@@ -42,11 +45,13 @@ def _link(leg: LegGeometry, links, prefix: str, frame: str, name: str, origin,
                    name=f"{prefix}_{name}")
 
 
-def _joint(prefix: str, name: str, parent: str, child: str, look: SdfLook | None) -> str:
-    """A revolute joint about the hinge; look: actuated (its limit and drive), None: passive."""
-    limit, drive = (PASSIVE, "") if look is None else (look.limit_xml, look.drive_xml)
+def _joint(prefix: str, name: str, parent: str, child: str, look: SdfLook | None,
+           joint_range=(None, None)) -> str:
+    """A revolute joint about the hinge within joint_range (lower, upper) rad (None: free);
+    look: actuated (its effort limit and drive), None: passive."""
+    effort, drive = (0, "") if look is None else (look.effort_limit, look.drive_xml)
     return joint(f"{prefix}_{name}", "revolute", parent, f"{prefix}_{child}",
-                 axis("0 0 1", limit), drive)
+                 axis("0 0 1", limit(effort, *joint_range)), drive)
 
 
 def _loop_frame(prefix: str, link: str, length_m: float) -> str:
@@ -68,14 +73,16 @@ def sdf_elements(leg: LegGeometry, links: dict[str, LinkInertia], prefix: str, p
     None, or its sdf(loop_cut, bushing) element; bushing: the designed one)."""
     ax, ay = leg.motor_a_m
     bx, by = leg.motor_b_m
+    ranges = joint_ranges(leg)
+    free = (None, None)
     parts = [_link(leg, links, prefix, frame, "AC", (ax, ay), look),
              _link(leg, links, prefix, frame, "BD", (bx, by), look),
              _link(leg, links, prefix, frame, "CE", (ax + leg.ac_m, ay), look),
              _link(leg, links, prefix, frame, "DE", (bx + leg.bd_m, by), look),
-             _joint(prefix, "A", parent, "AC", look),
-             _joint(prefix, "B", parent, "BD", look),
-             _joint(prefix, "C", f"{prefix}_AC", "CE", None),
-             _joint(prefix, "D", f"{prefix}_BD", "DE", None),
+             _joint(prefix, "A", parent, "AC", look, ranges.get("A", free)),
+             _joint(prefix, "B", parent, "BD", look, ranges.get("B", free)),
+             _joint(prefix, "C", f"{prefix}_AC", "CE", None, ranges.get("C", free)),
+             _joint(prefix, "D", f"{prefix}_BD", "DE", None, ranges.get("D", free)),
              _loop_frame(prefix, "CE", leg.ce_m),
              _loop_frame(prefix, "DE", leg.de_m)]
     closing = "" if closure is None else closure.sdf(loop_cut(leg, prefix), bushing)

@@ -11,16 +11,11 @@ from __future__ import annotations
 from dataclasses import dataclass, fields
 import numpy as np
 
+from fivebar_drake.core.rotation import angle_between
 from fivebar_drake.mechanisms.fivebar.geometry import LegGeometry
 from fivebar_drake.mechanisms.fivebar.jacobians import foot_jacobian
 from fivebar_drake.mechanisms.fivebar.kinematics import (KNEES_OUT, LegPose, UnreachableError,
                                                          inverse)
-
-
-def _angle(u, v):
-    """Unsigned angle (rad, 0..pi) between vectors u and v (..., 2)."""
-    cross = u[..., 0] * v[..., 1] - u[..., 1] * v[..., 0]
-    return np.abs(np.arctan2(cross, np.sum(u * v, axis=-1)))
 
 
 @dataclass(frozen=True)
@@ -38,9 +33,9 @@ def singularity_measures(leg: LegGeometry, pose: LegPose) -> SingularityMeasures
     jf = foot_jacobian(leg, pose)
     s = np.linalg.svd(jf, compute_uv=False)
     return SingularityMeasures(
-        angle_c=_angle(leg.a - pose.c, pose.e - pose.c),
-        angle_d=_angle(leg.b - pose.d, pose.e - pose.d),
-        angle_e=_angle(pose.c - pose.e, pose.d - pose.e),
+        angle_c=angle_between(leg.a - pose.c, pose.e - pose.c),
+        angle_d=angle_between(leg.b - pose.d, pose.e - pose.d),
+        angle_e=angle_between(pose.c - pose.e, pose.d - pose.e),
         det_jf=np.linalg.det(jf),
         cond_jf=s[..., 0] / s[..., 1])
 

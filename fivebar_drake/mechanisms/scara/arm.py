@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from fivebar_drake.core.sdf import axis, element, fmt, inertial, joint, pose
+from fivebar_drake.core.sdf import axis, element, inertial, joint, limit, pose
 from fivebar_drake.mechanisms.base import Bushing, SdfLook
 from fivebar_drake.mechanisms.scara.dynamics import Dynamics, Inertia
 from fivebar_drake.mechanisms.scara.kinematics import Scara
@@ -63,6 +63,6 @@ class ScaraArm(Scara):
                 ("prismatic", f"0 0 {k.q3_direction}"))
         parents = (parent, f"{prefix}link1", f"{prefix}link2")
         for n, ((kind, xyz), up, lo, hi) in enumerate(zip(axes, parents, self.lower, self.upper)):
-            limit = element("limit", element("lower", fmt(lo)), element("upper", fmt(hi)))
-            text += joint(f"{prefix}q{n + 1}", kind, up, f"{prefix}link{n + 1}", axis(xyz, limit))
+            text += joint(f"{prefix}q{n + 1}", kind, up, f"{prefix}link{n + 1}",
+                          axis(xyz, limit(lower=lo, upper=hi)))
         return text

@@ -1,6 +1,7 @@
 """Parameter files: the packaged ``data/default.toml`` is the one source of truth, a user may
 pass their own with the same layout. Loading builds the typed sections of params.py and checks
-what needs the kinematics: every foot path must stay in the workspace."""
+what needs the kinematics: every foot path and the home point must stay in the workspace and
+within the leg's limits."""
 
 from __future__ import annotations
 
@@ -9,12 +10,12 @@ from pathlib import Path
 import numpy as np
 
 from fivebar_drake.core.checks import Checks
-from fivebar_drake.core.footpath import Gait, PATHS, evaluate
+from fivebar_drake.core.footpath import PATHS, FootPath, Gait
 from fivebar_drake.core.motor import build_motor
 from fivebar_drake.core.parameter_files import build_section, load_parameter_file, packaged
 from fivebar_drake.core.validation import MAX_SAMPLES, ParameterError, require
-from fivebar_drake.mechanisms.fivebar import (KNEES_OUT, LegGeometry, LinkInertia,
-                                              UnreachableError, inverse, sample_gait)
+from fivebar_drake.mechanisms.fivebar import (KNEES_OUT, LegGeometry, LegLimits, LinkInertia,
+                                              UnreachableError, inverse, path_poses, sample_gait)
 from fivebar_drake.robots.quadruped.params import Body, Params, Robot
 from fivebar_drake.robots.quadruped.published import published_from
 
@@ -25,20 +26,25 @@ from fivebar_drake.robots.quadruped.published import published_from
 # with the analysis.
 REFERENCE_REFINEMENT = 8
 SAMPLING_ERROR_WARN = 0.05   # the speed check and safety factors move visibly beyond this
-SECTIONS = ("leg", "links", "robot", "gait", "motor", "checks", "body")   # the file's sections
-OPTIONAL_SECTIONS = ("published",)                                        # and those it may have
+# the file's sections; an optional one may be left out (absent [limits]: no limit)
+SECTIONS = ("leg", "links", "robot", "gait", "motor", "checks", "body", "limits", "published")
+OPTIONAL_SECTIONS = ("limits", "published")
+EDITABLE_SECTIONS = SECTIONS[:-1]   # [published] holds figures to compare with, not parameters
+PATH_CHECK_SAMPLES = 241    # samples of each foot path checked against the workspace and limits
 
 
 def params_from_dict(data: dict) -> Params:
     """Build and validate Params from the nested dict of a parameter file."""
-    unknown = sorted(set(data) - set(SECTIONS) - set(OPTIONAL_SECTIONS))
-    missing = sorted(set(SECTIONS) - set(data))
+    unknown = sorted(set(data) - set(SECTIONS))
+    missing = sorted(set(SECTIONS) - set(OPTIONAL_SECTIONS) - set(data))
     if unknown or missing:
         raise ParameterError(f"parameter file sections: unknown {unknown}, missing {missing}; "
-                             f"expected {sorted(SECTIONS)}, optionally {list(OPTIONAL_SECTIONS)}")
+                             f"expected {sorted(SECTIONS)} ({list(OPTIONAL_SECTIONS)} optional)")
     require(isinstance(data["links"], dict), "[links]", data["links"], "must hold [links.AC] ...")
+    leg = build_section(LegGeometry, data["leg"], "leg")
     params = Params(
-        leg=build_section(LegGeometry, data["leg"], "leg"),
+        leg=dataclasses.replace(leg, limits=build_section(LegLimits, data.get("limits", {}),
+                                                          "limits")),
         links={name: build_section(LinkInertia, table, f"links.{name}")
                for name, table in data["links"].items()},
         robot=build_section(Robot, data["robot"], "robot"),
@@ -53,19 +59,37 @@ def params_from_dict(data: dict) -> Params:
 
 
 def check_gait_reachable(params: Params) -> None:
-    """Raise ParameterError if a sample of either foot path lies outside the knees-out
-    workspace, naming the fields that place the path."""
-    g = params.gait
+    """Raise ParameterError if the home point or a sample of any foot path (with its defaults)
+    lies outside the knees-out workspace or past one of the leg's limits (check_path)."""
     for path in PATHS:
-        foot = evaluate(g, path, np.linspace(0.0, g.period_s, 241)).pos
-        try:
-            inverse(params.leg, foot, KNEES_OUT)
-        except UnreachableError as err:
-            raise ParameterError(
-                f"the foot path leaves the workspace ({path} path): {err}; the path spans "
-                f"x = gait.x_center_m +- gait.a_m = {g.x_center_m:g} +- {g.a_m:g} m and "
-                f"y = gait.y_home_m .. + gait.b_m = {g.y_home_m:g} .. {g.y_home_m + g.b_m:g} m: "
-                "move or shrink it, or change the link lengths leg.*", "gait.y_home_m") from None
+        check_path(params, path)
+    g = params.gait
+    try:
+        inverse(params.leg, np.array([g.x_center_m, g.y_home_m]), KNEES_OUT)
+    except UnreachableError as err:
+        field = f"limits.{err.field}" if err.field else "gait.y_home_m"
+        raise ParameterError(f"the home point (gait.x_center_m, gait.y_home_m), where the robot "
+                             f"stands, is unreachable: {err}", field) from None
+
+
+def check_path(params: Params, path: FootPath | str) -> None:
+    """Raise ParameterError if a sample of the foot path (a FootPath or its kind), sampled
+    PATH_CHECK_SAMPLES times over a cycle, lies outside the workspace or past a limit, naming
+    the sample (index, time, foot target), the limit and the fields that place the path."""
+    g = params.gait
+    try:
+        path_poses(params.leg, g, path, np.linspace(0.0, g.period_s, PATH_CHECK_SAMPLES))
+    except UnreachableError as err:
+        where = (f"the path spans x = gait.x_center_m +- gait.a_m = {g.x_center_m:g} +- "
+                 f"{g.a_m:g} m and y = gait.y_home_m .. + gait.b_m = {g.y_home_m:g} .. "
+                 f"{g.y_home_m + g.b_m:g} m: move or shrink it")
+        if err.field:
+            raise ParameterError(f"the foot path leaves the leg's limits ({err.where}): "
+                                 f"{err.reason}; {where}, or change limits.{err.field}",
+                                 f"limits.{err.field}") from None
+        raise ParameterError(f"the foot path leaves the workspace ({err.where}): {err.reason}; "
+                             f"{where}, or change the link lengths leg.*",
+                             "gait.y_home_m") from None
 
 
 def with_gait(params: Params, **changes) -> Params:
@@ -84,9 +108,9 @@ def with_changes(params: Params, changes: dict) -> Params:
     sections = {}
     for path, value in changes.items():
         parts = path.split(".")
-        if parts[0] not in SECTIONS or len(parts) != (3 if parts[0] == "links" else 2):
+        if parts[0] not in EDITABLE_SECTIONS or len(parts) != (3 if parts[0] == "links" else 2):
             raise ParameterError(f"{path}: not a parameter; use section.field with a section of "
-                                 f"{list(SECTIONS)} (links.NAME.field for a link)", path)
+                                 f"{list(EDITABLE_SECTIONS)} (links.NAME.field for a link)", path)
         sections.setdefault(parts[0], {})[".".join(parts[1:])] = value
     new = {}
     for section, fields in sections.items():
@@ -102,6 +126,8 @@ def with_changes(params: Params, changes: dict) -> Params:
             new[section] = links
         else:
             new[section] = _replace(old, section, fields)
+    if "limits" in new:                    # the leg's limits: [limits] of the file
+        new["leg"] = dataclasses.replace(new.get("leg", params.leg), limits=new.pop("limits"))
     return dataclasses.replace(params, **new)
 
 

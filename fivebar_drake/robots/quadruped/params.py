@@ -12,7 +12,8 @@ from fivebar_drake.core.validation import (MAX_CONTACT_STIFFNESS_N_M, MAX_FRICTI
                                            MAX_GRAVITY_M_S2, MAX_LENGTH_M, MAX_MASS_KG,
                                            MAX_RELAXATION_TIME_S, check_lengths, check_number,
                                            require)
-from fivebar_drake.mechanisms.fivebar import LINK_NAMES, FiveBarLeg, LegGeometry, LinkInertia
+from fivebar_drake.mechanisms.fivebar import (LINK_NAMES, FiveBarLeg, LegGeometry, LegLimits,
+                                              LinkInertia)
 from fivebar_drake.robots.quadruped.legs import LEGS
 
 
@@ -75,8 +76,9 @@ class Body:
 
 @dataclass(frozen=True)
 class Params:
-    """The quadruped's parameter file: each leg's geometry and link inertias, the robot's
-    masses, the gait, the hip motors, the verdict thresholds and the body."""
+    """The quadruped's parameter file: each leg's geometry with its limits ([limits]) and link
+    inertias, the robot's masses, the gait, the hip motors, the verdict thresholds and the
+    body."""
 
     leg: LegGeometry
     links: dict[str, LinkInertia]
@@ -86,6 +88,11 @@ class Params:
     checks: Checks
     body: Body
     published: dict = field(default_factory=dict)   # [published]: robots/quadruped/published.py
+
+    @property
+    def limits(self) -> LegLimits:
+        """The leg's mechanical limits ([limits] of the file; part of the leg's geometry)."""
+        return self.leg.limits
 
     @property
     def fivebar_leg(self) -> FiveBarLeg:

@@ -10,12 +10,13 @@ FIGURES: a figure the toolkit can compute independently of the value given.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 import math
 import numpy as np
 
 from fivebar_drake.core.validation import require
-from fivebar_drake.mechanisms.fivebar import KNEES_OUT, reachable
+from fivebar_drake.mechanisms.fivebar import KNEES_OUT, LegLimits, reachable
 
 DEFAULT_TOLERANCE = 0.02
 EXTENSION_SAMPLES = 20001     # foot distances tried below the hip axis: ~25 um apart on a 0.5 m leg
@@ -24,8 +25,9 @@ EXTENSION_SAMPLES = 20001     # foot distances tried below the hip axis: ~25 um 
 def extension_range_m(params) -> list[float]:
     """Least and most leg extension (m): the foot's distance from the hip axis (the leg plane's
     origin) along the line straight below it, over the foot points the knees-out assembly reaches
-    by geometry alone (to EXTENSION_SAMPLES points; mechanical stops aside)."""
-    leg = params.leg
+    by geometry alone (to EXTENSION_SAMPLES points; the [limits] aside: they may be the very
+    stops a published range reports)."""
+    leg = dataclasses.replace(params.leg, limits=LegLimits())
     reach = leg.ac_m + leg.ce_m + leg.ef_m + abs(leg.motor_b_m[0] - leg.motor_a_m[0])
     r = np.linspace(0.0, reach, EXTENSION_SAMPLES)
     ok = reachable(leg, np.stack([np.zeros_like(r), -r], axis=-1), KNEES_OUT)

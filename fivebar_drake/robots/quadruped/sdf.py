@@ -33,10 +33,10 @@ def leg_sdf(params: Params, leg: str, parent: str, hip_xyz, closure,
             + visual("foot", sphere(b.foot_radius_m), "0.1 0.1 0.1 1", "{pose}"))
     # The plant clamps actuation at the effort limit; the motor model (core.motor.MotorModel)
     # is the authority on saturation, and its output includes friction, which can add to it.
-    limit = element("limit", element("effort", fmt(m.max_applied_torque_Nm)))
     drive = (element("drake:rotor_inertia", fmt(m.rotor_inertia_kg_m2))
              + element("drake:gear_ratio", fmt(m.gear_ratio)))
-    look = SdfLook(link_width_m=b.link_width_m, tool_xml=foot, limit_xml=limit, drive_xml=drive)
+    look = SdfLook(link_width_m=b.link_width_m, tool_xml=foot,
+                   effort_limit=m.max_applied_torque_Nm, drive_xml=drive)
     frame = element("frame", pose(*hip_xyz, *PLANE_RPY, relative_to=parent),
                     name=f"{leg}_plane", attached_to=parent)
     return frame + "\n" + params.fivebar_leg.sdf_elements(leg, parent, f"{leg}_plane", closure,

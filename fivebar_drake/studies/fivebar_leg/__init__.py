@@ -30,11 +30,11 @@ class Simulated(NamedTuple):
 
 
 def with_sets(params: Params, sets: list[str] | None) -> Params:
-    """The parameters with the command line's --set FIELD=VALUE edits (ParameterError naming
-    the command line)."""
+    """The parameters with the command line's --set FIELD=VALUE edits, their foot paths checked
+    (ParameterError naming the command line)."""
     if not sets:
         return params
-    from fivebar_drake.robots.quadruped.config import with_changes
+    from fivebar_drake.robots.quadruped.config import check_gait_reachable, with_changes
 
     changes = {}
     for item in sets:
@@ -47,7 +47,9 @@ def with_sets(params: Params, sets: list[str] | None) -> Params:
         except ValueError:
             changes[field.strip()] = text.strip()
     try:
-        return with_changes(params, changes)
+        params = with_changes(params, changes)
+        check_gait_reachable(params)          # the edited leg, gait or limits
+        return params
     except ParameterError as err:
         raise err.located("command line (--set)") from None
 

@@ -10,6 +10,7 @@ from fivebar_drake.pipeline import AnalysisRecord
 from fivebar_drake.robots.quadruped.config import sampling_error
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.simulation.runner import SimulationRecord
+from fivebar_drake.simulation.summary import limits_text
 
 
 def analysis_lines(record: AnalysisRecord) -> list[str]:
@@ -39,6 +40,7 @@ def simulation_lines(summary: dict) -> list[str]:
         lines.append("  " + leg + ": " + ", ".join(
             f"{m} demand p99 {v['demand_p99_Nm']:.2f} N m (RMS {v['rms_torque_Nm']:.2f}, "
             f"SF {v['safety_factor']:.2f}, {v['verdict']})" for m, v in motors.items()))
+    lines.append(limits_text(s["limits"]))
     lines.append(f"verdict: {s['verdict'].upper()} (worst motor {s['worst_motor']}, "
                  f"{s['deciding_check']} check)")
     if s["step_check"]:

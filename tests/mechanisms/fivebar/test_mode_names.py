@@ -8,7 +8,7 @@ import dataclasses
 import numpy as np
 import pytest
 
-from fivebar_drake.mechanisms.fivebar import (ALL_MODES, MODE_ALIASES, MODE_NAMES,
+from fivebar_drake.mechanisms.fivebar import (ALL_MODES, MODE_ALIASES, MODE_NAMES, LegLimits,
                                               UnreachableError, inverse, mode_name)
 from fivebar_drake.robots.quadruped.config import load_params
 
@@ -17,8 +17,9 @@ SPACINGS_MM = np.linspace(85.0, 0.0, 171)
 
 
 def _leg(spacing_m):
-    leg = load_params().leg
-    return dataclasses.replace(leg, motor_a_m=(-spacing_m / 2, 0.0), motor_b_m=(spacing_m / 2, 0.0))
+    leg = load_params().leg        # its geometry alone: the mechanical limits would cut modes
+    return dataclasses.replace(leg, motor_a_m=(-spacing_m / 2, 0.0), motor_b_m=(spacing_m / 2, 0.0),
+                               limits=LegLimits())
 
 
 def _side_by_eye(hip, through, knee):

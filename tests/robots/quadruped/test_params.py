@@ -29,8 +29,8 @@ def test_default_matches_spec(params):
     (r"^izz_kg_m2 = 1.0e-5", "izz_kg_m2 = 1.0", "links.BD.izz_kg_m2 = 1.0: must be in [0, "
      "7.02895e-05] (cannot be physical beyond m*c*(L-c)"),
     (r"^y_home_m = -0.200", "y_home_m = -0.400",
-     "the foot path leaves the workspace (seed_ellipse path): foot target [60.0, -400.0] mm is "
-     "out of reach: |BF|"),
+     "the foot path leaves the workspace (seed_ellipse path, sample 0 of 241 at t = 0.0000 s): "
+     "foot target [60.0, -400.0] mm is out of reach: |BF|"),
     (r"^duty_factor = 0.75", "duty_factor = 1.0", "gait.duty_factor = 1.0: must be in (0, 1)"),
     (r"^samples = 60", "samples = 2", "gait.samples = 2: must be an integer in [3, 10000] (central differences need "
      "neighbours)"),
