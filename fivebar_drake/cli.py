@@ -189,8 +189,9 @@ def _envelope(args, signals) -> int:
     try:
         run = run_envelope(spec, out, args.workers, args.scheduler)
     except (KeyboardInterrupt, Interrupted):
-        _err(f"the finished maneuvers' folders and an envelope of them (complete: false) are in "
-             f"{out}")
+        if (out / "envelope.json").exists():
+            _err(f"the finished maneuvers' folders and an envelope of them (complete: false) "
+                 f"are in {out}")
         raise
     report = run.report
     say(report["answer"])

@@ -71,12 +71,13 @@ def run_envelope(spec: EnvelopeSpec, out: str | Path, workers: int | None = None
     if scheduler:
         check_scheduler(scheduler)
     check_folders(out, spec)
-    results, written = {}, {}
+    results, written, prepared = {}, {}, False
     try:
         with dask_client(workers, scheduler, client) as dask:
             prepare_output_dir(out, "--out", ENVELOPE_FILES)   # the scheduler answers
             for m in spec.maneuvers:
                 prepare_output_dir(out / m.name, "--out", SIMULATION_FILES)
+            prepared = True
             bar = Progress(len(spec.maneuvers), 0, progress, "envelope", "maneuvers")
             for (maneuver,), done, error in finished_tasks(
                     dask, run_maneuvers, (OPERATING_POINTS,), [[m] for m in spec.maneuvers]):
@@ -88,7 +89,8 @@ def run_envelope(spec: EnvelopeSpec, out: str | Path, workers: int | None = None
                 if progress:
                     say(f"  {maneuver_line(result)}", sys.stderr)
     except (KeyboardInterrupt, Interrupted):
-        write_envelope(spec, results, out)
+        if prepared:
+            write_envelope(spec, results, out)
         raise
     ordered = {m.name: results[m.name] for m in spec.maneuvers}
     report, files = write_envelope(spec, ordered, out)

@@ -11,6 +11,7 @@ import socket
 import subprocess
 import sys
 import tomllib
+from contextlib import nullcontext
 
 import numpy as np
 import pytest
@@ -19,6 +20,7 @@ from rerun.chunk import RrdReader
 from fivebar_drake.cli import main
 from fivebar_drake.envelope import run as envelope_run
 from fivebar_drake.envelope.duty_cycle import duty_temperature
+from fivebar_drake.envelope.maneuver import decimate
 from fivebar_drake.envelope.spec import DATA, DutyStep, load_envelope_spec
 from fivebar_drake.robots.quadruped.config import DEFAULT_PATH
 from fivebar_drake.simulation.recording import read_series
@@ -283,6 +285,15 @@ def test_a_long_step_settles_at_the_rms_currents_temperature(local):
             rise, rel=tolerance)
 
 
+def test_decimation_keeps_the_edges_of_the_cloud(rng):
+    torque, speed = rng.normal(size=10_001), rng.normal(size=10_001)
+    torque[4321], speed[777] = 50.0, -40.0            # off the even grid of 100 of 10,001
+    keep = decimate(speed, torque, 100)
+    assert keep.size == 100 and np.all(np.diff(keep) > 0)
+    assert {4321, 777} <= set(keep.tolist())
+    assert decimate(speed[:50], torque[:50], 100).tolist() == list(range(50))
+
+
 @pytest.mark.slow
 def test_operating_points_hold_the_demand_peak(local):
     out, _, run = local
@@ -294,17 +305,23 @@ def test_operating_points_hold_the_demand_peak(local):
             assert result.demand[j].size == 2000 < result.current.shape[0] * 4
 
 
+def without_dask(monkeypatch, first, second):
+    """run_envelope with no cluster: the first maneuver finishes with `first` (a result),
+    then `second` happens (an exception raised, or the error text of a failed task)."""
+    def tasks(client, task, args, chunks):
+        yield chunks[0], [first], ""
+        if isinstance(second, BaseException):
+            raise second
+        yield chunks[1], None, second
+
+    monkeypatch.setattr(envelope_run, "finished_tasks", tasks)
+    monkeypatch.setattr(envelope_run, "dask_client", lambda *a: nullcontext())
+
+
 @pytest.mark.slow
 def test_an_interrupted_envelope_keeps_what_finished(local, tmp_path, monkeypatch, capsys):
     out, spec_path, run = local
-    first = run.results["trot"]
-
-    def interrupted_after_one(client, task, args, chunks):
-        yield chunks[0], [first], ""
-        raise KeyboardInterrupt
-
-    monkeypatch.setattr(envelope_run, "finished_tasks", interrupted_after_one)
-    monkeypatch.setattr(envelope_run, "dask_client", lambda *a: _nothing())
+    without_dask(monkeypatch, run.results["trot"], KeyboardInterrupt())
     stopped = tmp_path / "stopped"
     assert main(["envelope", str(spec_path), "--out", str(stopped)]) == 130
     assert "complete: false" in capsys.readouterr().err
@@ -317,6 +334,17 @@ def test_an_interrupted_envelope_keeps_what_finished(local, tmp_path, monkeypatc
     assert not (stopped / "trot_fast" / "summary.json").exists()
 
 
-def _nothing():
-    from contextlib import nullcontext
-    return nullcontext()
+@pytest.mark.slow
+def test_a_failed_maneuver_is_reported_and_exits_1(local, tmp_path, monkeypatch, capsys):
+    out, spec_path, run = local
+    without_dask(monkeypatch, run.results["trot"], "KilledWorker: the worker died")
+    failed = tmp_path / "failed"
+    assert main(["envelope", str(spec_path), "--out", str(failed)]) == 1
+    assert "trot_fast" in capsys.readouterr().err
+    report = envelope(failed)
+    assert report["complete"]
+    entry = report["maneuvers"]["trot_fast"]
+    assert entry["status"] == "failed" and "the worker died" in entry["error"]
+    assert "No verdict for trot_fast" in report["answer"]
+    assert report["sized_by"]["A"]["maneuver"] == "trot"
+    assert "did not run or has no samples" in report["duty_cycle_why_none"]
