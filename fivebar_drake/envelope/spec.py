@@ -68,9 +68,6 @@ class EnvelopeSpec:
     duty_cycle: tuple[DutyStep, ...]
     source: str = field(default="", compare=False)
 
-    def maneuver(self, name: str) -> Maneuver:
-        return next(m for m in self.maneuvers if m.name == name)
-
 
 def load_envelope_spec(path: str | Path | None = None) -> EnvelopeSpec:
     """Read and check SPEC.yaml (None: the packaged default); ParameterError naming the file,

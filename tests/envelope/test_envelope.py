@@ -6,7 +6,6 @@ integration of the thermal ODE and its steady state; an interrupted envelope kee
 finished."""
 
 import json
-import math
 import socket
 import subprocess
 import sys
@@ -133,7 +132,7 @@ def test_a_maneuver_folder_that_is_a_file_is_refused(tmp_path, capsys):
 def test_packaged_specs_load():
     default = load_envelope_spec()
     assert [m.name for m in default.maneuvers] == ["trot_1hz", "trot_fast"]
-    assert default.maneuver("trot_fast").params.gait.frequency_hz == 1.5
+    assert default.maneuvers[1].params.gait.frequency_hz == 1.5
     demo = load_envelope_spec(DATA / "envelope_demo.yaml")
     assert len(demo.maneuvers) <= 3 and demo.duty_cycle
 
@@ -336,7 +335,7 @@ def test_an_interrupted_envelope_keeps_what_finished(local, tmp_path, monkeypatc
 
 @pytest.mark.slow
 def test_a_failed_maneuver_is_reported_and_exits_1(local, tmp_path, monkeypatch, capsys):
-    out, spec_path, run = local
+    _, spec_path, run = local
     without_dask(monkeypatch, run.results["trot"], "KilledWorker: the worker died")
     failed = tmp_path / "failed"
     assert main(["envelope", str(spec_path), "--out", str(failed)]) == 1
