@@ -31,6 +31,7 @@ demo: $(STAMP)
 	$(BIN)/fivebar-drake compare $(OUT)/simulation/trot $(OUT)/simulation/trot_gear_11.5 \
 		--out $(OUT)/gear_comparison.md
 	$(BIN)/fivebar-drake sweep fivebar_drake/data/sweep_example.yaml --out $(OUT)/sweep
+	$(BIN)/fivebar-drake envelope fivebar_drake/data/envelope_demo.yaml --out $(OUT)/envelope
 	for m in ballscrew_leg scara parallel4; do \
 		$(BIN)/fivebar-drake analyze --mechanism $$m --out $(OUT)/$$m || exit 1; done
 	for r in doggo minitaur; do \
@@ -44,6 +45,7 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_kinematics.py
 	$(BIN)/python benchmarks/bench_simulation.py
 	$(BIN)/python benchmarks/bench_sweep.py
+	$(BIN)/python benchmarks/bench_envelope.py
 
 clean:
 	rm -rf $(VENV) $(OUT)

@@ -6,6 +6,7 @@
                          [--set FIELD=VALUE ...] [--gait {trot,seed_ellipse}] [--duration S]
                          [--closure {bushing,bushing_rpy,ball}] [--step-check] [--out DIR]
   fivebar-drake sweep    SPEC.yaml [--out DIR] [--workers N] [--scheduler ADDRESS]
+  fivebar-drake envelope [SPEC.yaml] [--out DIR] [--workers N] [--scheduler ADDRESS]
   fivebar-drake compare  RUN_DIR [RUN_DIR ...] [--out FILE]
   fivebar-drake models   [--scenario FILE] [--config FILE] [--out DIR]"""
 
@@ -33,7 +34,7 @@ EXIT_CODES = """exit codes:
        did not achieve its motion (verdict not_achieved)
   2    bad input: a parameter or scenario file, a command-line value, an output path
   3    internal error (a bug): the message names a log file with the traceback
-  130  interrupted by SIGINT (Ctrl-C), 143 by SIGTERM; simulate writes what it has first"""
+  130  interrupted by SIGINT (Ctrl-C), 143 by SIGTERM; simulate and envelope write what they have first"""
 
 EXIT_INTERNAL = 3
 DEFAULTS = Scenario()
@@ -126,6 +127,13 @@ def _finish(written, out, start: float, signals) -> int:
     return 0
 
 
+def _check_cluster(args) -> None:
+    """--workers applies to the local cluster only."""
+    if args.workers is not None and (args.workers < 1 or args.scheduler):
+        raise ParameterError(f"--workers = {args.workers}: must be >= 1, and applies to the "
+                             "local cluster (not with --scheduler)", "--workers", "command line")
+
+
 def _sweep(args, signals) -> int:
     import matplotlib
 
@@ -135,9 +143,7 @@ def _sweep(args, signals) -> int:
     from fivebar_drake.sweep.spec import load_spec
 
     spec = load_spec(args.spec)
-    if args.workers is not None and (args.workers < 1 or args.scheduler):
-        raise ParameterError(f"--workers = {args.workers}: must be >= 1, and applies to the "
-                             "local cluster (not with --scheduler)", "--workers", "command line")
+    _check_cluster(args)
     out = Path(args.out or Path("out/sweep") / Path(args.spec).stem)
     start = time.perf_counter()
     try:
@@ -160,6 +166,51 @@ def _sweep(args, signals) -> int:
     say(f"wrote {len(written)} files to {out.resolve()} in {time.perf_counter() - start:.1f} s:")
     for path in written:
         say(f"  {path}")
+    return 0
+
+
+def _envelope(args, signals) -> int:
+    """The duty envelope (envelope/run.py): every input checked first (exit 2), the maneuvers
+    run on Dask, the envelope written; exit 1 when a maneuver has no verdict or did not achieve
+    its motion."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from pathlib import Path
+    from fivebar_drake.envelope.run import run_envelope
+    from fivebar_drake.envelope.spec import DEFAULT_SPEC, load_envelope_spec
+
+    spec = load_envelope_spec(args.spec)
+    _check_cluster(args)
+    out = Path(args.out or Path("out/envelope") / Path(args.spec or DEFAULT_SPEC).stem)
+    start = time.perf_counter()
+    say(f"envelope: {len(spec.maneuvers)} maneuvers of {spec.source}"
+        + (f", a duty cycle of {len(spec.duty_cycle)} steps" if spec.duty_cycle else ""))
+    try:
+        run = run_envelope(spec, out, args.workers, args.scheduler)
+    except (KeyboardInterrupt, Interrupted):
+        if (out / "envelope.json").exists():
+            _err(f"the finished maneuvers' folders and an envelope of them (complete: false) "
+                 f"are in {out}")
+        raise
+    report = run.report
+    say(report["answer"])
+    for motor, s in report["sized_by"].items():
+        if s:
+            say(f"motor {motor} is sized by {s['maneuver']} ({s['verdict'].upper()}, "
+                f"{s['deciding_check']} check, leg {s['leg']})")
+    duty = report["duty_cycle"]
+    say("duty cycle: " + (report["duty_cycle_why_none"] if duty is None else ", ".join(
+        f"motor {m} peaks at {v['peak_C']:.1f} °C (leg {v['leg']})"
+        for m, v in duty["motors"].items()) + f": {duty['verdict'].upper()}"))
+    files = run.files + [p for paths in run.maneuver_files.values() for p in paths]
+    say(f"wrote {len(files)} files to {out.resolve()} in {time.perf_counter() - start:.1f} s: "
+        + ", ".join(p.name for p in run.files) + " and a folder per maneuver")
+    unrated = [n for n, e in report["maneuvers"].items()
+               if e["verdict"] not in ("pass", "warn", "fail")]
+    if unrated:
+        _err(f"no verdict or not achieved: {', '.join(unrated)} (see {out / 'envelope.md'})")
+        return 1
     return 0
 
 
@@ -253,9 +304,23 @@ def parser() -> argparse.ArgumentParser:
     w.add_argument("--out", metavar="DIR", help="output folder: points.csv, plots, sweep.md; "
                    "rerunning the same sweep into it computes only the missing points "
                    "(default: out/sweep/SPEC's name)")
-    w.add_argument("--workers", type=int, metavar="N", help="process workers of the local "
-                   "cluster, one thread each (default: one per core)")
+    workers = dict(type=int, metavar="N", help="process workers of the local cluster, one "
+                   "thread each (default: one per core)")
+    w.add_argument("--workers", **workers)
     w.add_argument("--scheduler", metavar="ADDRESS", help="send the sweep to this Dask "
+                   "scheduler (tcp://HOST:PORT) instead of a local cluster")
+    e = command("envelope", _envelope, "the duty envelope of the hip motors: maneuvers "
+                "simulated on a local Dask cluster or an existing one; per motor and maneuver "
+                "the verdict's checks, what sizes each motor, the operating points over the "
+                "envelope and a duty cycle's winding temperature")
+    e.add_argument("spec", nargs="?", metavar="SPEC", help="envelope spec (YAML; see README: "
+                   "maneuvers, duty_cycle, config, scenario, duration_s); default: the packaged "
+                   "fivebar_drake/data/envelope_default.yaml")
+    e.add_argument("--out", metavar="DIR", help="output folder: envelope.md, envelope.json, "
+                   "operating_points.png, duty_cycle.png and a folder per maneuver (default: "
+                   "out/envelope/SPEC's name)")
+    e.add_argument("--workers", **workers)
+    e.add_argument("--scheduler", metavar="ADDRESS", help="run the maneuvers on this Dask "
                    "scheduler (tcp://HOST:PORT) instead of a local cluster")
     c = command("compare", _compare, "simulated runs side by side: each motor's verdict and torques (what a foot path or a design costs)")
     c.add_argument("runs", nargs="+", metavar="RUN_DIR", help="output folders of `simulate` runs")

@@ -127,14 +127,16 @@ def summarize_run(record: SimulationRecord, half: SimulationRecord | None = None
 
 
 def write_simulation(record: SimulationRecord, out_dir: str | Path,
-                     half: SimulationRecord | None = None) -> tuple[dict, list[Path]]:
+                     half: SimulationRecord | None = None,
+                     name: str = "") -> tuple[dict, list[Path]]:
     """Write SIMULATION_FILES into out_dir (made if needed), each atomically: first remove a
     previous run's files, then the plots, the Rerun recording, summary.md and summary.json
     last, so a summary.json always describes complete files. Returns (the summary as written,
-    the paths in the order written). half: the step check's run (summarize_run)."""
+    the paths in the order written). half: the step check's run (summarize_run); name: the
+    run's name in its recording's id."""
     out = prepare_output_dir(out_dir, "out_dir", SIMULATION_FILES)
     sig, summary = _review(record, half)
     written = write_sim_plots(sig, record.layout.legs, record.params, summary, out)
-    written.append(write_recording(out / RECORDING_FILE, sig, record, summary))
+    written.append(write_recording(out / RECORDING_FILE, sig, record, summary, name))
     written += write_summary(summary, record.params, out)
     return summary, written

@@ -101,11 +101,12 @@ def atomic_path(path):
         Path(tmp).unlink(missing_ok=True)
 
 
-def write_atomic(path, text: str) -> Path:
-    """Write text to path atomically (see atomic_path); returns path."""
+def write_atomic(path, text: str | bytes) -> Path:
+    """Write text (UTF-8) or bytes to path atomically (see atomic_path); returns path."""
     path = Path(path)
     with atomic_path(path) as tmp:
-        with open(tmp, "w", encoding="utf-8") as f:
+        with (open(tmp, "wb") if isinstance(text, bytes) else
+              open(tmp, "w", encoding="utf-8")) as f:
             f.write(text)
             f.flush()
             os.fsync(f.fileno())

@@ -5,7 +5,8 @@ T(t) = T_ambient + P R_th (1 - exp(-t / tau_th)),
 which reaches the limit T_limit at t = -tau_th ln(1 - (T_limit - T_ambient) / (P R_th)) if
 P R_th > T_limit - T_ambient, never otherwise. The cycle-average loss is exact for i^2 R
 (mean of i^2 = i_rms^2); the ripple within a cycle is a fraction ~ period / (2 pi tau_th) of
-the rise and is left out."""
+the rise and is left out. A loss that changes over time (a duty cycle of maneuvers) is
+solved exactly for a loss held over each interval (winding_rise)."""
 
 from __future__ import annotations
 
@@ -54,3 +55,17 @@ def winding_temperature(motor: BldcMotor, rms_current_A, t_s) -> np.ndarray:
     rise = np.asarray(steady)[..., None] - motor.ambient_C
     return motor.ambient_C + rise * -np.expm1(-np.asarray(t_s, dtype=float)
                                              / motor.thermal_time_constant_s)
+
+
+def winding_rise(motor: BldcMotor, loss_W, dt_s, rise0_K=0.0) -> np.ndarray:
+    """Winding temperature rise above ambient (K) at the end of each interval for copper losses
+    loss_W (W, intervals along axis 0, any shape after it) each held over its interval dt_s
+    (s, (intervals,)), from rise0_K: the first-order model solved exactly for a held loss,
+    r_k = a_k r_(k-1) + (1 - a_k) R_th P_k with a_k = exp(-dt_k / tau_th)."""
+    loss = np.asarray(loss_W, dtype=float)
+    decay = np.exp(-np.asarray(dt_s, dtype=float) / motor.thermal_time_constant_s)
+    out, rise = np.empty_like(loss), np.asarray(rise0_K, dtype=float)
+    for k in range(loss.shape[0]):
+        rise = decay[k] * rise + (1.0 - decay[k]) * motor.thermal_resistance_K_W * loss[k]
+        out[k] = rise
+    return out

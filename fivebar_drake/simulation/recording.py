@@ -75,14 +75,17 @@ def link_points(layout: RobotLayout, params: Params, states: np.ndarray) -> np.n
     return pose[:, None, None, 4:] + np.einsum("sij,slpj->slpi", r_world_body, in_body)
 
 
-def write_recording(path: Path, sig: Signals, record: SimulationRecord, summary: dict) -> Path:
+def write_recording(path: Path, sig: Signals, record: SimulationRecord, summary: dict,
+                    name: str = "") -> Path:
     """Write the run's .rrd file atomically (complete with its footer, then renamed into place)
     from its signals (summary.signals), its record (the 3-D poses come from the recorded plant
-    states) and its summary (statistics window, per-cycle peaks)."""
+    states) and its summary (statistics window, per-cycle peaks). name: the run's name in its
+    recording id (e.g. an envelope's maneuver), beside the gait and the closure."""
     scenario = record.scenario
     path.parent.mkdir(parents=True, exist_ok=True)
-    with recording_file(path, f"fivebar_drake-{scenario.gait.kind}-{scenario.closure.kind}",
-                        blueprint(record.layout.legs)) as rec:
+    title = "-".join(filter(None, ("fivebar_drake", name, scenario.gait.kind,
+                                   scenario.closure.kind)))
+    with recording_file(path, title, blueprint(record.layout.legs)) as rec:
         if len(sig.t):
             _log_scene(rec, sig, record)
             _log_series(rec, sig, record.layout.legs, record.params, summary)

@@ -286,6 +286,11 @@ def _typed(name: str, kind, value):
     return None if value is None else check_number(name, value)       # Optional[float]
 
 
+def field_names() -> list[str]:
+    """The names a scenario may give: its fields, then the controller's flat ones (ALIASES)."""
+    return [f.name for f in dataclasses.fields(Scenario)] + list(ALIASES)
+
+
 def read_scenario_file(path) -> dict:
     """The fields named in a scenario file (YAML mapping, core/yaml_files: untrusted data);
     ParameterError naming the file."""
@@ -298,7 +303,7 @@ def read_scenario_file(path) -> dict:
     if not isinstance(data, dict):
         raise ParameterError(f"must be a mapping of scenario fields (e.g. `duration_s: 5.0`), "
                              f"not a {type(data).__name__}{hint}", source=str(path))
-    names = [f.name for f in dataclasses.fields(Scenario)] + list(ALIASES)
+    names = field_names()
     for key in data:
         require(key in names, f"scenario.{key}", data[key],
                 f"unknown field; the fields are {names}")

@@ -206,6 +206,13 @@ def cycle_window(scenario: Scenario, params: Params, t_end: float) -> tuple[floa
     return start, start + cycles * period, cycles
 
 
+def window_rows(t, window_s) -> np.ndarray:
+    """Which rows (interval-end times t, s) the statistics window window_s = [start, end] (s)
+    holds: those whose interval's middle lies in it."""
+    half_row = 0.5 * float(np.median(np.diff(t))) if len(t) > 1 else 0.0
+    return (t > window_s[0] + half_row) & (t <= window_s[1] + half_row)
+
+
 def _p(x, q=PERCENTILE) -> float:
     return float(np.percentile(np.abs(x), q)) if np.size(x) else float("nan")
 
@@ -293,7 +300,7 @@ def summarize(sig: Signals, record: SimulationRecord, seed_analysis: dict) -> di
     t_end = float(sig.t[-1]) if len(sig.t) else 0.0
     half_row = 0.5 * float(np.median(np.diff(sig.t))) if len(sig.t) > 1 else 0.0
     start, end, cycles = cycle_window(scenario, params, t_end + half_row)
-    win = (sig.t > start + half_row) & (sig.t <= end + half_row)
+    win = window_rows(sig.t, (start, end))
     cycle = np.clip(np.floor((sig.t[win] - start - half_row) / params.gait.period_s), 0,
                     max(cycles - 1, 0)).astype(int)
     legs = {leg: {name: motor_summary(sig, params, win, cycle, cycles, i, j)
@@ -313,7 +320,7 @@ def summarize(sig: Signals, record: SimulationRecord, seed_analysis: dict) -> di
                 if m["checks"]["achieved"]["verdict"] == "not_achieved":
                     m["verdict"], m["deciding_check"] = "not_achieved", "achieved"
     motors = [(leg, name, m) for leg, ms in legs.items() for name, m in ms.items()]
-    worst_leg, worst_motor, worst = max(motors, key=lambda x: _badness(x[2]))
+    worst_leg, worst_motor, worst = max(motors, key=lambda x: badness(x[2]))
     scheduled_swing = (~sig.stance[win]).sum(0)
     seed_peak = max(seed_analysis[m]["peak_torque_Nm"] for m in MOTORS)
     summary = {
@@ -394,7 +401,7 @@ def motor_achieved(params: Params, m: dict, run_why: str) -> dict:
             "at_limit_fraction": m["saturated_fraction"]}
 
 
-def _badness(m: dict) -> tuple:
+def badness(m: dict) -> tuple:
     """Order of motors, worst last: not achieved; then by verdict; among equal verdicts the
     deciding check (torque before speed before thermal), then its figure (the lower the safety
     factor, the larger the share outside the envelope or the lower its margin, the worse)."""
@@ -437,7 +444,7 @@ def answer(s: dict, params: Params) -> str:
                     "is not a need")
         return (f"{head} the motion was NOT ACHIEVED ({why}): {need}; the saturated demand is "
                 f"the controller's error growing, not what the gait takes. {seed}")
-    checks = "; ".join(_check_text(k, c[k]) for k in CHECK_ORDER)
+    checks = "; ".join(check_text(k, c[k]) for k in CHECK_ORDER)
     verdict_text = (f"{s['verdict'].upper()}, decided by the {s['deciding_check']} check"
                     if s["verdict"] != "marginal" else
                     f"MARGINAL: {s['step_check']['why']} (step check at half the plant step)")
@@ -449,7 +456,7 @@ def answer(s: dict, params: Params) -> str:
             f"{static:.2f} N·m: the dynamics add {m['demand_p99_Nm'] / static - 1:+.0%}. {seed}")
 
 
-def _check_text(name: str, c: dict) -> str:
+def check_text(name: str, c: dict) -> str:
     if name == "torque":
         return f"torque: safety factor {c['sf']:.2f}, {c['verdict']}"
     if name == "speed":

@@ -101,7 +101,7 @@ def check_output_folder(out: Path) -> None:
     nothing is left behind by the check (a folder it had to make is removed again)."""
     where = f"--out {out}"
     if out.exists() and not out.is_dir():
-        raise ParameterError("is a file; the sweep's output must be a folder", source=where)
+        raise ParameterError("is a file; the output must be a folder", source=where)
     made = not out.exists()
     try:
         out.mkdir(parents=True, exist_ok=True)
@@ -170,17 +170,21 @@ def _previous_rows(fingerprint: str, out: Path, header: list[str],
 
 
 class Progress:
-    """A progress line on stderr: points done of all, failures, time left (from the mean rate
-    so far); redrawn in place on a terminal, else one line per PROGRESS_EVERY_S * 10."""
+    """A progress line on stderr: items (points, maneuvers) done of all, failures, time left
+    (from the mean rate so far); redrawn in place on a terminal, else one line per
+    PROGRESS_EVERY_S * 10."""
 
-    def __init__(self, total: int, done: int, enabled: bool):
+    def __init__(self, total: int, done: int, enabled: bool, job: str = "sweep",
+                 items: str = "points"):
         self.total, self.done, self.failed, self.enabled = total, done, 0, enabled
+        self.job, self.items = job, items
         self.start, self.first, self.shown = time.perf_counter(), done, 0.0
         self.tty = sys.stderr.isatty()
 
-    def add(self, rows: list[dict]) -> None:
-        self.done += len(rows)
-        self.failed += sum(r.get("status") == "failed" for r in rows)
+    def add(self, count: int, failed: int = 0) -> None:
+        """count more items done, `failed` of them failed."""
+        self.done += count
+        self.failed += failed
         now = time.perf_counter()
         every = PROGRESS_EVERY_S * (1 if self.tty else 10)
         if self.enabled and (now - self.shown >= every or self.done == self.total):
@@ -188,14 +192,14 @@ class Progress:
             elapsed, new = now - self.start, self.done - self.first
             left = elapsed / new * (self.total - self.done) if new else float("nan")
             bar = "#" * int(30 * self.done / self.total)
-            line = (f"sweep [{bar:<30}] {self.done}/{self.total} points, {self.failed} failed, "
-                    f"{elapsed:.0f} s, ~{left:.0f} s left")
+            line = (f"{self.job} [{bar:<30}] {self.done}/{self.total} {self.items}, "
+                    f"{self.failed} failed, {elapsed:.0f} s, ~{left:.0f} s left")
             print(("\r" + line) if self.tty else line, end="" if self.tty and
                   self.done < self.total else "\n", file=sys.stderr, flush=True)
 
 
 @contextmanager
-def _client(workers: int | None, scheduler: str | None, client=None):
+def dask_client(workers: int | None, scheduler: str | None, client=None):
     """client, if given (left open); else a Dask client of the scheduler at `scheduler`, or of
     a new local cluster of `workers` process workers with one thread each (default: one per
     core), closed with its local cluster when the block ends."""
@@ -249,7 +253,7 @@ def run_sweep(spec: SweepSpec, out: str | Path, workers: int | None = None,
     todo = [(i, p) for i, p in enumerate(points) if i not in done]
     bar = Progress(len(points), len(done), progress)
     computed = 0
-    with _client(workers, scheduler, client) if todo else nullcontext() as dask:
+    with dask_client(workers, scheduler, client) if todo else nullcontext() as dask:
         out.mkdir(parents=True, exist_ok=True)     # the inputs and the scheduler are good
         if rows is None:
             write_atomic(out / SPEC_FILE, json.dumps({"fingerprint": fingerprint,
@@ -279,34 +283,45 @@ def finished_points(spec: SweepSpec, out: Path) -> tuple[int, int]:
     return len(rows or ()), len(points)
 
 
+def finished_tasks(client, task, args: tuple, chunks: list):
+    """Submit task(*args, chunk) for every chunk; yield (chunk, result, error) as each task
+    finishes, in finishing order: error "" when it returned, else the exception's type and text
+    (raised by the task, or a lost worker) and result None. Large args go scattered
+    (client.scatter) by the caller."""
+    from dask.distributed import as_completed
+
+    futures = {client.submit(task, *args, chunk, pure=False): chunk for chunk in chunks}
+    for future in as_completed(futures):
+        try:
+            result = future.result()
+        except Exception as err:  # noqa: BLE001  (a lost worker: its chunk fails, not the job)
+            yield futures[future], None, f"{type(err).__name__}: {err}"
+        else:
+            yield futures[future], result, ""
+
+
 def _compute(client, spec, params, scenario, todo, table: Path, header, bar: Progress) -> int:
     """Submit the points, append each finished task's rows to the table; returns the number
     of rows written."""
-    from dask.distributed import as_completed
-
     base = client.scatter(params, broadcast=True)
     if spec.fidelity == "analysis":     # tasks of ANALYSIS_CHUNK points, one point each else
         task, size, first = analysis_rows, ANALYSIS_CHUNK, (spec.gait, spec.model)
     else:
         task, size, first = simulation_rows, 1, (scenario, spec.step_check)
     chunks = [todo[i:i + size] for i in range(0, len(todo), size)]
-    futures = {client.submit(task, base, first, chunk, pure=False): chunk for chunk in chunks}
     fresh = not table.exists()
     written = 0
     with open(table, "a", newline="", encoding="utf-8") as f:
         writer = csv.DictWriter(f, fieldnames=header, restval="")
         if fresh:
             writer.writeheader()
-        for future in as_completed(futures):
-            try:
-                rows = future.result()
-            except Exception as err:  # noqa: BLE001  (a lost worker: its points fail, not the sweep)
-                rows = [{"point": i, **c, "status": "failed",
-                         "error": f"{type(err).__name__}: {err}"} for i, c in futures[future]]
+        for chunk, rows, error in finished_tasks(client, task, (base, first), chunks):
+            if error:
+                rows = [{"point": i, **c, "status": "failed", "error": error} for i, c in chunk]
             writer.writerows(rows)
             f.flush()
             written += len(rows)
-            bar.add(rows)
+            bar.add(len(rows), sum(r.get("status") == "failed" for r in rows))
     return written
 
 

@@ -1,0 +1,255 @@
+"""The duty envelope's figures and text: per motor (A, B, over the four legs) and maneuver the
+four checks of the verdict, the maneuver that sizes each motor, the worst verdict in one
+sentence, the duty cycle's winding temperatures; envelope.json and envelope.md.
+
+A motor's row for a maneuver takes each check from the leg where it is worst (the lowest safety
+factor; the largest share beyond the envelope, then the least speed margin; the least thermal
+margin; not achieved, then the most time at the torque limit): its verdict is the worst of its
+checks, as summary.json's verdict is the worst over the motors, and not_achieved where the
+motion was not achieved. The maneuver that sizes a motor is its worst row in summary.json's
+order (simulation/summary.badness: the verdict, then the deciding check and its figure)."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+from fivebar_drake.core.checks import CHECK_ORDER, SEVERITY, worst_check
+from fivebar_drake.core.files import json_ready, write_atomic
+from fivebar_drake.mechanisms.fivebar import MOTORS
+from fivebar_drake.simulation.summary import badness, check_text
+
+REPORT_FILES = ("envelope.md", "envelope.json")      # envelope.json last
+VERDICTS = ("pass", "warn", "fail", "not_achieved")  # the verdicts of a maneuver that has one
+
+
+def _worst_leg(legs: dict, motor: str, key) -> tuple[str, dict]:
+    """(leg, that leg's motor) with the largest key(motor's summary)."""
+    return max(((leg, ms[motor]) for leg, ms in legs.items()), key=lambda x: key(x[1]))
+
+
+def _inf(x) -> float:
+    return math.inf if x is None else x
+
+
+def motor_row(summary: dict, motor: str) -> dict:
+    """The checks of one motor (A or B) in a maneuver over the legs (module docstring), with
+    the leg of each, its verdict and deciding check; the demand p99 and the time at the torque
+    limit of the worst legs. Without checks (no statistics window) the verdict is
+    'insufficient'."""
+    legs = summary["legs"]
+    if any(ms[motor]["checks"] is None for ms in legs.values()):
+        return {"checks": None, "verdict": "insufficient", "deciding_check": None}
+    rows = {}
+    leg, m = _worst_leg(legs, motor, lambda m: -_inf(m["checks"]["torque"]["sf"]))
+    rows["torque"] = {**m["checks"]["torque"], "demand_p99_Nm": m["demand_p99_Nm"], "leg": leg}
+    leg, m = _worst_leg(legs, motor, lambda m: (
+        SEVERITY[m["checks"]["speed"]["verdict"]], m["checks"]["speed"]["outside_fraction"],
+        -_inf(m["checks"]["speed"]["least_margin"])))
+    rows["speed"] = {**m["checks"]["speed"], "leg": leg}
+    leg, m = _worst_leg(legs, motor, lambda m: (
+        SEVERITY[m["checks"]["thermal"]["verdict"]], -_inf(m["checks"]["thermal"]["margin"])))
+    rows["thermal"] = {**m["checks"]["thermal"], "leg": leg}
+    leg, m = _worst_leg(legs, motor, lambda m: (
+        m["checks"]["achieved"]["verdict"] == "not_achieved", m["saturated_fraction"]))
+    rows["achieved"] = {**m["checks"]["achieved"], "leg": leg}
+    verdict, deciding = worst_check(rows)
+    if rows["achieved"]["verdict"] == "not_achieved":
+        verdict, deciding = "not_achieved", "achieved"
+    if summary["verdict"] == "insufficient":
+        verdict, deciding = "insufficient", None
+    return {"checks": rows, "verdict": verdict, "deciding_check": deciding,
+            "leg": rows[deciding]["leg"] if deciding else None,
+            "saturated_fraction": m["saturated_fraction"]}
+
+
+def maneuver_entry(maneuver, result) -> dict:
+    """envelope.json's entry of a maneuver (spec.Maneuver) and its result
+    (maneuver.ManeuverResult, None if it did not finish)."""
+    entry = {"gait": maneuver.scenario.gait.kind, "changes": maneuver.changes,
+             "folder": maneuver.name}
+    if result is None:
+        return {**entry, "status": "missing", "error": "not run (the envelope was interrupted)",
+                "verdict": "insufficient", "motors": None, "timing": None}
+    s = result.summary
+    if s is None:
+        return {**entry, "status": "failed", "error": result.error, "verdict": "insufficient",
+                "motors": None, "timing": None}
+    return {**entry, "status": "stopped" if s["error"] else "ok", "error": s["error"],
+            "verdict": s["verdict"], "deciding_check": s["deciding_check"],
+            "worst_motor": s["worst_motor"], "duration_s": s["duration_s"],
+            "cycles_in_window": s["cycles_in_window"], "time_step_s": s["time_step_s"],
+            "mean_forward_speed_m_s": s["mean_forward_speed_m_s"],
+            "max_tilt_deg": s["max_tilt_deg"], "answer": s["answer"],
+            "operating_point_rows": result.rows,
+            "motors": {m: motor_row(s, m) for m in MOTORS},
+            "timing": {"real_time_factor": s["real_time_factor"],
+                       "wall_time_s": s["wall_time_s"]}}
+
+
+def _rated(row: dict) -> bool:
+    return row["verdict"] in VERDICTS
+
+
+def sizing(maneuvers: dict) -> dict:
+    """Per motor: the maneuver that sizes it (its worst row in summary.badness order) and, per
+    check, the maneuver where that check is worst (torque: the lowest safety factor; speed: the
+    largest share beyond the envelope, then the least margin; thermal: the highest RMS
+    current); None where no maneuver has a verdict."""
+    out = {}
+    for motor in MOTORS:
+        rows = {name: e["motors"][motor] for name, e in maneuvers.items()
+                if e["motors"] and _rated(e["motors"][motor])}
+        if not rows:
+            out[motor] = None
+            continue
+        name = max(rows, key=lambda n: badness(rows[n]))
+        per_check = {
+            "torque": max(rows, key=lambda n: -_inf(rows[n]["checks"]["torque"]["sf"])),
+            "speed": max(rows, key=lambda n: (rows[n]["checks"]["speed"]["outside_fraction"],
+                                              -_inf(rows[n]["checks"]["speed"]["least_margin"]))),
+            "thermal": max(rows, key=lambda n: rows[n]["checks"]["thermal"].get(
+                "rms_current_A", 0.0))}
+        out[motor] = {"maneuver": name, "verdict": rows[name]["verdict"],
+                      "deciding_check": rows[name]["deciding_check"],
+                      "leg": rows[name]["leg"], "worst_per_check": per_check}
+    return out
+
+
+def _reason(motor: str, maneuver: str, row: dict) -> str:
+    check = row["deciding_check"]
+    where = f"motor {motor} in {maneuver} (leg {row['leg']})"
+    if check == "achieved":
+        return f"{where} did not achieve its motion: {row['checks']['achieved']['why']}"
+    return f"{where}, decided by the {check} check ({check_text(check, row['checks'][check])})"
+
+
+def answer(maneuvers: dict, sized: dict, duty: dict | None) -> tuple[str, str]:
+    """(the worst verdict, the sentence that gives it and its reason)."""
+    candidates = []
+    for motor in MOTORS:
+        if sized[motor]:
+            row = maneuvers[sized[motor]["maneuver"]]["motors"][motor]
+            candidates.append((badness(row), row["verdict"],
+                               _reason(motor, sized[motor]["maneuver"], row)))
+    if duty:
+        m = duty["motors"][duty["worst_motor"]]
+        candidates.append(((SEVERITY[duty["verdict"]], -CHECK_ORDER.index("thermal"), 0.0,
+                            -_inf(m["margin"])), duty["verdict"],
+                           f"the duty cycle heats motor {duty['worst_motor']}'s winding (leg "
+                           f"{m['leg']}) to {m['peak_C']:.1f} °C against its "
+                           f"{duty['winding_limit_C']:g} °C limit"))
+    missing = [n for n, e in maneuvers.items() if not _rated(e)]
+    tail = (f" No verdict for {', '.join(missing)} (see their entries)." if missing else "")
+    if not candidates:
+        return "insufficient", f"No verdict: no maneuver has one.{tail}"
+    _, verdict, reason = max(candidates, key=lambda c: c[0])
+    label = verdict.upper().replace("_", " ")
+    return verdict, f"Worst verdict {label}: {reason}.{tail}"
+
+
+def envelope_report(spec, results: dict, duty: dict | None, duty_why: str,
+                    params) -> dict:
+    """envelope.json's dictionary: the spec, the motor, every maneuver (spec order), the
+    sizing, the duty cycle (None with duty_why if it has none), the worst verdict and the
+    sentence, and whether every maneuver finished (complete)."""
+    maneuvers = {m.name: maneuver_entry(m, results.get(m.name)) for m in spec.maneuvers}
+    sized = sizing(maneuvers)
+    verdict, sentence = answer(maneuvers, sized, duty)
+    motor = params.motor
+    return {
+        "spec": spec.source, "complete": all(m.name in results for m in spec.maneuvers),
+        "verdict": verdict, "answer": sentence,
+        "motor": {"peak_torque_Nm": motor.peak_torque_Nm,
+                  "braking_peak_torque_Nm": motor.braking_peak_torque_Nm,
+                  "no_load_speed_rad_s": motor.no_load_speed_rad_s,
+                  "continuous_torque_Nm": motor.continuous_torque_Nm},
+        "sized_by": sized,
+        "maneuvers": maneuvers,
+        "duty_cycle": None if duty is None else {
+            "steps": [{"maneuver": s.maneuver, "duration_s": s.duration_s}
+                      for s in spec.duty_cycle], **duty},
+        "duty_cycle_why_none": duty_why,
+    }
+
+
+def _fmt(x, pattern: str = "{:.2f}") -> str:
+    return "—" if x is None or (isinstance(x, float) and not math.isfinite(x)) else \
+        pattern.format(x)
+
+
+def markdown(report: dict) -> str:
+    lines = ["# Duty envelope of the hip motors", "", report["answer"], ""]
+    if not report["complete"]:
+        lines += ["**Incomplete:** the envelope was interrupted; the maneuvers marked missing "
+                  "did not run.", ""]
+    m = report["motor"]
+    lines += [f"Spec: `{report['spec']}`. Motor: {m['peak_torque_Nm']:.2f} N·m peak driving "
+              f"({m['braking_peak_torque_Nm']:.2f} braking), no-load speed "
+              f"{m['no_load_speed_rad_s']:.2f} rad/s, continuous "
+              f"{_fmt(m['continuous_torque_Nm'])} N·m. Each check is from the leg where it is "
+              "worst; the verdict is the worst check (not achieved where the motion was not).",
+              ""]
+    for motor in MOTORS:
+        lines += [f"## Motor {motor}", "",
+                  "| maneuver | verdict | deciding | torque: SF (leg) | speed: least margin, "
+                  "beyond envelope (leg) | thermal: continuous / RMS current, RMS A (leg) | "
+                  "achieved (leg) |", "|---|---|---|---|---|---|---|"]
+        for name, e in report["maneuvers"].items():
+            row = (e["motors"] or {}).get(motor)
+            if not row or row["checks"] is None:
+                lines.append(f"| {name} | {e['verdict'].upper()} | — | — | — | — | "
+                             f"{e['status']}: {e['error'] or 'no whole gait cycle'} |")
+                continue
+            c = row["checks"]
+            lines.append(
+                f"| {name} | {row['verdict'].upper()} | {row['deciding_check'] or '—'} | "
+                f"{_fmt(c['torque']['sf'])} ({c['torque']['leg']}) | "
+                f"{_fmt(c['speed']['least_margin'])}, {c['speed']['outside_fraction']:.1%} "
+                f"({c['speed']['leg']}) | {_fmt(c['thermal'].get('margin'))}, "
+                f"{_fmt(c['thermal'].get('rms_current_A'), '{:.3f}')} ({c['thermal']['leg']}) | "
+                f"{c['achieved']['verdict']} ({c['achieved']['leg']}) |")
+        s = report["sized_by"][motor]
+        lines += ["", "Sized by: " + ("no maneuver with a verdict" if s is None else
+                  f"**{s['maneuver']}** ({s['verdict'].upper()}, "
+                  f"{s['deciding_check']} check, leg {s['leg']}); worst torque "
+                  f"{s['worst_per_check']['torque']}, speed {s['worst_per_check']['speed']}, "
+                  f"thermal {s['worst_per_check']['thermal']}."), ""]
+    lines += ["## Maneuvers", "", "| maneuver | gait | changes | status | verdict | simulated s "
+              "| step ms | real-time factor | folder |", "|---|---|---|---|---|---|---|---|---|"]
+    for name, e in report["maneuvers"].items():
+        changes = ", ".join(f"{k}: {v}" for k, v in e["changes"].items() if k != "gait")
+        timing = e["timing"] or {}
+        lines.append(f"| {name} | {e['gait']} | {changes or '—'} | {e['status']} | "
+                     f"{e['verdict'].upper()} | {_fmt(e.get('duration_s'))} | "
+                     f"{_fmt(e.get('time_step_s') and e['time_step_s'] * 1e3, '{:g}')} | "
+                     f"{_fmt(timing.get('real_time_factor'))} | `{e['folder']}/` |")
+    lines += ["", "## Duty cycle", ""]
+    d = report["duty_cycle"]
+    if d is None:
+        lines.append(report["duty_cycle_why_none"] or "The spec gives no duty cycle.")
+    else:
+        steps = " → ".join(f"{s['maneuver']} {s['duration_s']:g} s" for s in d["steps"])
+        lines += [f"{steps}; winding from {d['ambient_C']:g} °C, limit "
+                  f"{d['winding_limit_C']:g} °C; verdict {d['verdict'].upper()}.", "",
+                  "| motor | peak °C | leg | at s | end °C | equivalent current A | margin | "
+                  "verdict |", "|---|---|---|---|---|---|---|---|"]
+        for motor, v in d["motors"].items():
+            lines.append(f"| {motor} | {v['peak_C']:.1f} | {v['leg']} | {v['at_s']:.0f} | "
+                         f"{v['end_C']:.1f} | {v['equivalent_current_A']:.3f} | "
+                         f"{_fmt(v['margin'])} | {v['verdict'].upper()} |")
+        lines += ["", "Equivalent current: the constant current that would hold the winding "
+                  "at the peak for ever; margin: the thermal model's continuous current over "
+                  "it (fail below 1, as the thermal check)."]
+    lines += ["", "Figures: `operating_points.png` (every maneuver's demand at the joint speed "
+              "over the motor's envelope), `duty_cycle.png`. Each maneuver's folder holds "
+              "`simulate`'s outputs (summary.json, plots, run.rrd: open them side by side in "
+              "one viewer)."]
+    return "\n".join(lines) + "\n"
+
+
+def write_report(report: dict, out: Path) -> list[Path]:
+    """envelope.md, then envelope.json (last), each atomically."""
+    texts = (markdown(report), json.dumps(json_ready(report), indent=1, allow_nan=False) + "\n")
+    return [write_atomic(out / name, text) for name, text in zip(REPORT_FILES, texts)]

@@ -1,0 +1,349 @@
+"""The duty envelope (`fivebar-drake envelope`): hostile specs refused before anything is written;
+a short envelope of trot variants on a local cluster and on a scheduler started here giving the
+same envelope; a maneuver's row equal to `simulate`'s summary of the same scenario; the
+operating points holding the demand's peak; the duty cycle's winding temperature against a hand
+integration of the thermal ODE and its steady state; an interrupted envelope keeping what
+finished."""
+
+import json
+import socket
+import subprocess
+import sys
+import tomllib
+from contextlib import nullcontext
+
+import numpy as np
+import pytest
+from rerun.chunk import RrdReader
+
+from fivebar_drake.cli import main
+from fivebar_drake.envelope import run as envelope_run
+from fivebar_drake.envelope.duty_cycle import duty_temperature
+from fivebar_drake.envelope.maneuver import decimate
+from fivebar_drake.envelope.spec import DATA, DutyStep, load_envelope_spec
+from fivebar_drake.robots.quadruped.config import DEFAULT_PATH
+from fivebar_drake.simulation.recording import read_series
+
+# two short trot variants with a verdict: 3 whole cycles after 0.2 s standing and the ramp
+SPEC = """\
+scenario: {stand_s: 0.2, ramp_s: 0.5}
+maneuvers:
+  - {name: trot, gait: trot, gait_frequency_hz: 1.5, duration_s: 2.9}
+  - {name: trot_fast, gait: trot, gait_frequency_hz: 2.0, gait_a_m: 0.03, duration_s: 2.2}
+duty_cycle:
+  - {maneuver: trot, duration_s: 3.0}
+  - {maneuver: trot_fast, duration_s: 2.0}
+  - {maneuver: trot, duration_s: 1.5}
+"""
+TIMING = ("real_time_factor", "wall_time_s")
+MOTOR = tomllib.loads(DEFAULT_PATH.read_text())["motor"]
+
+
+def write(tmp_path, text, name="spec.yaml"):
+    path = tmp_path / name
+    path.write_text(text)
+    return path
+
+
+@pytest.fixture(scope="module")
+def local(tmp_path_factory):
+    """The test spec's envelope on a local cluster of one worker: (its folder, the spec's path,
+    the EnvelopeRun)."""
+    folder = tmp_path_factory.mktemp("envelope")
+    spec = write(folder, SPEC)
+    run = envelope_run.run_envelope(load_envelope_spec(spec), folder / "local", workers=1,
+                                    progress=False)
+    return folder / "local", spec, run
+
+
+def envelope(out):
+    return json.loads((out / "envelope.json").read_text())
+
+
+def without_timing(report):
+    for entry in report["maneuvers"].values():
+        entry.pop("timing")
+    return report
+
+
+def summary(folder):
+    data = json.loads((folder / "summary.json").read_text())
+    return {k: v for k, v in data.items() if k not in TIMING}
+
+
+@pytest.mark.parametrize("text, words", [
+    ("maneuvers:\n  - {name: w, gait: walk}\n", ["maneuvers[0]", "'walk'", "allowed", "trot"]),
+    ("maneuvers:\n  - {name: t, gait: {kind: trot, duty: 0.5}}\n", ["duty", "duty_factor"]),
+    ("maneuvers:\n  - {name: t, duration_s: -1}\n", ["duration_s = -1", "must be >="]),
+    ("duration_s: 0\nmaneuvers:\n  - {name: t}\n", ["duration_s = 0", "> 0"]),
+    ("maneuvers:\n  - {name: t}\n  - {name: t, gait_frequency_hz: 1.5}\n",
+     ["maneuvers[1].name = 't'", "two maneuvers"]),
+    ("maneuvers:\n  - {name: ../up}\n", ["maneuvers[0].name", "letters"]),
+    ("maneuvers:\n  - {name: t, speed: 3}\n", ["maneuvers[0].speed", "unknown field"]),
+    ("maneuvers: []\n", ["maneuvers = []"]),
+    ("maneuvers:\n  - {name: t}\nduty_cycle:\n  - {maneuver: jump, duration_s: 5}\n",
+     ["duty_cycle[0].maneuver = 'jump'", "['t']"]),
+    ("maneuvers:\n  - {name: t}\nduty_cycle:\n  - {maneuver: t, duration_s: 0}\n",
+     ["duty_cycle[0].duration_s = 0"]),
+    ("maneuvers:\n  - {name: t}\nduty_cycle:\n  - {maneuver: t, duration_s: ten}\n",
+     ["duty_cycle[0].duration_s = 'ten'", "number"]),
+    ("maneuvers:\n  - {name: t}\nduty_cycle:\n  - {maneuver: t}\n", ["duty_cycle[0]"]),
+    ("maneuvers:\n  - {name: t}\nduty_cycle:\n" + "  - {maneuver: t, duration_s: 50000}\n" * 2,
+     ["total duration_s", "86400"]),
+    ("maneuvers:\n  - {name: t}\nmaneuvers:\n  - {name: u}\n", ["written twice"]),
+    ("m: &x {name: t}\nmaneuvers: [*x]\n", ["aliases"]),
+    ("maneuvers:\n  - {name: t}\nrepeat: 2\n", ["repeat", "unknown key"]),
+    ("scenario: {gait_frequency_hz: 50}\nmaneuvers:\n  - {name: t}\n",
+     ["maneuver 't'", "gait_frequency_hz"]),
+])
+def test_bad_specs_exit_2_and_write_nothing(tmp_path, capsys, text, words):
+    out = tmp_path / "out"
+    assert main(["envelope", str(write(tmp_path, text)), "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    for word in ["spec.yaml", *words]:
+        assert word in err, err
+    assert "Traceback" not in err and not out.exists()
+
+
+@pytest.mark.parametrize("options, words", [(["--workers", "0"], ["--workers = 0"]),
+                                            (["--scheduler", "nowhere"], ["--scheduler"]),
+                                            pytest.param(["--scheduler", "tcp://127.0.0.1:1"],
+                                                         ["no Dask scheduler answers"],
+                                                         marks=pytest.mark.slow)])
+def test_bad_cluster_options_exit_2_and_write_nothing(tmp_path, capsys, options, words):
+    out = tmp_path / "out"
+    spec = write(tmp_path, "maneuvers:\n  - {name: t, duration_s: 0.1}\n")
+    assert main(["envelope", str(spec), "--out", str(out), *options]) == 2
+    err = capsys.readouterr().err
+    assert all(w in err for w in words), err
+    assert not out.exists()
+
+
+def test_a_maneuver_folder_that_is_a_file_is_refused(tmp_path, capsys):
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "t").write_text("mine")
+    spec = write(tmp_path, "maneuvers:\n  - {name: t, duration_s: 0.1}\n")
+    assert main(["envelope", str(spec), "--out", str(out)]) == 2
+    assert "maneuver 't'" in capsys.readouterr().err
+    assert sorted(p.name for p in out.iterdir()) == ["t"]
+
+
+def test_packaged_specs_load():
+    default = load_envelope_spec()
+    assert [m.name for m in default.maneuvers] == ["trot_1hz", "trot_fast"]
+    assert default.maneuvers[1].params.gait.frequency_hz == 1.5
+    demo = load_envelope_spec(DATA / "envelope_demo.yaml")
+    assert len(demo.maneuvers) <= 3 and demo.duty_cycle
+
+
+@pytest.mark.slow
+def test_the_envelope_and_its_files(local):
+    out, _, _ = local
+    report = envelope(out)
+    assert report["complete"] and report["verdict"] in ("pass", "warn", "fail")
+    for name in ("operating_points.png", "duty_cycle.png"):
+        assert (out / name).read_bytes()[:4] == b"\x89PNG"
+    ids = set()
+    for name, entry in report["maneuvers"].items():
+        folder = out / entry["folder"]
+        assert summary(folder)["verdict"] == entry["verdict"]
+        # the worst of each motor's four checks is the maneuver's verdict, as in summary.json
+        worst = max((entry["motors"][m] for m in ("A", "B")),
+                    key=lambda r: ("pass", "warn", "fail", "not_achieved").index(r["verdict"]))
+        assert worst["verdict"] == entry["verdict"]
+        (recording,) = RrdReader(folder / "run.rrd").recordings()
+        assert name in recording.recording_id
+        ids.add(recording.recording_id)
+        assert len(RrdReader(folder / "run.rrd").blueprints()) == 1
+    assert len(ids) == 2
+    # the sizing maneuver of each motor has its lowest safety factor where the torque decides
+    for motor, sized in report["sized_by"].items():
+        sfs = {n: e["motors"][motor]["checks"]["torque"]["sf"]
+               for n, e in report["maneuvers"].items()}
+        assert sized["worst_per_check"]["torque"] == min(sfs, key=sfs.get)
+        if sized["deciding_check"] == "torque":
+            assert sized["maneuver"] == min(sfs, key=sfs.get)
+    assert report["answer"].startswith(f"Worst verdict {report['verdict'].upper()}")
+
+
+@pytest.mark.slow
+def test_the_trot_row_equals_simulates_summary(local, tmp_path):
+    out, _, _ = local
+    scenario = write(tmp_path, "stand_s: 0.2\nramp_s: 0.5\ngait: trot\ngait_frequency_hz: 1.5\n"
+                     "duration_s: 2.9\n", "trot.yaml")
+    assert main(["simulate", "--scenario", str(scenario), "--out", str(tmp_path / "sim")]) == 0
+    alone = summary(tmp_path / "sim")
+    assert summary(out / "trot") == alone                   # the same run, figure for figure
+    entry = envelope(out)["maneuvers"]["trot"]
+    assert entry["verdict"] == alone["verdict"]
+    for motor in ("A", "B"):
+        legs = {leg: ms[motor] for leg, ms in alone["legs"].items()}
+        row = entry["motors"][motor]["checks"]
+        sf = {leg: m["checks"]["torque"]["sf"] for leg, m in legs.items()}
+        assert row["torque"]["sf"] == min(sf.values()) and row["torque"]["leg"] == min(sf, key=sf.get)
+        rms = {leg: m["checks"]["thermal"]["rms_current_A"] for leg, m in legs.items()}
+        assert row["thermal"]["rms_current_A"] == max(rms.values())
+        assert row["speed"]["outside_fraction"] == max(
+            m["checks"]["speed"]["outside_fraction"] for m in legs.values())
+
+
+@pytest.mark.slow
+def test_a_scheduler_started_here_gives_the_same_envelope(local, tmp_path):
+    out, spec, _ = local
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    address = f"tcp://127.0.0.1:{port}"
+    quiet = dict(stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    procs = [subprocess.Popen([sys.executable, "-m", "dask", "scheduler", "--host", "127.0.0.1",
+                               "--port", str(port), "--no-dashboard"], **quiet)]
+    try:
+        procs.append(subprocess.Popen([sys.executable, "-m", "dask", "worker", address,
+                                       "--nthreads", "1", "--no-dashboard"], **quiet))
+        remote = tmp_path / "remote"
+        assert main(["envelope", str(spec), "--out", str(remote), "--scheduler", address]) == 0
+    finally:
+        for p in procs:
+            p.terminate()
+            p.wait(timeout=30)
+    assert without_timing(envelope(remote)) == without_timing(envelope(out))
+    for name in ("trot", "trot_fast"):
+        assert summary(remote / name) == summary(out / name)
+
+
+def hand_current(torque, speed):
+    """Motor current (A) of output torques at output speeds from the motor's file: driving
+    through the gearbox's losses, braking helped by them (k_t i at the motor)."""
+    n, eta, kt = MOTOR["gear_ratio"], MOTOR["gear_efficiency"], MOTOR["torque_constant_Nm_per_A"]
+    return np.where(torque * speed >= 0, np.abs(torque) / (n * eta * kt),
+                    np.abs(torque) * eta / (n * kt))
+
+
+def window_currents(folder, leg, motor):
+    """The hand currents (A) of a maneuver's window rows from its recording, and the row's
+    interval (s)."""
+    s = summary(folder)
+    t, torque = read_series(folder / "run.rrd", f"/torque/{leg}/{motor}/applied")
+    _, speed = read_series(folder / "run.rrd", f"/joints/{leg}/{motor}/speed")
+    start, end = s["window_s"]
+    rows = (t > start + 1e-3) & (t <= end + 1e-3)           # the window's 2 ms rows
+    i = hand_current(torque[rows], speed[rows])
+    assert np.sqrt(np.mean(i ** 2)) == pytest.approx(
+        s["legs"][leg][motor]["checks"]["thermal"]["rms_current_A"], rel=1e-9)
+    return i, float(np.median(np.diff(t)))
+
+
+@pytest.mark.slow
+def test_duty_cycle_against_a_hand_integration(local):
+    """Every winding by forward Euler at a tenth of a row on
+    dT/dt = (ambient + R_th 1.5 R i^2 - T) / tau from the recorded torques and speeds."""
+    out, spec_path, _ = local
+    spec = load_envelope_spec(spec_path)
+    r, tau = MOTOR["winding_resistance_ohm"], MOTOR["thermal_time_constant_s"]
+    r_th, ambient = MOTOR["thermal_resistance_K_W"], MOTOR["ambient_C"]
+    legs, motors = ("FL", "FR", "RL", "RR"), ("A", "B")
+    currents = {name: [[window_currents(out / name, leg, m) for m in motors] for leg in legs]
+                for name in ("trot", "trot_fast")}
+    temp = np.full((4, 2), ambient)
+    peak = temp.copy()
+    for step in spec.duty_cycle:
+        (_, dt) = currents[step.maneuver][0][0]
+        loss = np.stack([[1.5 * r * np.resize(i, round(step.duration_s / dt)) ** 2
+                          for i, _ in per_leg] for per_leg in currents[step.maneuver]])
+        for p in np.repeat(loss, 10, axis=-1).transpose(2, 0, 1):
+            temp += dt / 10 * (ambient + r_th * p - temp) / tau
+            peak = np.maximum(peak, temp)
+    duty = envelope(out)["duty_cycle"]
+    for j, motor in enumerate(motors):
+        hottest = int(np.argmax(peak[:, j]))
+        assert duty["motors"][motor]["peak_C"] == pytest.approx(peak[hottest, j], abs=1e-5)
+        assert duty["motors"][motor]["leg"] == legs[hottest]
+        assert duty["motors"][motor]["end_C"] == pytest.approx(temp[:, j].max(), abs=1e-5)
+    assert duty["verdict"] == "pass" and peak.max() > ambient + 0.1
+
+
+@pytest.mark.slow
+def test_a_long_step_settles_at_the_rms_currents_temperature(local):
+    """Held for 8 time constants, the winding follows the closed form of the RMS current,
+    ambient + 1.5 R i_rms^2 R_th (1 - exp(-t / tau)): exactly with bins of whole repetitions
+    (their mean loss is the RMS current's), to the ripple within a repetition with others."""
+    out, spec_path, _ = local
+    motor = load_envelope_spec(spec_path).maneuvers[0].params.motor
+    i, dt = window_currents(out / "trot", "FL", "B")
+    repetitions = 1600
+    held = repetitions * i.size * dt
+    assert held == pytest.approx(8 * MOTOR["thermal_time_constant_s"], rel=0.01)
+    steady = 1.5 * MOTOR["winding_resistance_ohm"] * np.mean(i ** 2) \
+        * MOTOR["thermal_resistance_K_W"]
+    rise = steady * -np.expm1(-held / MOTOR["thermal_time_constant_s"])
+    for bins, tolerance in ((repetitions, 1e-9), (5000, 1e-3)):
+        duty = duty_temperature(motor, [DutyStep("trot", held)],
+                                {"trot": (i[:, None, None], dt)}, max_bins=bins)
+        assert duty.temperature[-1, 0, 0] - MOTOR["ambient_C"] == pytest.approx(
+            rise, rel=tolerance)
+
+
+def test_decimation_keeps_the_edges_of_the_cloud(rng):
+    torque, speed = rng.normal(size=10_001), rng.normal(size=10_001)
+    torque[4321], speed[777] = 50.0, -40.0            # off the even grid of 100 of 10,001
+    keep = decimate(speed, torque, 100)
+    assert keep.size == 100 and np.all(np.diff(keep) > 0)
+    assert {4321, 777} <= set(keep.tolist())
+    assert decimate(speed[:50], torque[:50], 100).tolist() == list(range(50))
+
+
+@pytest.mark.slow
+def test_operating_points_hold_the_demand_peak(local):
+    out, _, run = local
+    for name, result in run.results.items():
+        s = summary(out / name)
+        for j, motor in enumerate(("A", "B")):
+            peak = max(ms[motor]["demand_peak_Nm"] for ms in s["legs"].values())
+            assert np.abs(result.demand[j]).max() == peak
+            assert result.demand[j].size == 2000 < result.current.shape[0] * 4
+
+
+def without_dask(monkeypatch, first, second):
+    """run_envelope with no cluster: the first maneuver finishes with `first` (a result),
+    then `second` happens (an exception raised, or the error text of a failed task)."""
+    def tasks(client, task, args, chunks):
+        yield chunks[0], [first], ""
+        if isinstance(second, BaseException):
+            raise second
+        yield chunks[1], None, second
+
+    monkeypatch.setattr(envelope_run, "finished_tasks", tasks)
+    monkeypatch.setattr(envelope_run, "dask_client", lambda *a: nullcontext())
+
+
+@pytest.mark.slow
+def test_an_interrupted_envelope_keeps_what_finished(local, tmp_path, monkeypatch, capsys):
+    out, spec_path, run = local
+    without_dask(monkeypatch, run.results["trot"], KeyboardInterrupt())
+    stopped = tmp_path / "stopped"
+    assert main(["envelope", str(spec_path), "--out", str(stopped)]) == 130
+    assert "complete: false" in capsys.readouterr().err
+    report = envelope(stopped)
+    assert not report["complete"]
+    assert report["maneuvers"]["trot"]["status"] == "ok"
+    assert report["maneuvers"]["trot_fast"]["status"] == "missing"
+    assert "trot_fast" in report["answer"] and report["duty_cycle"] is None
+    assert summary(stopped / "trot") == summary(out / "trot")
+    assert not (stopped / "trot_fast" / "summary.json").exists()
+
+
+@pytest.mark.slow
+def test_a_failed_maneuver_is_reported_and_exits_1(local, tmp_path, monkeypatch, capsys):
+    _, spec_path, run = local
+    without_dask(monkeypatch, run.results["trot"], "KilledWorker: the worker died")
+    failed = tmp_path / "failed"
+    assert main(["envelope", str(spec_path), "--out", str(failed)]) == 1
+    assert "trot_fast" in capsys.readouterr().err
+    report = envelope(failed)
+    assert report["complete"]
+    entry = report["maneuvers"]["trot_fast"]
+    assert entry["status"] == "failed" and "the worker died" in entry["error"]
+    assert "No verdict for trot_fast" in report["answer"]
+    assert report["sized_by"]["A"]["maneuver"] == "trot"
+    assert "did not run or has no samples" in report["duty_cycle_why_none"]
