@@ -62,3 +62,63 @@ def test_bad_duration(name, duration, tmp_path, capsys):
                  str(out)]) == 2
     assert "command line" in capsys.readouterr().err
     assert not out.exists()
+
+
+def _spec(t, kind):
+    """A spec file (YAML) of the given hostile kind, as _config makes parameter files."""
+    path = t / f"{kind}.yaml"
+    if kind == "missing":
+        return str(path)
+    if kind == "fifo":
+        os.mkfifo(path)
+    elif kind == "binary":
+        path.write_bytes(b"\xff\xfe\x00 maneuvers:\n")
+    elif kind == "folder":
+        path.mkdir()
+    elif kind == "not yaml":
+        path.write_text("maneuvers: [\n")
+    elif kind == "alias bomb":
+        path.write_text('a: &a ["x","x","x","x","x","x","x","x","x"]\n'
+                        + "".join(f"{c}: &{c} [*{p},*{p},*{p},*{p},*{p},*{p},*{p},*{p},*{p}]\n"
+                                  for p, c in zip("abcdefgh", "bcdefghi")))
+    elif kind == "duplicate key":
+        path.write_text("duration_s: 1.0\nduration_s: 2.0\n")
+    return str(path)
+
+
+SPECS = ("missing", "fifo", "binary", "folder", "not yaml", "alias bomb", "duplicate key")
+SPEC_WORDS = {"missing": "not found", "fifo": "not a regular file", "binary": "not UTF-8",
+              "folder": "is a folder", "not yaml": "not valid YAML", "alias bomb": "alias",
+              "duplicate key": "duplicate"}
+
+
+@pytest.mark.parametrize("command", ["sweep", "envelope"])
+@pytest.mark.parametrize("kind", SPECS)
+def test_bad_spec_file(command, kind, tmp_path, capsys):
+    out = tmp_path / "out"
+    spec = _spec(tmp_path, kind)
+    assert main([command, spec, "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert SPEC_WORDS[kind] in err and os.path.basename(spec) in err, err
+    assert len(err) < 2000 and "Traceback" not in err
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("command", ["sweep", "envelope"])
+@pytest.mark.parametrize("out_kind", ["empty", "file", "below a file"])
+def test_bad_output_path_of_a_spec_command(command, out_kind, tmp_path, capsys):
+    (tmp_path / "afile").write_text("keep me")
+    out = {"empty": "", "file": str(tmp_path / "afile"),
+           "below a file": str(tmp_path / "afile" / "sub")}[out_kind]
+    assert main([command, "--out", out]) == 2
+    assert "--out" in capsys.readouterr().err
+    assert (tmp_path / "afile").read_text() == "keep me"
+
+
+@pytest.mark.parametrize("command", ["sweep", "envelope"])
+@pytest.mark.parametrize("workers", ["0", "-1", "1000", "two"])
+def test_bad_worker_count(command, workers, tmp_path, capsys):
+    out = tmp_path / "out"
+    assert main([command, "--workers", workers, "--out", str(out)]) == 2
+    assert "--workers" in capsys.readouterr().err
+    assert not out.exists()
