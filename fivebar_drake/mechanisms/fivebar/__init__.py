@@ -11,6 +11,7 @@ from fivebar_drake.mechanisms.fivebar.geometry import (LINK_NAMES, MOTORS, LegGe
                                                         LinkInertia, physical_izz)
 from fivebar_drake.mechanisms.fivebar.jacobians import (LinkJacobians, bias_accelerations, bias_at,
                                                          com_fractions, foot_from, foot_jacobian,
+                                                         held_force, link_coms,
                                                          link_jacobians, link_jacobians_at,
                                                          point_jacobians, pose_jacobians)
 from fivebar_drake.mechanisms.fivebar.kinematics import (ALL_MODES, KNEES_OUT, LegPose,
@@ -22,7 +23,7 @@ from fivebar_drake.mechanisms.fivebar.loop import JOINTS, loop_gaps, tree_positi
 from fivebar_drake.mechanisms.fivebar.singularity import (SingularityMeasures,
                                                            singularity_measures, workspace)
 
-__all__ = ["ALL_MODES", "DynamicsModel", "FiveBarLeg", "GaitSamples", "JOINTS", "KNEES_OUT",
+__all__ = ["held_force", "link_coms", "ALL_MODES", "DynamicsModel", "FiveBarLeg", "GaitSamples", "JOINTS", "KNEES_OUT",
            "LINK_NAMES", "LegGeometry", "LegPose", "LinkInertia", "LinkJacobians", "MOTORS",
            "SingularityMeasures", "TorqueBreakdown", "UnreachableError", "bias_accelerations",
            "bias_at", "com_fractions", "coriolis", "coriolis_at", "foot_from", "foot_jacobian", "forward",
