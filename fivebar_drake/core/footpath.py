@@ -302,7 +302,7 @@ class Bound(Trot):
     kind: ClassVar[str] = "bound"
     title: ClassVar[str] = "bound (front pair, rear pair)"
     pattern: ClassVar[str] = "bound"
-    gait_defaults: ClassVar[dict] = {"frequency_hz": 2.0}
+    gait_defaults: ClassVar[dict] = {"frequency_hz": 2.0, "a_m": 0.03}
     duty_factor: Optional[float] = 0.75
 
 

@@ -72,6 +72,7 @@ def leg_indices(plant: MultibodyPlant, instance, leg: str) -> LegIndices:
 
 GROUND_SIZE_M = 40.0   # flat ground, top face at z = 0
 GROUND_DEPTH_M = 1.0
+PAYLOAD_RADIUS_M = 0.02   # a payload is a solid sphere this size (its own inertia is small)
 
 
 def robot_layout(plant, instance, legs, params: Params) -> RobotLayout:
@@ -107,8 +108,8 @@ def default_plant_config() -> MultibodyPlantConfig:
 
 
 class Modifiers(NamedTuple):
-    """What a scenario changes about the robot and its ground: a payload (kg, a point mass fixed
-    to the body at payload_offset_m (3,) m in the body frame) and the ground's slope (rad,
+    """What a scenario changes about the robot and its ground: a payload (kg, a solid sphere of
+    PAYLOAD_RADIUS_M fixed to the body at payload_offset_m (3,) m in the body frame) and the ground's slope (rad,
     walking up it along the body's x)."""
 
     payload_kg: float = 0.0
@@ -132,8 +133,8 @@ def add_robot(builder: DiagramBuilder, params: Params, design: ClosureDesign,
     plant, _ = AddMultibodyPlant(config, builder)
     instance, legs = add_model(plant, params, "quadruped", design.closure, design.bushing)
     if modifiers.payload_kg > 0:
-        payload = plant.AddRigidBody("payload", instance, SpatialInertia.PointMass(
-            modifiers.payload_kg, np.zeros(3)))
+        payload = plant.AddRigidBody("payload", instance, SpatialInertia.SolidSphereWithMass(
+            modifiers.payload_kg, PAYLOAD_RADIUS_M))
         plant.WeldFrames(plant.GetBodyByName("body", instance).body_frame(), payload.body_frame(),
                          RigidTransform(np.asarray(modifiers.payload_offset_m, dtype=float)))
     plant.mutable_gravity_field().set_gravity_vector(
