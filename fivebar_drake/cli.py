@@ -261,8 +261,9 @@ def parser() -> argparse.ArgumentParser:
     p = command("analyze", _analyze, "the seed's torque analysis over one cycle of a foot path "
                 "(5-bar leg), or another mechanism's analysis")
     p.add_argument("--mechanism", **mechanism)
-    p.add_argument("--gait", choices=PATHS,
-                   help="foot path to analyse, 5-bar leg only (default: seed_ellipse, the seed's)")
+    p.add_argument("--gait", choices=[k for k, path in PATHS.items() if path.periodic],
+                   help="foot path to analyse (a periodic one), 5-bar leg only (default: "
+                        "seed_ellipse, the seed's)")
     p.add_argument("--config", **{**config, "help": "parameter file (TOML, the layout of the "
                                   "mechanism's file in fivebar_drake/data/: default.toml for the "
                                   "5-bar leg, NAME.toml for another); default: the packaged one"})
@@ -282,7 +283,8 @@ def parser() -> argparse.ArgumentParser:
     s.add_argument("--config", **{**config, "help": config["help"] + "; overrides the "
                                   "scenario's params_file"})
     s.add_argument("--gait", choices=PATHS,
-                   help=f"foot path (overrides the scenario's; default: {DEFAULTS.gait})")
+                   help=f"foot path or maneuver (overrides the scenario's; default: "
+                        f"{DEFAULTS.gait})")
     s.add_argument("--duration", type=float, metavar="S",
                    help=f"simulated time in s (overrides the scenario's; default: "
                         f"{DEFAULTS.duration_s:g})")

@@ -27,7 +27,7 @@ from fivebar_drake.analysis.torques import Analysis, analyze
 from fivebar_drake.core.files import prepare_output_dir
 from fivebar_drake.robots.quadruped.config import load_params, sampling_error
 from fivebar_drake.robots.quadruped.params import Params
-from fivebar_drake.simulation.plots import SIM_PLOT_FILES, write_sim_plots
+from fivebar_drake.simulation.plots import CAPABILITY_FILE, SIM_PLOT_FILES, write_sim_plots
 from fivebar_drake.simulation.recording import RECORDING_FILE, write_recording
 from fivebar_drake.simulation.runner import SimulationRecord, simulate
 from fivebar_drake.simulation.scenario import Scenario
@@ -35,7 +35,8 @@ from fivebar_drake.simulation.summary import (SUMMARY_FILES, apply_step_check, s
                                               write_summary)
 
 
-SIMULATION_FILES = SIM_PLOT_FILES + (RECORDING_FILE,) + SUMMARY_FILES   # summary.json last
+SIMULATION_FILES = (SIM_PLOT_FILES + (CAPABILITY_FILE, RECORDING_FILE)
+                    + SUMMARY_FILES)   # summary.json last
 
 
 @dataclass(frozen=True)

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from fivebar_drake.mechanisms.fivebar import (ALL_MODES, MODE_NAMES, LegGeometry, foot_jacobian,
+                                              held_force,
                                               inverse)
 
 
@@ -31,9 +32,7 @@ def workspace_grid(leg: LegGeometry, nx: int = 241, ny: int = 161):
 def max_force(jf, peak_torque_Nm: float, direction) -> np.ndarray:
     """Largest foot force (N) along the unit vector direction (2,) that torques within
     |tau_i| <= peak_torque_Nm hold, for foot Jacobians jf (..., 2, 2) in m/rad."""
-    reach = np.abs(np.einsum("...ki,k->...i", jf, np.asarray(direction, dtype=float)))
-    with np.errstate(divide="ignore"):
-        return peak_torque_Nm / np.max(reach, axis=-1)
+    return held_force(jf, peak_torque_Nm, -peak_torque_Nm, direction)
 
 
 def force_capability(jf, peak_torque_Nm: float) -> dict[str, np.ndarray]:

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from fivebar_drake.core.motor import Motor
-from fivebar_drake.core.validation import MAX_SAFETY_FACTOR, check_number, require
+from fivebar_drake.core.validation import MAX_LENGTH_M, MAX_SAFETY_FACTOR, check_number, require
 
 SEVERITY = {"pass": 0, "warn": 1, "fail": 2}
 CHECK_ORDER = ("torque", "speed", "thermal")   # among equally bad checks, the first decides
@@ -29,7 +29,8 @@ class Checks:
     speed_margin_warn warns. Thermal: continuous / RMS current below 1 fails, below
     thermal_margin_warn warns. Achieved (simulation): mean speed >= achieved_speed_fraction of
     the gait's, tilt <= achieved_max_tilt_deg, no motor at its torque limit more than
-    achieved_max_limit_fraction of the time."""
+    achieved_max_limit_fraction of the time; a maneuver ends standing within
+    achieved_height_tolerance_m (m) of the standing height."""
 
     sf_pass: float
     sf_warn: float
@@ -39,6 +40,7 @@ class Checks:
     achieved_speed_fraction: float = 0.7
     achieved_max_tilt_deg: float = 10.0
     achieved_max_limit_fraction: float = 0.05
+    achieved_height_tolerance_m: float = 0.01
 
     def __post_init__(self):
         for name in ("sf_pass", "sf_warn", "speed_margin_warn", "thermal_margin_warn"):
@@ -51,6 +53,8 @@ class Checks:
             check_number(f"checks.{name}", getattr(self, name), 0.0, 1.0)
         check_number("checks.achieved_max_tilt_deg", self.achieved_max_tilt_deg, 0.0,
                      MAX_TILT_DEG, low_open=True)
+        check_number("checks.achieved_height_tolerance_m", self.achieved_height_tolerance_m, 0.0,
+                     MAX_LENGTH_M, low_open=True)
 
 
 def verdict(checks: Checks, safety_factor: float) -> str:

@@ -14,6 +14,13 @@ u = (f t + phase / 2 pi) mod 1, u in [0, 1); u = 0 is lift-off at the back of th
   by b with zero vertical speed and acceleration at lift-off and touchdown. Position, velocity and
   acceleration are continuous over the whole cycle.
 
+- ``walk``, ``bound``, ``pronk``: the trot path with the legs' phases of a crawl (one leg at a
+  time), a bound (front pair, rear pair) and a pronk (all four); the pronk's stance dips the body
+  by A sin(pi sigma) (foot y = y_home + A sin(pi sigma)), so the feet push it into a flight.
+- one-shot maneuvers (Maneuver: ``jump``, ``drop``, ``stand_up``): segments of quintic Hermite
+  curves in time (position, velocity and acceleration given at both ends of each), each in stance
+  or in flight; u = t / span, no repetition: after the span the last point holds.
+
 Each path is a FootPath registered by its kind in PATHS (register_path): its constants (a
 NamedTuple, as the compiled code takes it), its compiled point function, where its stance starts;
 GaitSource, the Diagram's block, evaluates any of them.
@@ -21,17 +28,24 @@ GaitSource, the Diagram's block, evaluates any of them.
 
 from __future__ import annotations
 
+import dataclasses
+import math
 from dataclasses import dataclass
 from typing import ClassVar, NamedTuple, Optional
 import numpy as np
 from pydrake.systems.framework import LeafSystem
 
 from fivebar_drake.core.compiled import jit, jit_uncached
-from fivebar_drake.core.validation import (MAX_GAIT_FREQUENCY_HZ, MAX_LENGTH_M, MAX_SAMPLES,
+from fivebar_drake.core.validation import (MAX_GAIT_FREQUENCY_HZ, MAX_GRAVITY_M_S2,
+                                           MAX_LENGTH_M, MAX_SAMPLES,
                                            check_lengths, check_number)
 from fivebar_drake.core.variants import Variant, by_kind, registrar
 
 
+MAX_MANEUVER_VALUE = 100.0   # a maneuver's lengths (m) and times (s): catches a slip of units
+REACH_SPEED_M_S = 0.1   # a landing foot reaches down at this speed at touchdown (early touchdown
+#                         detection joins a descending foot to the support)
+MIN_CRAWL_DUTY = 0.75   # a crawl's duty factor: one leg in swing at a time, three feet down
 PATHS: dict[str, type["FootPath"]] = {}   # the foot paths by kind, in registration order
 register_path = registrar(PATHS)
 
@@ -73,6 +87,11 @@ class FootPath(Variant):
 
     point: ClassVar = None
     title: ClassVar[str] = ""          # the path in a few words, e.g. "trot foot path"
+    periodic: ClassVar[bool] = True    # False: a one-shot maneuver (Maneuver)
+    pattern: ClassVar[str] = "trot"    # the legs' phases (the robot's legs.GAIT_PHASES_RAD)
+    goal: ClassVar[str] = "speed"      # what "achieved" means (simulation/summary.py GOALS)
+    gait_defaults: ClassVar[dict] = {}  # gait fields (m, Hz) this path takes unless the scenario
+    #                                     sets them (scenario.gait_*)
 
     def text(self, gait: Gait) -> str:
         """The path in words with its numbers (mm, m/s), for the analysis report."""
@@ -91,11 +110,37 @@ class FootPath(Variant):
         time; the robot's kinematic walking speed."""
         return 2.0 * gait.a_m / ((1.0 - self.stance_start(gait)) * gait.period_s)
 
+    def clock(self, gait: Gait) -> tuple[float, float]:
+        """(frequency Hz, period s) of the path's clock u = f t: the gait's."""
+        return gait.frequency_hz, gait.period_s
+
+    def phase(self, gait: Gait, t, phase_rad=0.0) -> np.ndarray:
+        """The path's phase u at gait times t (s) of a leg with gait phase phase_rad (rad)."""
+        return cycle_phase(gait, t, phase_rad)
+
+    def home(self, gait: Gait) -> np.ndarray:
+        """Foot point (2,) m where the feet rest before the path starts: (x_c, y_home)."""
+        return np.array([gait.x_center_m, gait.y_home_m])
+
+    def lift_m(self, gait: Gait) -> float:
+        """Height (m) of the feet above the ground at t = 0 (a drop's)."""
+        return 0.0
+
+    def start_s(self, stand_s: float) -> float:
+        """When the path starts (s): after the scenario's standing time."""
+        return stand_s
+
+    def span_s(self, gait: Gait) -> float:
+        """Time (s) the path takes: a period."""
+        return gait.period_s
+
     def add_to(self, builder, gait: Gait, phases_rad, start_s: float, ramp_s: float,
                transfer_s: float, period_s: float) -> GaitSource:
-        """Add this path's GaitSource (named "gait_source") to the DiagramBuilder."""
+        """Add this path's GaitSource (named "gait_source") to the DiagramBuilder; start_s: the
+        scenario's standing time (FootPath.start_s), ramp_s its ramp (none for a maneuver)."""
         return builder.AddNamedSystem("gait_source", GaitSource(
-            gait, self, phases_rad, start_s, ramp_s, transfer_s, period_s))
+            gait, self, phases_rad, self.start_s(start_s), ramp_s if self.periodic else 0.0,
+            transfer_s, period_s))
 
 
 class EllipseConstants(NamedTuple):
@@ -150,7 +195,7 @@ def _quintic_h(r):
 
 class TrotConstants(NamedTuple):
     """The trot path's stride half-length a, lift b and centre (x_center, y_home) in m, period
-    in s and duty factor beta."""
+    in s, duty factor beta and stance dip (m; the pronk's, 0 for a flat stance)."""
 
     a: float
     b: float
@@ -158,6 +203,7 @@ class TrotConstants(NamedTuple):
     y_home: float
     period: float
     beta: float
+    dip: float = 0.0
 
 
 @jit
@@ -167,9 +213,12 @@ def trot_point(c, u):
     (G(s) = -H(1 - s)) adding the matched end slopes."""
     a, b, x_center, y_home, period, beta = c.a, c.b, c.x_center, c.y_home, c.period, c.beta
     v = 2.0 * a / (beta * period)
-    if u >= 1.0 - beta:                     # stance: flat, at constant speed
+    w = np.pi / (beta * period)             # the dip's rate: A sin(w t) over the stance
+    if u >= 1.0 - beta:                     # stance: flat (or dipping), at constant speed
         sigma = min(max((u - (1.0 - beta)) / beta, 0.0), 1.0)
-        return (-a + 2 * a * sigma) + x_center, y_home, v, 0.0, 0.0, 0.0, True
+        sn, cs = np.sin(np.pi * sigma), np.cos(np.pi * sigma)
+        return ((-a + 2 * a * sigma) + x_center, y_home + c.dip * sn, v, c.dip * w * cs, 0.0,
+                -c.dip * w * w * sn, True)
     t_sw = (1.0 - beta) * period
     s = min(max(u / (1.0 - beta), 0.0), 1.0)
     p, dp, ddp = 10 * s**3 - 15 * s**4 + 6 * s**5, 30 * s**2 - 60 * s**3 + 30 * s**4, \
@@ -180,9 +229,12 @@ def trot_point(c, u):
     bump = 64 * s**3 * (1 - s) ** 3
     dbump = 192 * s**2 * (1 - s) ** 2 * (1 - 2 * s) / t_sw
     ddbump = 384 * s * (1 - s) * ((1 - 2 * s) ** 2 - s * (1 - s)) / t_sw**2
-    return (a - 2 * a * p + v * t_sw * hg + x_center, y_home + b * bump,
-            (-2 * a * dp + v * t_sw * dhg) / t_sw, b * dbump,
-            (-2 * a * ddp + v * t_sw * ddhg) / t_sw**2, b * ddbump, False)
+    # the dip's vertical speed -A w at lift-off and +A w at touchdown, matched by H and G
+    vd = -c.dip * w * t_sw
+    return (a - 2 * a * p + v * t_sw * hg + x_center, y_home + b * bump + vd * (h0 + h1),
+            (-2 * a * dp + v * t_sw * dhg) / t_sw, b * dbump + vd * (dh0 - dh1) / t_sw,
+            (-2 * a * ddp + v * t_sw * ddhg) / t_sw**2, b * ddbump + vd * (ddh0 + ddh1) / t_sw**2,
+            False)
 
 
 @register_path
@@ -221,6 +273,61 @@ class Trot(FootPath):
 
     def stance_speed(self, gait: Gait) -> float:
         return 2.0 * gait.a_m / (self.beta(gait) * gait.period_s)
+
+
+@register_path
+@dataclass(frozen=True)
+class Walk(Trot):
+    """A statically stable crawl: the trot path, one leg at a time (legs.GAIT_PHASES_RAD
+    "walk": rear left, front left, rear right, front right, a quarter cycle apart), duty factor
+    >= 0.75 so three or four feet are always down."""
+
+    kind: ClassVar[str] = "walk"
+    title: ClassVar[str] = "crawl (one leg at a time)"
+    pattern: ClassVar[str] = "walk"
+    gait_defaults: ClassVar[dict] = {"frequency_hz": 0.5}
+    duty_factor: Optional[float] = 0.8
+
+    def check(self, field: str) -> None:
+        check_number(f"{field}.duty_factor", self.duty_factor, MIN_CRAWL_DUTY, 1.0,
+                     high_open=True, why="a crawl keeps three feet down: one leg swings at a time")
+
+
+@register_path
+@dataclass(frozen=True)
+class Bound(Trot):
+    """A bound: the trot path with the front pair and the rear pair half a cycle apart
+    (legs.GAIT_PHASES_RAD "bound")."""
+
+    kind: ClassVar[str] = "bound"
+    title: ClassVar[str] = "bound (front pair, rear pair)"
+    pattern: ClassVar[str] = "bound"
+    gait_defaults: ClassVar[dict] = {"frequency_hz": 2.0, "a_m": 0.03}
+    duty_factor: Optional[float] = 0.75
+
+
+@register_path
+@dataclass(frozen=True)
+class Pronk(Trot):
+    """A pronk: all four legs together (legs.GAIT_PHASES_RAD "pronk"); in stance the foot rises
+    by dip_m sin(pi sigma) towards the hip (the body dips and is pushed back up), leaving at the
+    vertical speed pi dip_m / T_stance, so the body flies 2 pi dip_m / (g T_stance) s: the
+    default dip, 36 mm, gives the 0.1 s flight of the default 3 Hz, duty 0.7 (g = 9.81 m/s^2);
+    choose dip_m = g (1 - beta) beta T^2 / (2 pi) for another."""
+
+    kind: ClassVar[str] = "pronk"
+    title: ClassVar[str] = "pronk (all four legs together)"
+    pattern: ClassVar[str] = "pronk"
+    gait_defaults: ClassVar[dict] = {"frequency_hz": 3.0, "a_m": 0.03, "b_m": 0.015}
+    duty_factor: Optional[float] = 0.7
+    dip_m: float = 0.0364
+
+    def check(self, field: str) -> None:
+        super().check(field)
+        check_number(f"{field}.dip_m", self.dip_m, 0.0, MAX_LENGTH_M)
+
+    def constants(self, gait: Gait) -> TrotConstants:
+        return super().constants(gait)._replace(dip=self.dip_m)
 
 
 class DoggoConstants(NamedTuple):
@@ -300,6 +407,259 @@ class Doggo(FootPath):
         return self.share(gait)
 
 
+class ManeuverConstants(NamedTuple):
+    """A one-shot maneuver's segments: span (s, their total); per segment (n,) its start and end
+    times (n, 2) in s, x and y (n, 6): position, velocity, acceleration at its start, then at
+    its end (m, m/s, m/s^2), and whether the feet are in stance (n,) 1 or 0."""
+
+    span: float
+    times: np.ndarray
+    x: np.ndarray
+    y: np.ndarray
+    stance: np.ndarray
+
+
+@jit
+def hermite5(e, t0, t1, t):
+    """The quintic Hermite curve over [t0, t1] (s) through e = (p0, v0, a0, p1, v1, a1) (position,
+    velocity, acceleration at both ends): (value, first, second derivative) at t, clamped to the
+    segment."""
+    T = t1 - t0
+    r = min(max((t - t0) / T, 0.0), 1.0)
+    r2, r3, r4, r5 = r * r, r**3, r**4, r**5
+    h = (1 - 10 * r3 + 15 * r4 - 6 * r5, r - 6 * r3 + 8 * r4 - 3 * r5,
+         0.5 * (r2 - 3 * r3 + 3 * r4 - r5), 10 * r3 - 15 * r4 + 6 * r5, -4 * r3 + 7 * r4 - 3 * r5,
+         0.5 * (r3 - 2 * r4 + r5))
+    dh = (-30 * r2 + 60 * r3 - 30 * r4, 1 - 18 * r2 + 32 * r3 - 15 * r4,
+          0.5 * (2 * r - 9 * r2 + 12 * r3 - 5 * r4), 30 * r2 - 60 * r3 + 30 * r4,
+          -12 * r2 + 28 * r3 - 15 * r4, 0.5 * (3 * r2 - 8 * r3 + 5 * r4))
+    ddh = (-60 * r + 180 * r2 - 120 * r3, -36 * r + 96 * r2 - 60 * r3,
+           0.5 * (2 - 18 * r + 36 * r2 - 20 * r3), 60 * r - 180 * r2 + 120 * r3,
+           -24 * r + 84 * r2 - 60 * r3, 0.5 * (6 * r - 24 * r2 + 20 * r3))
+    c = (e[0], e[1] * T, e[2] * T * T, e[3], e[4] * T, e[5] * T * T)
+    value, first, second = 0.0, 0.0, 0.0
+    for k in range(6):
+        value += h[k] * c[k]
+        first += dh[k] * c[k]
+        second += ddh[k] * c[k]
+    return value, first / T, second / (T * T)
+
+
+@jit
+def maneuver_point(c, u):
+    """A maneuver (ManeuverConstants c) at u = t / span: (x, y, vx, vy, ax, ay) in m, m/s,
+    m/s^2 and the stance flag; before the first segment its start, after the last its end."""
+    t = u * c.span
+    k = 0
+    while k < c.times.shape[0] - 1 and t >= c.times[k, 1]:
+        k += 1
+    x, vx, ax = hermite5(c.x[k], c.times[k, 0], c.times[k, 1], t)
+    y, vy, ay = hermite5(c.y[k], c.times[k, 0], c.times[k, 1], t)
+    return x, y, vx, vy, ax, ay, c.stance[k] > 0.5
+
+
+REST = (0.0, 0.0)   # velocity and acceleration of a foot at rest
+
+
+@dataclass(frozen=True)
+class Maneuver(FootPath):
+    """A one-shot maneuver (module docstring): all legs together, no ramp, its segments from
+    `segments`; it starts after the scenario's standing time (stand_first) and its span is the
+    statistics window. Subclasses give `segments`."""
+
+    periodic: ClassVar[bool] = False
+    pattern: ClassVar[str] = "pronk"
+    point: ClassVar = staticmethod(maneuver_point)
+    stand_first: ClassVar[bool] = True
+
+    def segments(self, gait: Gait) -> list[tuple]:
+        """[(duration s, stance, x (p0, v0, a0, p1, v1, a1), y (the same)), ...] in m, m/s,
+        m/s^2."""
+        raise NotImplementedError
+
+    def constants(self, gait: Gait) -> ManeuverConstants:
+        segs = self.segments(gait)
+        ends = np.cumsum([d for d, *_ in segs])
+        return ManeuverConstants(
+            float(ends[-1]), np.stack([np.concatenate([[0.0], ends[:-1]]), ends], -1),
+            np.array([x for _, _, x, _ in segs], dtype=float),
+            np.array([y for _, _, _, y in segs], dtype=float),
+            np.array([float(st) for _, st, _, _ in segs]))
+
+    def span_s(self, gait: Gait) -> float:
+        return float(sum(d for d, *_ in self.segments(gait)))
+
+    def clock(self, gait: Gait) -> tuple[float, float]:
+        span = self.span_s(gait)
+        return 1.0 / span, span
+
+    def phase(self, gait: Gait, t, phase_rad=0.0) -> np.ndarray:
+        return np.maximum(np.asarray(t, dtype=float), 0.0) / self.span_s(gait) + 0.0 * phase_rad
+
+    def home(self, gait: Gait) -> np.ndarray:
+        first = self.segments(gait)[0]
+        return np.array([first[2][0], first[3][0]])
+
+    def start_s(self, stand_s: float) -> float:
+        return stand_s if self.stand_first else 0.0
+
+    def stance_start(self, gait: Gait) -> float:
+        return 0.0
+
+    def stance_speed(self, gait: Gait) -> float:
+        return 0.0
+
+    def events(self, gait: Gait) -> dict[str, float]:
+        """The plan's key times (s from the maneuver's start), e.g. onset, takeoff, touchdown."""
+        return {}
+
+    def check(self, field: str) -> None:
+        for f in dataclasses.fields(self):
+            check_number(f"{field}.{f.name}", getattr(self, f.name), 0.0, MAX_MANEUVER_VALUE,
+                         low_open=f.name.endswith("_s"))
+
+
+def hold(duration_s: float, stance: bool, foot) -> tuple:
+    """A segment (Maneuver.segments) holding the foot (2,) m at rest."""
+    return (duration_s, stance, (foot[0], *REST, foot[0], *REST), (foot[1], *REST, foot[1], *REST))
+
+
+def move(duration_s: float, stance: bool, start, end, vy=(0.0, 0.0)) -> tuple:
+    """A segment from foot point start to end (m; at rest along x, y at the vertical speeds
+    vy = (start, end) m/s, no acceleration at either end)."""
+    return (duration_s, stance, (start[0], *REST, end[0], *REST),
+            (start[1], vy[0], 0.0, end[1], vy[1], 0.0))
+
+
+@dataclass(frozen=True)
+class Landing(Maneuver):
+    """What a landing takes: the feet land extension_m below the standing line y_home; from
+    touchdown the stance takes the body's speed v_td to rest over landing_stroke_m (the foot's
+    quintic from speed v_td to rest: peak deceleration 0.75 v_td^2 / stroke), then recovers to
+    standing over recovery_s and holds it settle_s."""
+
+    extension_m: float = 0.03
+    landing_stroke_m: float = 0.06
+    recovery_s: float = 0.5
+    settle_s: float = 0.4
+
+    def landing(self, gait: Gait, v_td: float) -> list[tuple]:
+        """The segments from touchdown at speed v_td (m/s, > 0) to standing."""
+        x, y_land = gait.x_center_m, gait.y_home_m - self.extension_m
+        low = (x, y_land + self.landing_stroke_m)
+        return [move(2.0 * self.landing_stroke_m / v_td, True, (x, y_land), low, (v_td, 0.0)),
+                move(self.recovery_s, True, low, (x, gait.y_home_m)),
+                hold(self.settle_s, True, (x, gait.y_home_m))]
+
+
+@register_path
+@dataclass(frozen=True)
+class Jump(Landing):
+    """A vertical jump of all four legs: crouch crouch_m above the standing line over crouch_s,
+    hold hold_s, push off (the foot's quintic from rest to the takeoff speed at extension_m below
+    the standing line: peak acceleration 0.75 v^2 / stroke), fly (the feet tucked retract_m and
+    reaching down at 0.1 m/s to land), land (Landing). The takeoff speed puts the body's apex
+    height_m above its standing height: v = sqrt(2 g (height_m - extension_m))."""
+
+    kind: ClassVar[str] = "jump"
+    title: ClassVar[str] = "vertical jump"
+    goal: ClassVar[str] = "jump"
+    height_m: float = 0.06
+    crouch_m: float = 0.06
+    crouch_s: float = 0.4
+    hold_s: float = 0.2
+    retract_m: float = 0.02
+
+    def takeoff_speed(self, gait: Gait) -> float:
+        """Planned takeoff speed (m/s) of the body."""
+        return math.sqrt(2.0 * gait.gravity_m_s2 * max(self.height_m - self.extension_m, 0.0))
+
+    def check(self, field: str) -> None:
+        super().check(field)
+        check_number(f"{field}.height_m", self.height_m, self.extension_m, MAX_MANEUVER_VALUE,
+                     low_open=True, why=f"the apex lies above the takeoff height "
+                                        f"(extension_m = {self.extension_m:g} m)")
+
+    def timing(self, gait: Gait) -> tuple[float, float, float]:
+        """(push-off s, flight s, takeoff speed m/s) of the plan: the body lands at its takeoff
+        height."""
+        v = self.takeoff_speed(gait)
+        return 2.0 * (self.crouch_m + self.extension_m) / v, 2.0 * v / gait.gravity_m_s2, v
+
+    def segments(self, gait: Gait) -> list[tuple]:
+        x, y0 = gait.x_center_m, gait.y_home_m
+        push, flight, v = self.timing(gait)
+        crouch, takeoff = (x, y0 + self.crouch_m), (x, y0 - self.extension_m)
+        tucked = (x, takeoff[1] + self.retract_m)
+        return [move(self.crouch_s, True, (x, y0), crouch), hold(self.hold_s, True, crouch),
+                (push, True, (x, *REST, x, *REST),
+                 (crouch[1], 0.0, 0.0, takeoff[1], -v, 0.0)),
+                move(flight / 2, False, takeoff, tucked, (-v, 0.0)),
+                move(flight / 2, False, tucked, takeoff, (0.0, -REACH_SPEED_M_S)),
+                ] + self.landing(gait, v)
+
+    def events(self, gait: Gait) -> dict[str, float]:
+        push, flight, _ = self.timing(gait)
+        onset = self.crouch_s + self.hold_s
+        return {"onset": onset, "takeoff": onset + push, "touchdown": onset + push + flight}
+
+
+@register_path
+@dataclass(frozen=True)
+class Drop(Landing):
+    """A drop: the robot starts at rest with its feet height_m above the ground, legs extended
+    extension_m below the standing line, falls and lands (Landing) at sqrt(2 g height_m)."""
+
+    kind: ClassVar[str] = "drop"
+    title: ClassVar[str] = "drop onto the feet"
+    goal: ClassVar[str] = "stand"
+    stand_first: ClassVar[bool] = False
+    height_m: float = 0.1
+    extension_m: float = 0.04
+    landing_stroke_m: float = 0.08
+
+    def lift_m(self, gait: Gait) -> float:
+        return self.height_m
+
+    def segments(self, gait: Gait) -> list[tuple]:
+        g = gait.gravity_m_s2
+        foot = (gait.x_center_m, gait.y_home_m - self.extension_m)
+        return ([hold(math.sqrt(2.0 * self.height_m / g), False, foot)]
+                + self.landing(gait, math.sqrt(2.0 * g * self.height_m)))
+
+    def events(self, gait: Gait) -> dict[str, float]:
+        return {"touchdown": math.sqrt(2.0 * self.height_m / gait.gravity_m_s2)}
+
+
+@register_path
+@dataclass(frozen=True)
+class StandUp(Maneuver):
+    """Standing up from lying on the belly: the feet start folded at (fold_x_m, fold_y_m) (the
+    default: 150 mm behind the hips, 28 mm below them, on the ground when the default body lies
+    on its belly) and move in a straight line to the standing point over rise_s, all in stance,
+    then hold it settle_s."""
+
+    kind: ClassVar[str] = "stand_up"
+    title: ClassVar[str] = "stand up from lying"
+    goal: ClassVar[str] = "stand"
+    fold_x_m: float = 0.15
+    fold_y_m: float = -0.028
+    rise_s: float = 1.5
+    settle_s: float = 0.5
+
+    def check(self, field: str) -> None:
+        check_number(f"{field}.fold_x_m", self.fold_x_m, -MAX_LENGTH_M, MAX_LENGTH_M)
+        check_number(f"{field}.fold_y_m", self.fold_y_m, -MAX_LENGTH_M, MAX_LENGTH_M)
+        for name in ("rise_s", "settle_s"):
+            check_number(f"{field}.{name}", getattr(self, name), 0.0, MAX_MANEUVER_VALUE,
+                         low_open=True)
+
+    def segments(self, gait: Gait) -> list[tuple]:
+        home = (gait.x_center_m, gait.y_home_m)
+        return [move(self.rise_s, True, (self.fold_x_m, self.fold_y_m), home),
+                hold(self.settle_s, True, home)]
+
+
 @jit_uncached
 def path_arrays(point, constants, u):
     """point(constants, .) (FootPath.point) at cycle phases u (n,): six arrays (n,) and the
@@ -315,7 +675,7 @@ def evaluate(gait: Gait, path: FootPath | str, t, phase_rad=0.0) -> PathPoints:
     """The path (a FootPath or its kind) at times t (s) for a leg with gait phase phase_rad
     (rad); t and phase_rad broadcast against each other."""
     path = foot_path(path)
-    u = cycle_phase(gait, t, phase_rad)
+    u = path.phase(gait, t, phase_rad)
     flat = np.ascontiguousarray(u, dtype=float).ravel()
     x, y, vx, vy, ax, ay, stance = (v.reshape(u.shape) for v in
                                     path_arrays(path.point, path.constants(gait), flat))
@@ -369,10 +729,11 @@ def stance_loads(gait: Gait, path: FootPath | str, t, phases_rad, weight_N: floa
 
 @jit_uncached
 def foot_references(point, constants, frequency, period, stance_start_u, transfer_s, home,
-                    phases, start_s, ramp_s, t):
+                    phases, start_s, ramp_s, periodic, t):
     """The foot references at time t (s) as one vector (7 legs / 2, GaitSource): targets,
     velocities and accelerations (legs x (x, y) each), then stance weights (legs); the path
-    point(constants, u) (FootPath.point) at frequency (Hz) and period (s)."""
+    point(constants, u) (FootPath.point) at frequency (Hz) and period (s); not periodic (a
+    maneuver): u = frequency t, the weights its stance flags."""
     n = phases.shape[0]
     out = np.zeros(7 * n)
     targets, vel, acc = (out[:2 * n].reshape(n, 2), out[2 * n:4 * n].reshape(n, 2),
@@ -385,13 +746,14 @@ def foot_references(point, constants, frequency, period, stance_start_u, transfe
         return out
     s, ds = (tau / ramp_s, 1.0 / ramp_s) if ramp_s > 0 and tau < ramp_s else (1.0, 0.0)
     for i in range(n):
-        u = phase_of(frequency, tau, phases[i])
-        x, y, vx, vy, ax, ay, _ = point(constants, u)
+        u = phase_of(frequency, tau, phases[i]) if periodic else frequency * tau
+        x, y, vx, vy, ax, ay, flag = point(constants, u)
         for j, (rel, v, a) in enumerate(((x - home[0], vx, ax), (y - home[1], vy, ay))):
             targets[i, j] = home[j] + s * rel
             vel[i, j] = ds * rel + s * v
             acc[i, j] = 2.0 * ds * v + s * a
-        weights[i] = 1.0 - s * (1.0 - stance_weight_at(u, stance_start_u, period, transfer_s))
+        w = stance_weight_at(u, stance_start_u, period, transfer_s) if periodic else (1.0 if flag else 0.0)
+        weights[i] = 1.0 - s * (1.0 - w)
     return out
 
 
@@ -404,17 +766,17 @@ class GaitSource(LeafSystem):
     The foot path (FootPath.point) with gait time tau = t - start_s, each leg at its phase
     (rad), about the home point (x_c, y_home) scaled by s ramping 0 -> 1 over ramp_s; the
     stance weights blend from all-stance to the schedule with the same s. While standing
-    (t < start_s) the feet rest at home, all in stance. The path is known ahead, so at each
+    (t < start_s) the feet rest at home (FootPath.home), all in stance. The path is known ahead, so at each
     tick t the source stores the values of the next tick: a block sampling it at a tick reads
     the values at that tick, computed once, with no Python on the output port."""
 
     def __init__(self, gait: Gait, path: FootPath, phases, start_s: float, ramp_s: float,
                  transfer_s: float, period_s: float):
         super().__init__()
-        self._args = (path.point, path.constants(gait), gait.frequency_hz, gait.period_s,
-                      path.stance_start(gait), float(transfer_s),
-                      np.array([gait.x_center_m, gait.y_home_m]),
-                      np.asarray(phases, dtype=float), float(start_s), float(ramp_s))
+        self._args = (path.point, path.constants(gait), *path.clock(gait),
+                      path.stance_start(gait), float(transfer_s), path.home(gait),
+                      np.asarray(phases, dtype=float), float(start_s), float(ramp_s),
+                      path.periodic)
         self._period = period_s
         self._group = self.DeclareDiscreteState(self.references(0.0))
         self.DeclarePeriodicDiscreteUpdateEvent(period_s, 0.0, self._update)
@@ -431,8 +793,9 @@ class GaitSource(LeafSystem):
 @dataclass(frozen=True)
 class Gait:
     """Foot path parameters in the leg plane (m): stride half-length a, step height b, centre
-    (x_center, y_home), frequency (Hz), samples per cycle for the analysis, and the trot path's
-    duty factor (fraction of the cycle in stance); see footpath.py for the paths."""
+    (x_center, y_home), frequency (Hz), samples per cycle for the analysis, the trot path's
+    duty factor (fraction of the cycle in stance) and gravity (m/s^2, the robot's, for the
+    maneuvers' ballistic flights); see footpath.py for the paths."""
 
     a_m: float
     b_m: float
@@ -441,6 +804,7 @@ class Gait:
     frequency_hz: float
     samples: int
     duty_factor: float
+    gravity_m_s2: float = 9.81   # the robot's (config sets robot.gravity_m_s2): ballistic plans
 
     def __post_init__(self):
         check_lengths("gait", self, ("a_m", "b_m"), low_open=False)
@@ -452,6 +816,7 @@ class Gait:
                      why="central differences need neighbours")
         check_number("gait.duty_factor", self.duty_factor, 0.0, 1.0, low_open=True,
                      high_open=True)
+        check_number("gait.gravity_m_s2", self.gravity_m_s2, 0.0, MAX_GRAVITY_M_S2, low_open=True)
 
     @property
     def period_s(self) -> float:

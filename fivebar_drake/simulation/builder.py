@@ -13,10 +13,11 @@ from pydrake.systems.primitives import DiscreteTimeIntegrator, Multiplexer, Vect
 from fivebar_drake.core.drake_configs import check_plant_config_values, config_with
 from fivebar_drake.core.motor import MotorModel
 from fivebar_drake.core.validation import ParameterError, check_number, require
+from fivebar_drake.mechanisms.fivebar import UnreachableError
 from fivebar_drake.robots.quadruped.closure import design_closure
 from fivebar_drake.robots.quadruped.config import check_path
 from fivebar_drake.robots.quadruped.params import Params
-from fivebar_drake.robots.quadruped.plant import ClosureDesign, RobotLayout, add_robot
+from fivebar_drake.robots.quadruped.plant import ClosureDesign, Modifiers, RobotLayout, add_robot
 from fivebar_drake.simulation.scenario import Scenario
 
 
@@ -104,11 +105,11 @@ def check_run(scenario: Scenario, params: Params) -> ClosureDesign:
     check_number(field, step, low=scenario.duration_s / MAX_PLANT_STEPS,
                  why=f"scenario.duration_s = {scenario.duration_s:g} s may take at most "
                      f"{MAX_PLANT_STEPS:g} plant steps (about two hours){derived}")
-    period = params.gait.period_s
+    period = scenario.gait.span_s(params.gait)
     check_number("scenario.log_period_s", scenario.log_period_s, step,
                  period / MIN_LOG_INTERVALS_PER_CYCLE,
                  why=f"at least one plant step and at least {MIN_LOG_INTERVALS_PER_CYCLE} "
-                     f"intervals per gait cycle of {period:g} s")
+                     f"intervals per gait cycle (or maneuver) of {period:g} s")
     check_number("scenario.pose_rate_hz", scenario.pose_rate_hz, high=1.0 / scenario.log_period_s,
                  why="poses are taken from the recorded intervals: at most 1 / log_period_s")
     log_period, per_row = recorded_periods(scenario, step)
@@ -118,11 +119,30 @@ def check_run(scenario: Scenario, params: Params) -> ClosureDesign:
             f"the recorder logs every {log_period:.6g} s (whole plant steps of {step:.6g} s), "
             f"which must be a whole number of motor periods (scenario.motor_period_s = "
             f"{scenario.motor_period_s:g} s): the motor's samples are averaged per interval")
-    stance_s = (1.0 - scenario.gait.stance_start(params.gait)) * period
-    check_number("scenario.load_transfer_s", scenario.load_transfer_s, high=stance_s / 2,
-                 why=f"a foot must take up its load and give it off within its stance of "
-                     f"{stance_s:g} s")
+    if scenario.gait.periodic:       # a maneuver's feet switch at its events, not smoothly
+        stance_s = (1.0 - scenario.gait.stance_start(params.gait)) * period
+        check_number("scenario.load_transfer_s", scenario.load_transfer_s, high=stance_s / 2,
+                     why=f"a foot must take up its load and give it off within its stance of "
+                         f"{stance_s:g} s")
+    check_start_pose(scenario, params)
     return design
+
+
+def check_start_pose(scenario: Scenario, params: Params) -> None:
+    """The foot path's start (FootPath.home, the maneuvers' first point) is in the legs' reach,
+    on the forward kinematics' branch (ParameterError naming scenario.gait)."""
+    home = scenario.gait.home(params.gait)
+    leg = params.fivebar_leg
+    try:
+        again = leg.forward(leg.inverse(home).q).f
+    except UnreachableError as err:
+        raise ParameterError(f"scenario.gait = {scenario.gait}: its start, the foot at "
+                             f"({home[0]:g}, {home[1]:g}) m, is out of the legs' reach: {err}",
+                             "scenario.gait") from None
+    require(np.allclose(again, home, atol=1e-9), "scenario.gait", str(scenario.gait),
+            f"its start, the foot at ({home[0]:g}, {home[1]:g}) m, folds the leg past the "
+            "forward kinematics' branch (E above its lower circle intersection) the controller "
+            "reads the legs with: start lower or further out")
 
 
 def add_controller(builder: DiagramBuilder, scenario: Scenario, params: Params, plant,
@@ -179,7 +199,10 @@ def build_diagram(scenario: Scenario, params: Params, design: ClosureDesign,
     log_actuation: also log the joint torques the plant receives at every step
     (Setup.actuation_log), to replay the run on the plant alone."""
     builder = DiagramBuilder()
-    plant, instance, layout = add_robot(builder, params, design, scenario.plant_config)
+    plant, instance, layout = add_robot(builder, params, design, scenario.plant_config,
+                                        Modifiers(scenario.payload_kg,
+                                                  tuple(scenario.payload_offset_m),
+                                                  math.radians(scenario.slope_deg)))
     controller, motor = add_controller(builder, scenario, params, plant, instance, layout)
     recorder, motor_log, per_row = add_recorders(builder, scenario, plant, instance, layout,
                                                  motor, design.time_step_s)

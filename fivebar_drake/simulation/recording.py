@@ -125,7 +125,7 @@ def _log_series(rec, sig: Signals, legs, params: Params, summary: dict):
     limit = params.motor.peak_torque_Nm
     n = len(sig.t)
     start, end = summary["window_s"]
-    cycle_ends = start + params.gait.period_s * np.arange(1, summary["cycles_in_window"] + 1)
+    cycle_ends = start + summary["cycle_s"] * np.arange(1, summary["cycles_in_window"] + 1)
     for i, leg in enumerate(legs):
         scalars(rec, f"loop_gap/{leg}", sig.t, sig.gap[:, i], leg)
         scalars(rec, f"contact/{leg}/tangential", sig.t, sig.foot_force_plane[:, i, 0])

@@ -121,7 +121,8 @@ def simulate(scenario: Scenario, params: Params, progress=True, log_actuation=Fa
     ApplySimulatorConfig(scenario.simulator_config, simulator)
     context = simulator.get_mutable_context()
     set_standing_pose(setup.plant, setup.plant.GetMyMutableContextFromRoot(context),
-                      setup.instance, setup.layout.legs, params)
+                      setup.instance, setup.layout.legs, params,
+                      scenario.gait.home(params.gait), scenario.gait.lift_m(params.gait))
     simulator.Initialize()
     # every discrete update once, outside the timing: loads (or on a first run compiles) the
     # compiled kernels

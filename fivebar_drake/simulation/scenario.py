@@ -25,13 +25,14 @@ from pydrake.systems.analysis import SimulatorConfig
 from fivebar_drake.core.drake_configs import check_simulator_config, config_fields
 from fivebar_drake.core.files import read_input_text
 from fivebar_drake.core.footpath import PATHS, FootPath, Trot
-from fivebar_drake.core.validation import ParameterError, check_number, require
+from fivebar_drake.core.validation import (MAX_LENGTH_M, MAX_MASS_KG, ParameterError,
+                                           check_number, require)
 from fivebar_drake.core.yaml_files import load_yaml
 from fivebar_drake.robots.quadruped.config import load_params, with_gait
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.closure import CLOSURES, Closure, CompliantBushing
 from fivebar_drake.robots.quadruped.plant import default_plant_config
-from fivebar_drake.robots.quadruped.legs import LEGS, TROT_PHASES_RAD
+from fivebar_drake.robots.quadruped.legs import GAIT_PHASES_RAD, LEGS
 from fivebar_drake.simulation.systems import CONTROLLERS, MIN_TIME_STEP_S, Controller, FootLeg
 
 
@@ -45,6 +46,7 @@ MIN_LOOP_GAP_M = 1e-8             # a floor for any closure and step (the explic
 #                                   (near-rigid; ~ step^2: 1.7 um at 1 ms for the packaged robot),
 #                                   is checked with the design (closure.min_loop_gap)
 MAX_PHASE_RAD = 2 * math.pi       # a gait phase is an angle of the cycle: one turn either way
+MAX_SLOPE_DEG = 45.0              # tan 45 deg = 1: beyond any foot friction (body.foot_friction 0.8)
 
 
 def default_simulator_config() -> SimulatorConfig:
@@ -88,8 +90,17 @@ class Scenario:
                                         "at touchdown and lift-off")
     stand_s: float = _doc(0.5, "standing time before the gait starts")
     ramp_s: float = _doc(1.0, "time over which the foot path grows to full size")
-    phases_rad: list[float] = _doc(None, "gait phase of FL, FR, RL, RR (a trot: 0, pi, pi, 0)",
-                                   factory=lambda: list(TROT_PHASES_RAD))
+    phases_rad: Optional[list[float]] = _doc(
+        None, "gait phase of FL, FR, RL, RR; null = the gait's own (trot: 0, pi, pi, 0; walk: "
+              "a crawl, a quarter cycle apart; bound: front, rear half a cycle apart; pronk and "
+              "the maneuvers: all 0)")
+    payload_kg: float = _doc(0.0, "mass added to the body (a rigid payload)")
+    payload_offset_m: list[float] = _doc(None, "the payload's centre in the body frame (x "
+                                               "forward, y left, z up) from the body's centre",
+                                         factory=lambda: [0.0, 0.0, 0.0])
+    slope_deg: float = _doc(0.0, "ground slope, walking up it: gravity tilted by it in the plant "
+                                 "(the ground stays z = 0; heights and tilt are relative to the "
+                                 "slope)")
     log_period_s: float = _doc(0.002, "interval of the recorded means (measured every plant "
                                       "step)")
     pose_rate_hz: float = _doc(50.0, "rate of the 3-D poses in the recording")
@@ -167,17 +178,28 @@ class Scenario:
                self.controller.control_period_s, why="the motor model samples every command of "
                                                      "the controller (scenario.control_period_s)")
         number("scenario.load_transfer_s", self.load_transfer_s, 0.0)
+        if self.phases_rad is None:
+            self.phases_rad = list(GAIT_PHASES_RAD[self.gait.pattern])
         require(len(self.phases_rad) == len(LEGS), "scenario.phases_rad", self.phases_rad,
                 f"needs {len(LEGS)} values ({', '.join(LEGS)})")
         for i, phase in enumerate(self.phases_rad):
             number(f"scenario.phases_rad[{i}]", phase, -MAX_PHASE_RAD, MAX_PHASE_RAD)
+        number("scenario.payload_kg", self.payload_kg, 0.0, MAX_MASS_KG)
+        require(len(self.payload_offset_m) == 3, "scenario.payload_offset_m",
+                self.payload_offset_m, "needs 3 values (x, y, z) in m")
+        for i, value in enumerate(self.payload_offset_m):
+            number(f"scenario.payload_offset_m[{i}]", value, -MAX_LENGTH_M, MAX_LENGTH_M)
+        number("scenario.slope_deg", self.slope_deg, -MAX_SLOPE_DEG, MAX_SLOPE_DEG,
+               why="steeper, the feet slip at any friction this robot has")
         check_simulator_config(self.simulator_config, "scenario.simulator_config")
 
     def load_params(self) -> Params:
-        """The parameter file with this scenario's gait overrides (validated: reachable gait)."""
+        """The parameter file with this scenario's gait overrides, else the foot path's own
+        (FootPath.gait_defaults) (validated: reachable gait)."""
         params = load_params(self.params_file or None)
         overrides = {f.name[len("gait_"):]: getattr(self, f.name) for f in dataclasses.fields(self)
                      if f.name.startswith("gait_") and getattr(self, f.name) is not None}
+        overrides = {**self.gait.gait_defaults, **overrides}   # the path's own, unless given
         try:
             return with_gait(params, **overrides) if overrides else params
         except ParameterError as err:
@@ -185,7 +207,8 @@ class Scenario:
             raise ParameterError(f"scenario {given} overriding the parameter file: "
                                  f"{err.message}", err.field) from None
 
-UNITS = {"_s": "s", "_m": "m", "_hz": "Hz", "_rad": "rad", "_periods": "controller periods"}
+UNITS = {"_s": "s", "_m": "m", "_hz": "Hz", "_rad": "rad", "_periods": "controller periods",
+         "_kg": "kg", "_deg": "deg"}
 
 
 def _changed_fields(config) -> str:
@@ -200,6 +223,7 @@ def _field_row(f: dataclasses.Field, kind, default, doc: str) -> str:
     """A row of fields_markdown: the field f of type kind with its default and meaning."""
     shown_kind = {float: "number", int: "integer", bool: "true/false", str: "text"}.get(
         kind, "list of numbers" if kind == list[float] else
+        "list of numbers or null" if kind == Optional[list[float]] else
         "kind or mapping" if kind in REGISTRIES else
         "mapping" if kind in DRAKE_CONFIGS.values() else "number or null")
     shown = (_changed_fields(default) if f.name in DRAKE_CONFIGS else
@@ -280,6 +304,8 @@ def _typed(name: str, kind, value):
     if kind is str:
         require(isinstance(value, str), name, value, "must be text")
         return value
+    if kind == Optional[list[float]]:
+        return None if value is None else _typed(name, list[float], value)
     if kind == list[float]:
         require(isinstance(value, (list, tuple)), name, value, "must be a list of numbers")
         return [check_number(f"{name}[{i}]", v) for i, v in enumerate(value)]

@@ -26,13 +26,14 @@ import numpy as np
 
 from fivebar_drake.core.checks import CHECK_ORDER, SEVERITY, motor_checks
 from fivebar_drake.core.files import json_ready, write_atomic
-from fivebar_drake.core.footpath import cycle_phase, evaluate, stance_loads
+from fivebar_drake.core.footpath import evaluate, stance_loads
 from fivebar_drake.core.rotation import body_rotation, tilt_deg
-from fivebar_drake.mechanisms.fivebar import (MOTORS, LimitTest, forward, limit_tests,
+from fivebar_drake.mechanisms.fivebar import (MOTORS, LimitTest, forward, held_force, inverse,
+                                              limit_tests, link_coms,
                                               link_jacobians, static_torques, torques)
 from fivebar_drake.robots.quadruped.leg_loads import full_model, seed_model
 from fivebar_drake.robots.quadruped.params import Params
-from fivebar_drake.robots.quadruped.plant import RobotLayout
+from fivebar_drake.robots.quadruped.plant import RobotLayout, standing_height
 from fivebar_drake.robots.quadruped.legs import plane_rotation
 from fivebar_drake.simulation.runner import SimulationRecord
 from fivebar_drake.simulation.scenario import Scenario
@@ -63,7 +64,10 @@ class Signals:
     stance (rows, legs) scheduled stance; swing_fraction (rows, legs) how far through its
     scheduled swing a foot is (0 .. 1; nan in stance); swing_contact (rows, legs) foot pressing
     the ground with more than SWING_CONTACT_N in scheduled swing; limits: the leg's limit tests
-    (limits.py) over the poses (rows, legs)."""
+    (limits.py) over the poses (rows, legs); the whole robot's centre of mass com_p (rows, 3) m
+    and its velocity com_v (rows, 3) m/s at each interval's end (from the state alone,
+    com_motion); ground_force (rows, 3) N, the interval mean of the total contact force on the
+    robot (world; the floating body's rows of the generalized contact forces)."""
 
     t: np.ndarray
     body_p: np.ndarray
@@ -89,6 +93,9 @@ class Signals:
     swing_fraction: np.ndarray
     swing_contact: np.ndarray
     limits: list[LimitTest]
+    com_p: np.ndarray
+    com_v: np.ndarray
+    ground_force: np.ndarray
 
 
 def signals(record: SimulationRecord) -> Signals:
@@ -118,15 +125,16 @@ def signals(record: SimulationRecord) -> Signals:
     j_contact[..., 0, :] -= down[:, None, 1:2] * jw_de
     j_contact[..., 1, :] += down[:, None, 0:1] * jw_de
     static_contact = -np.einsum("slji,slj->sli", j_contact, force)
-    tau_gait = t - scenario.stand_s
+    path = scenario.gait
+    tau_gait = t - path.start_s(scenario.stand_s)
     gaiting = tau_gait[:, None] >= 0
-    stance = np.stack([evaluate(params.gait, scenario.gait, tau_gait, ph).stance
+    stance = np.stack([evaluate(params.gait, path, tau_gait, ph).stance
                        for ph in scenario.phases_rad], 1) & gaiting
-    u = np.stack([cycle_phase(params.gait, tau_gait, ph) for ph in scenario.phases_rad], 1)
-    swing = gaiting & ~stance
-    swing_fraction = np.where(swing, u / np.where(swing, scenario.gait.stance_start(params.gait),
-                                                  1.0), np.nan)
-    weight = params.robot.total_mass_kg * params.robot.gravity_m_s2
+    u = np.stack([path.phase(params.gait, tau_gait, ph) for ph in scenario.phases_rad], 1)
+    swing = gaiting & ~stance & path.periodic
+    swing_fraction = np.where(swing, u / np.where(swing, path.stance_start(params.gait), 1.0),
+                              np.nan)
+    weight = lay.mass_kg * params.robot.gravity_m_s2
     loads = np.where(gaiting, stance_loads(params.gait, scenario.gait, tau_gait,
                                            scenario.phases_rad, weight).T, weight / len(lay.legs))
     full = full_model(params)
@@ -147,7 +155,9 @@ def signals(record: SimulationRecord) -> Signals:
         foot_force_world=force_world, gap=table["gap"],
         stance=stance, swing_fraction=swing_fraction,
         swing_contact=(~stance) & gaiting & (force_world[..., 2] > SWING_CONTACT_N),
-        limits=limit_tests(params.leg, pose))
+        limits=limit_tests(params.leg, pose),
+        **dict(zip(("com_p", "com_v"), com_motion(record))),
+        ground_force=table["contact_generalized"][:, lay.state.body_v + 3:lay.state.body_v + 6])
 
 
 def limit_report(sig: Signals, params: Params, legs) -> dict:
@@ -184,6 +194,33 @@ def limits_text(report: dict) -> str:
         f"{h['unit']}, {h['field']})" for h in report["hits"])
 
 
+def com_motion(record: SimulationRecord) -> tuple[np.ndarray, np.ndarray]:
+    """The robot's centre of mass (rows, 3) m and its velocity (rows, 3) m/s in the world at
+    each recorded interval's end, from the state: the layout's COM (body frame, standing pose)
+    moved by the links' COMs away from their standing places, and the body's velocity plus the
+    links' relative motion (J_v q_dot per link, leg plane) weighted by their masses."""
+    params, lay, st = record.params, record.layout, record.table["state"]
+    leg, links = params.leg, params.links
+    masses = np.array([links[n].mass_kg for n in ("AC", "BD", "CE", "DE")])
+    q = st[:, lay.state.q_index]                                       # (rows, legs, 2)
+    qd = st[:, lay.state.nq + lay.state.v_index]
+    pose = forward(leg, q)
+    standing = link_coms(leg, links, inverse(leg, np.array([params.gait.x_center_m,
+                                                            params.gait.y_home_m])))
+    shift = np.einsum("k,slkj->sj", masses, link_coms(leg, links, pose) - standing)
+    rate = np.einsum("k,slkij,slj->si", masses, link_jacobians(leg, links, pose).jv, qd)
+    plane = plane_rotation()[:, :2]
+    r_b = lay.com_m + (shift @ plane.T) / lay.mass_kg                  # (rows, 3) body frame
+    quat = st[:, lay.state.body_q:lay.state.body_q + 4]
+    r_wb = np.array([body_rotation(v) for v in quat])
+    r_w = np.einsum("sij,sj->si", r_wb, r_b)
+    w0 = lay.state.nq + lay.state.body_v
+    omega, v_body = st[:, w0:w0 + 3], st[:, w0 + 3:w0 + 6]
+    p_body = st[:, lay.state.body_q + 4:lay.state.body_q + 7]
+    v_rel = np.einsum("sij,sj->si", r_wb, (rate @ plane.T) / lay.mass_kg)
+    return p_body + r_w, v_body + np.cross(omega, r_w) + v_rel
+
+
 def foot_forces(generalized, layout: RobotLayout, params: Params, pose, down) -> np.ndarray:
     """Mean ground force on each foot (rows, legs, 2) in N, leg plane, from the interval means
     of the generalized contact forces (rows, nv): the contact point P (foot centre + down, leg
@@ -199,7 +236,13 @@ def foot_forces(generalized, layout: RobotLayout, params: Params, pose, down) ->
 
 def cycle_window(scenario: Scenario, params: Params, t_end: float) -> tuple[float, float, int]:
     """Start and end (s) of the whole gait cycles after the ramp that fit before t_end, and
-    their number. Cycles start where the gait time t - stand_s is a multiple of the period."""
+    their number. Cycles start where the gait time t - stand_s is a multiple of the period. A
+    maneuver's window is its span from its start, 1 if it fits before t_end, else 0."""
+    path = scenario.gait
+    if not path.periodic:
+        start = path.start_s(scenario.stand_s)
+        end = start + path.span_s(params.gait)
+        return start, end, int(t_end >= end - 1e-9)
     period = params.gait.period_s
     start = scenario.stand_s + math.ceil(scenario.ramp_s / period - 1e-9) * period
     cycles = max(0, math.floor((t_end - start) / period + 1e-9))
@@ -301,18 +344,22 @@ def summarize(sig: Signals, record: SimulationRecord, seed_analysis: dict) -> di
     half_row = 0.5 * float(np.median(np.diff(sig.t))) if len(sig.t) > 1 else 0.0
     start, end, cycles = cycle_window(scenario, params, t_end + half_row)
     win = window_rows(sig.t, (start, end))
-    cycle = np.clip(np.floor((sig.t[win] - start - half_row) / params.gait.period_s), 0,
+    cycle_s = scenario.gait.span_s(params.gait)
+    cycle = np.clip(np.floor((sig.t[win] - start - half_row) / cycle_s), 0,
                     max(cycles - 1, 0)).astype(int)
     legs = {leg: {name: motor_summary(sig, params, win, cycle, cycles, i, j)
                   for j, name in enumerate(MOTORS)} for i, leg in enumerate(leg_names)}
     completed = record.completed
-    sufficient = completed and cycles >= MIN_CYCLES
+    sufficient = completed and cycles >= (MIN_CYCLES if scenario.gait.periodic else 1)
     p = sig.body_p[win]
     tw = sig.t[win]
     speed = float((p[-1, 0] - p[0, 0]) / (tw[-1] - tw[0])) if len(tw) > 1 else math.nan
     gait_speed = scenario.gait.stance_speed(params.gait)
     max_tilt = float(np.max(sig.tilt_deg)) if len(sig.t) else math.nan
-    run_why = achievement(params, speed, gait_speed, max_tilt)
+    maneuver = maneuver_figures(sig, record, start) if not scenario.gait.periodic else None
+    run_why = achievement(params, speed, gait_speed, max_tilt, scenario.gait.goal,
+                          float(sig.body_p[win][-1, 2]) if win.any() else math.nan,
+                          standing_height(params), maneuver)
     for ms in legs.values():
         for m in ms.values():
             if m["checks"] is not None:
@@ -337,6 +384,13 @@ def summarize(sig: Signals, record: SimulationRecord, seed_analysis: dict) -> di
         "mean_forward_speed_m_s": speed,
         "gait_speed_m_s": gait_speed,
         "gait_frequency_hz": params.gait.frequency_hz,
+        "periodic": scenario.gait.periodic, "cycle_s": cycle_s,
+        "jump": maneuver["jump"] if maneuver else None,
+        "landing": maneuver["landing"] if maneuver else None,
+        "force_capability": {k: v for k, v in maneuver["force_capability"].items()
+                             if k != "phases"} if maneuver and maneuver["force_capability"]
+        else None,
+        "payload_kg": scenario.payload_kg, "slope_deg": scenario.slope_deg,
         "swing_clear_fraction": {leg: float(1 - sig.swing_contact[win, i].sum()
                                             / max(scheduled_swing[i], 1))
                                  for i, leg in enumerate(leg_names)},
@@ -371,17 +425,162 @@ def summarize(sig: Signals, record: SimulationRecord, seed_analysis: dict) -> di
     return summary
 
 
+AIRBORNE_N = 1.0   # a total ground force below this over a recorded interval: every foot is off
+
+
+def maneuver_figures(sig: Signals, record: SimulationRecord, start: float) -> dict:
+    """A maneuver's figures from the recorded intervals (start: the maneuver's start, s):
+    - jump (a plan with a takeoff): takeoff = the end of the last interval with ground contact
+      before the first one without (total ground force < AIRBORNE_N) after the push-off's onset;
+      takeoff speed = the centre of mass's vertical speed there; height_m = the body's apex above
+      its standing height; time_to_apex_s from the onset; agility_m_s = height / that time
+      (Haldane et al. 2016); the push-off's motor work (delivered torque x joint speed,
+      summed over the eight motors) and the centre of mass's rise it bounds (W / (m g));
+    - landing (a jump's or a drop's): from the first interval with ground contact after the
+      flight to the first whose end has the centre of mass at rest or rising: touchdown speed,
+      the ground's impulse and peak force, the motors' peak applied torque, the body's drop
+      (landing_compression_m);
+    - force_capability along the push-off and the landing (capability_along).
+    None where the event did not happen (why_grounded says why no foot left)."""
+    scenario, params, lay = record.scenario, record.params, record.layout
+    events = {k: start + v for k, v in scenario.gait.events(params.gait).items()}
+    mass, g = lay.mass_kg, params.robot.gravity_m_s2
+    fz, t = sig.ground_force[:, 2], sig.t
+    dt = np.diff(t, prepend=t[0] - scenario.log_period_s)
+    out = {"jump": None, "landing": None, "force_capability": None, "why_grounded": ""}
+    phases = {}
+    after = t > events.get("onset", events.get("touchdown", start))
+    k_to = None
+    if "takeoff" in events:
+        onset = events["onset"]
+        air = np.flatnonzero((t > onset) & (fz < AIRBORNE_N))
+        if not air.size:
+            push = (t > onset) & (t <= events["takeoff"])
+            out["why_grounded"] = why_grounded(sig, record, push)
+        else:
+            k_to = int(air[0]) - 1
+            back = np.flatnonzero((np.arange(len(t)) > k_to) & (fz >= AIRBORNE_N))
+            k_td = int(back[0]) if back.size else len(t) - 1
+            k_apex = k_to + int(np.argmax(sig.body_p[k_to:k_td + 1, 2]))
+            k_on = int(np.searchsorted(t, onset))
+            push = slice(k_on, k_to + 1)
+            work = float(np.sum(sig.applied[push] * sig.qd[push] * dt[push, None, None]))
+            height = float(sig.body_p[k_apex, 2]) - standing_height(params)
+            rise = float(sig.com_p[k_apex:k_td + 1, 2].max() - sig.com_p[k_on, 2])
+            out["jump"] = {
+                "height_m": height, "takeoff_speed_m_s": float(sig.com_v[k_to, 2]),
+                "takeoff_s": float(t[k_to]), "apex_s": float(t[k_apex]), "onset_s": onset,
+                "time_to_apex_s": float(t[k_apex] - onset),
+                "agility_m_s": height / float(t[k_apex] - onset),
+                "com_rise_after_takeoff_m": float(sig.com_p[k_apex:k_td + 1, 2].max()
+                                                  - sig.com_p[k_to, 2]),
+                "com_rise_m": rise, "push_work_J": work,
+                "energy_bound_rise_m": work / (mass * g)}
+            phases["push-off"] = np.zeros(len(t), dtype=bool)
+            phases["push-off"][push] = True
+            after = np.arange(len(t)) > k_to
+    if "touchdown" in events and (k_to is not None or "takeoff" not in events):
+        contact = np.flatnonzero(after & (fz >= AIRBORNE_N))
+        if contact.size:
+            k_td = int(contact[0])
+            rest = np.flatnonzero((np.arange(len(t)) > k_td) & (sig.com_v[:, 2] >= 0.0))
+            k_end = int(rest[0]) if rest.size else len(t) - 1
+            land = slice(k_td, k_end + 1)
+            v_td = float(sig.com_v[k_td - 1, 2])
+            landing = {
+                "touchdown_s": float(t[k_td - 1]), "end_s": float(t[k_end]),
+                "touchdown_speed_m_s": -v_td, "duration_s": float(t[k_end] - t[k_td - 1]),
+                "impulse_N_s": float(np.sum(fz[land] * dt[land])),
+                "momentum_change_N_s": float(mass * (sig.com_v[k_end, 2] - v_td)),
+                "peak_force_N": float(fz[land].max()),
+                "peak_torque_Nm": float(np.abs(sig.applied[land]).max()),
+                "compression_m": float(sig.body_p[k_td - 1, 2] - sig.body_p[land, 2].min())}
+            out["landing"] = landing
+            phases["landing"] = np.zeros(len(t), dtype=bool)
+            phases["landing"][land] = True
+            if out["jump"] is not None:
+                out["jump"]["landing_peak_torque_Nm"] = landing["peak_torque_Nm"]
+                out["jump"]["landing_compression_m"] = landing["compression_m"]
+    if phases:
+        out["force_capability"] = capability_along(sig, params, phases, lay.legs)
+    return out
+
+
+def why_grounded(sig: Signals, record: SimulationRecord, push) -> str:
+    """Why no foot left the ground: the largest ground force of the push-off against the
+    weight, and what the legs' torque box holds vertically at the crouch (the figure that
+    stops the jump)."""
+    params, lay = record.params, record.layout
+    weight = lay.mass_kg * params.robot.gravity_m_s2
+    if not push.any():
+        return "the run ended before the push-off"
+    k = int(np.flatnonzero(push)[0])
+    jf = link_jacobians(params.leg, params.links, forward(params.leg, sig.q[k])).jf
+    held = held_force(jf, params.motor.peak_torque_Nm, -params.motor.peak_torque_Nm,
+                      np.array([0.0, 1.0])).sum()
+    return (f"the push-off's largest ground force was {sig.ground_force[push, 2].max():.0f} N "
+            f"against the weight {weight:.0f} N; at the crouch the legs hold at most {held:.0f} N "
+            f"vertically with their {params.motor.peak_torque_Nm:.2f} N·m motors")
+
+
+def capability_along(sig: Signals, params: Params, phases: dict, legs) -> dict:
+    """The measured ground force on each foot against the force the motors can hold along it,
+    over the rows of each phase (a name -> row mask) where the foot carries more than a tenth of
+    its share of the weight: the torque box |tau| <= peak and the envelope at the joint speeds
+    (Motor.limits) through J_F^T (held_force). Arrays per phase (rows; foot height y in the leg
+    plane, required and available N, per leg) and the least ratio available / required."""
+    motor = params.motor
+    pose = forward(params.leg, sig.q)
+    jf = link_jacobians(params.leg, params.links, pose).jf
+    force = sig.foot_force_plane
+    size = np.linalg.norm(force, axis=-1)
+    unit = force / np.maximum(size, 1e-12)[..., None]
+    box = held_force(jf, motor.peak_torque_Nm, -motor.peak_torque_Nm, unit)
+    upper, lower = motor.limits(sig.qd)
+    envelope = held_force(jf, upper, lower, unit)
+    floor = 0.1 * params.robot.total_mass_kg * params.robot.gravity_m_s2 / force.shape[1]
+    out, least = {"phases": {}}, {"box": (math.inf, None), "envelope": (math.inf, None)}
+    for name, rows in phases.items():
+        loaded = rows[:, None] & (size > floor)
+        out["phases"][name] = {"t": sig.t[rows], "foot_y_m": pose.f[rows, :, 1],
+                               "required_N": np.where(loaded, size, np.nan)[rows],
+                               "box_N": box[rows], "envelope_N": envelope[rows]}
+        for key, held in (("box", box), ("envelope", envelope)):
+            ratio = np.where(loaded, held / np.maximum(size, 1e-12), np.inf)
+            k = np.unravel_index(np.argmin(ratio), ratio.shape)
+            if ratio[k] < least[key][0]:
+                least[key] = (float(ratio[k]), (name, float(sig.t[k[0]]), int(k[1])))
+    for key, (ratio, where) in least.items():
+        out[f"least_ratio_{key}"] = ratio if where else None
+        out[f"least_{key}_at"] = {"phase": where[0], "t_s": where[1], "leg": legs[where[2]]} \
+            if where else None
+    return out
+
+
 def seed_analysis_load(params: Params) -> str:
     """The seed's load model in words (its figure is on the seed's own path)."""
     return (f"the seed's model on the seed's ellipse: G(q) with its weight share "
             f"{params.robot.weight_share_kg:.3f} kg at every foot all cycle, swing included")
 
 
-def achievement(params: Params, speed: float, gait_speed: float, max_tilt: float) -> str:
-    """Why the run did not follow its gait ("" if it did): the mean forward speed against
-    checks.achieved_speed_fraction of the gait's, the tilt against achieved_max_tilt_deg."""
+def achievement(params: Params, speed: float, gait_speed: float, max_tilt: float,
+                goal: str = "speed", end_height: float = math.nan,
+                standing_m: float = math.nan, maneuver: dict | None = None) -> str:
+    """Why the run did not do its motion ("" if it did), by the foot path's goal: "speed" (a
+    gait): the mean forward speed against checks.achieved_speed_fraction of the gait's; "stand"
+    (a stand-up, a drop): the body ends within checks.achieved_height_tolerance_m of its
+    standing height standing_m (m); "jump": all feet left the ground, and it ends standing;
+    always the tilt against achieved_max_tilt_deg."""
     c, why = params.checks, []
-    if gait_speed > 0 and not speed >= c.achieved_speed_fraction * gait_speed:
+    if goal == "jump" and (maneuver is None or maneuver["jump"] is None):
+        why.append("no foot left the ground" + (f" ({maneuver['why_grounded']})"
+                                                if maneuver else ""))
+    if goal in ("stand", "jump") and not abs(end_height - standing_m) <= \
+            c.achieved_height_tolerance_m:
+        why.append(f"it ended with the body at {end_height * 1e3:.0f} mm, not within "
+                   f"{c.achieved_height_tolerance_m * 1e3:g} mm of its standing height "
+                   f"{standing_m * 1e3:.0f} mm")
+    if goal == "speed" and gait_speed > 0 and not speed >= c.achieved_speed_fraction * gait_speed:
         why.append(f"it walked {speed:.3f} m/s, less than {c.achieved_speed_fraction:.0%} of the "
                    f"gait's {gait_speed:.3f} m/s")
     if not max_tilt <= c.achieved_max_tilt_deg:
@@ -430,7 +629,8 @@ def answer(s: dict, params: Params) -> str:
     leg, name = s["worst_motor"].split()
     m = s["legs"][leg][name]
     c = m["checks"]
-    head = f"At {s['gait_frequency_hz']:g} Hz with the {s['gait']} gait"
+    head = (f"At {s['gait_frequency_hz']:g} Hz with the {s['gait']} gait" if s["periodic"] else
+            f"For the {s['gait']} maneuver")
     seed = (f"Separately, {seed_analysis_load(params)}, gives {s['seed_peak_torque_Nm']:.2f} N·m "
             "(its peak).")
     if s["verdict"] == "not_achieved":
@@ -450,7 +650,8 @@ def answer(s: dict, params: Params) -> str:
                     f"MARGINAL: {s['step_check']['why']} (step check at half the plant step)")
     static = m["static_trot_Nm"]
     return (f"{head} the motors need {m['demand_p99_Nm']:.2f} N·m ({PERCENTILE:g}th percentile "
-            f"of the demand over {s['cycles_in_window']} cycles, worst motor {leg} {name}). "
+            f"of the demand over {s['cycles_in_window']} "
+            f"{'cycles' if s['periodic'] else 'maneuver'}, worst motor {leg} {name}). "
             f"Verdict {verdict_text}. Checks: {checks}. On the same poses with the same load schedule "
             f"(the robot's weight shared by the feet in stance) the static torque is "
             f"{static:.2f} N·m: the dynamics add {m['demand_p99_Nm'] / static - 1:+.0%}. {seed}")

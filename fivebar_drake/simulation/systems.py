@@ -115,7 +115,8 @@ class FootLegController(LeafSystem):
             foot_radius_m=params.body.foot_radius_m,
             stand_offset_m=float(body_height(params, 0.0)), mu=params.body.foot_friction,
             catch_gain=float(knobs.catch_gain), catch_rate_s=float(knobs.catch_rate_s),
-            catch_limit_m=params.gait.b_m, touchdown=bool(knobs.touchdown_detection))
+            catch_limit_m=params.gait.b_m, touchdown=bool(knobs.touchdown_detection),
+            support=-np.asarray(layout.gravity_m_s2, dtype=float))
         n = layout.state.q_index.size
         self._references = self.DeclareVectorInputPort("foot_references", 7 * n // 2)
         self._state = self.DeclareVectorInputPort("plant_state", layout.nx)

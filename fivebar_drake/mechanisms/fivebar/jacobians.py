@@ -183,3 +183,22 @@ def bias_accelerations(leg: LegGeometry, links: dict[str, LinkInertia], pose: Le
                              np.ascontiguousarray(qd[..., 0]).ravel(),
                              np.ascontiguousarray(qd[..., 1]).ravel())
     return av.reshape(shape + (4, 2)), aw.reshape(shape + (4,)), af.reshape(shape + (2,))
+
+
+def link_coms(leg: LegGeometry, links: dict[str, LinkInertia], pose: LegPose) -> np.ndarray:
+    """COM positions (..., 4, 2) in m, leg plane, of the links AC, BD, CE, DE: each at its
+    com_fractions along the line from its first joint to its second."""
+    a, b = np.broadcast_to(leg.a, pose.c.shape), np.broadcast_to(leg.b, pose.d.shape)
+    ends = ((a, pose.c), (b, pose.d), (pose.c, pose.e), (pose.d, pose.e))
+    return np.stack([p + k * (r - p) for k, (p, r) in zip(com_fractions(leg, links), ends)], -2)
+
+
+def held_force(jf, upper_Nm, lower_Nm, direction) -> np.ndarray:
+    """Largest ground force (N) on the foot along the unit vector direction (..., 2) that motor
+    torques within [lower_Nm, upper_Nm] (..., 2) hold, for foot Jacobians jf (..., 2, 2) in
+    m/rad: the force s u takes tau = -J_F^T s u (virtual work, the links' weight aside), so
+    motor i allows s <= upper_i / g_i (g_i = -(J_F^T u)_i > 0) or lower_i / g_i (g_i < 0)."""
+    g = -np.einsum("...ki,...k->...i", jf, np.asarray(direction, dtype=float))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        bound = np.where(g > 0, upper_Nm / g, np.where(g < 0, lower_Nm / g, np.inf))
+    return np.min(bound, axis=-1)

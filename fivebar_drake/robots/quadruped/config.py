@@ -42,13 +42,15 @@ def params_from_dict(data: dict) -> Params:
                              f"expected {sorted(SECTIONS)} ({list(OPTIONAL_SECTIONS)} optional)")
     require(isinstance(data["links"], dict), "[links]", data["links"], "must hold [links.AC] ...")
     leg = build_section(LegGeometry, data["leg"], "leg")
+    robot = build_section(Robot, data["robot"], "robot")
     params = Params(
         leg=dataclasses.replace(leg, limits=build_section(LegLimits, data.get("limits", {}),
                                                           "limits")),
         links={name: build_section(LinkInertia, table, f"links.{name}")
                for name, table in data["links"].items()},
-        robot=build_section(Robot, data["robot"], "robot"),
-        gait=build_section(Gait, data["gait"], "gait"),
+        robot=robot,
+        gait=dataclasses.replace(build_section(Gait, data["gait"], "gait"),
+                                 gravity_m_s2=robot.gravity_m_s2),
         motor=build_motor(data["motor"]),
         checks=build_section(Checks, data["checks"], "checks"),
         body=build_section(Body, data["body"], "body"),
@@ -128,6 +130,9 @@ def with_changes(params: Params, changes: dict) -> Params:
             new[section] = _replace(old, section, fields)
     if "limits" in new:                    # the leg's limits: [limits] of the file
         new["leg"] = dataclasses.replace(new.get("leg", params.leg), limits=new.pop("limits"))
+    if "robot" in new:                  # the gait's gravity is the robot's
+        new["gait"] = dataclasses.replace(new.get("gait", params.gait),
+                                          gravity_m_s2=new["robot"].gravity_m_s2)
     return dataclasses.replace(params, **new)
 
 

@@ -55,7 +55,8 @@ class LawConstants(NamedTuple):
     Gains (ControlGains). Feet: foot_radius_m, friction mu; stand_offset_m: the body height
     with the feet at leg-plane y = 0 (sdf.body_height(params, 0); it drops as y rises). Catch
     reflex: catch_gain, catch_rate_s, catch_limit_m (the step height); touchdown: early-touchdown
-    detection on."""
+    detection on; support (3,) m/s^2: minus the plant's gravity in the world (the slope's frame),
+    what the feet must give the body's mass (the links' weight is taken along the body's -z)."""
 
     state: StateIndices
     hips_m: np.ndarray
@@ -76,6 +77,7 @@ class LawConstants(NamedTuple):
     catch_rate_s: float
     catch_limit_m: float
     touchdown: bool
+    support: np.ndarray
 
 
 @jit
@@ -138,7 +140,8 @@ def early_touchdown(k, fx, fy, velocities, state, r_wb):
 @jit
 def ground_forces(k, targets, velocities, accelerations, weights, fx, fy, state, r_wb):
     """Ground forces on the feet (legs, 2) in N, leg-plane (x, y), from the body wrench in the
-    body frame: F_x = m dx (v_x* - v_x), F_z = m (g + z*'') + kz (z* - z) + dz (z*' - z'),
+    body frame: F_x = m dx (v_x* - v_x), F_z = m (g + z*'') + kz (z* - z) + dz (z*' - z') (and
+    m g's components along the slope: support),
     M_roll,pitch = -k_att angle - d_att rate; body targets from the stance feet's targets
     (height stand_offset - y, vertical speed -y', forward speed the feet's x')."""
     n = weights.shape[0]
@@ -158,7 +161,8 @@ def ground_forces(k, targets, velocities, accelerations, weights, fx, fy, state,
     vz_des = -np.sum(share * velocities[:, 1])
     az_des = -np.sum(share * accelerations[:, 1])
     vx_des = np.sum(share * velocities[:, 0])
-    force_w = np.array([0.0, 0.0, k.mass_kg * (k.gravity + az_des) + k.gains.kz * (z_des - z)
+    force_w = np.array([k.mass_kg * k.support[0], k.mass_kg * k.support[1],
+                        k.mass_kg * (k.support[2] + az_des) + k.gains.kz * (z_des - z)
                         + k.gains.dz * (vz_des - v_w[2])])
     force_b = r_bw @ force_w
     force_b[0] += k.gains.dx * (vx_des - v_b[0])

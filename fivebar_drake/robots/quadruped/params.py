@@ -100,6 +100,9 @@ class Params:
         return FiveBarLeg(self.leg, self.links)
 
     def __post_init__(self):
+        require(self.gait.gravity_m_s2 == self.robot.gravity_m_s2, "gait.gravity_m_s2",
+                self.gait.gravity_m_s2, f"is the robot's robot.gravity_m_s2 = "
+                                        f"{self.robot.gravity_m_s2:g} (set from it on loading)")
         require(sorted(self.links) == sorted(LINK_NAMES), "links", sorted(self.links),
                  f"must be exactly {list(LINK_NAMES)}")
         for name, link in self.links.items():

@@ -3,12 +3,13 @@ plain-data layout the controller needs, ground and standing pose."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import NamedTuple
 import numpy as np
 from pydrake.geometry import AddContactMaterial, Box, ProximityProperties
 from pydrake.math import RigidTransform
 from pydrake.multibody.parsing import Parser
+from pydrake.multibody.tree import SpatialInertia
 from pydrake.multibody.plant import (AddMultibodyPlant, CoulombFriction, MultibodyPlant,
                                      MultibodyPlantConfig)
 from pydrake.systems.framework import DiagramBuilder
@@ -71,6 +72,7 @@ def leg_indices(plant: MultibodyPlant, instance, leg: str) -> LegIndices:
 
 GROUND_SIZE_M = 40.0   # flat ground, top face at z = 0
 GROUND_DEPTH_M = 1.0
+PAYLOAD_RADIUS_M = 0.02   # a payload is a solid sphere this size (its own inertia is small)
 
 
 def robot_layout(plant, instance, legs, params: Params) -> RobotLayout:
@@ -93,7 +95,8 @@ def robot_layout(plant, instance, legs, params: Params) -> RobotLayout:
             nq=plant.num_positions()),
         nv=plant.num_velocities(), nx=plant.num_multibody_states(),
         hips_m=np.array([hip_positions(params)[leg] for leg in legs]), com_m=np.asarray(com),
-        mass_kg=spatial.get_mass(), inertia_kg_m2=inertia)
+        mass_kg=spatial.get_mass(), inertia_kg_m2=inertia,
+        gravity_m_s2=np.array(plant.gravity_field().gravity_vector()))
 
 
 def default_plant_config() -> MultibodyPlantConfig:
@@ -104,14 +107,38 @@ def default_plant_config() -> MultibodyPlantConfig:
                                 use_sampled_output_ports=False)
 
 
+class Modifiers(NamedTuple):
+    """What a scenario changes about the robot and its ground: a payload (kg, a solid sphere of
+    PAYLOAD_RADIUS_M fixed to the body at payload_offset_m (3,) m in the body frame) and the ground's slope (rad,
+    walking up it along the body's x)."""
+
+    payload_kg: float = 0.0
+    payload_offset_m: tuple = (0.0, 0.0, 0.0)
+    slope_rad: float = 0.0
+
+
+def gravity_vector(gravity_m_s2: float, slope_rad: float) -> np.ndarray:
+    """Gravity (3,) m/s^2 in the frame of a ground sloping up by slope_rad along +x: tilting
+    gravity is exactly a tilted flat infinite ground, with the ground kept at z = 0."""
+    return gravity_m_s2 * np.array([-np.sin(slope_rad), 0.0, -np.cos(slope_rad)])
+
+
 def add_robot(builder: DiagramBuilder, params: Params, design: ClosureDesign,
-              plant_config: MultibodyPlantConfig | None = None):
+              plant_config: MultibodyPlantConfig | None = None,
+              modifiers: Modifiers = Modifiers()):
     """Add the finalized quadruped plant (plant_config, default default_plant_config, at the
-    design's time step, loops closed as designed) and flat ground to builder; returns (plant,
-    model instance, RobotLayout)."""
+    design's time step, loops closed as designed) and flat ground to builder, with the payload
+    and the slope of `modifiers`; returns (plant, model instance, RobotLayout)."""
     config = config_with(plant_config or default_plant_config(), time_step=design.time_step_s)
     plant, _ = AddMultibodyPlant(config, builder)
     instance, legs = add_model(plant, params, "quadruped", design.closure, design.bushing)
+    if modifiers.payload_kg > 0:
+        payload = plant.AddRigidBody("payload", instance, SpatialInertia.SolidSphereWithMass(
+            modifiers.payload_kg, PAYLOAD_RADIUS_M))
+        plant.WeldFrames(plant.GetBodyByName("body", instance).body_frame(), payload.body_frame(),
+                         RigidTransform(np.asarray(modifiers.payload_offset_m, dtype=float)))
+    plant.mutable_gravity_field().set_gravity_vector(
+        gravity_vector(params.robot.gravity_m_s2, modifiers.slope_rad))
     ground = ProximityProperties()
     mu = params.body.foot_friction
     AddContactMaterial(friction=CoulombFriction(mu, mu), properties=ground)
@@ -127,17 +154,21 @@ def standing_height(params: Params) -> float:
     return float(body_height(params, params.gait.y_home_m))
 
 
-def set_standing_pose(plant, context, instance, legs, params: Params) -> None:
+def set_standing_pose(plant, context, instance, legs, params: Params, foot=None,
+                      lift_m: float = 0.0) -> None:
     """Standing pose in a plant context: every loop closed exactly (closed-form IK), at rest,
-    feet at (x_center, y_home) on the ground."""
-    foot = np.array([params.gait.x_center_m, params.gait.y_home_m])
-    x = params.fivebar_leg.tree_positions(params.fivebar_leg.inverse(foot))
+    feet at `foot` (2,) m in the leg plane (default (x_center, y_home)) lift_m above the ground,
+    or the body resting on its underside if the feet are folded above that (lying)."""
+    if foot is None:
+        foot = np.array([params.gait.x_center_m, params.gait.y_home_m])
+    x = params.fivebar_leg.tree_positions(params.fivebar_leg.inverse(np.asarray(foot)))
     q = plant.GetPositions(context)
     for leg in legs:
         q[leg_indices(plant, instance, leg).q] = x
     plant.SetPositions(context, q)
+    height = max(float(body_height(params, foot[1])) + lift_m, params.body.height_m / 2)
     plant.SetFreeBodyPose(context, plant.GetBodyByName("body", instance),
-                          RigidTransform([0.0, 0.0, standing_height(params)]))
+                          RigidTransform([0.0, 0.0, height]))
 
 
 class StateIndices(NamedTuple):
@@ -160,7 +191,8 @@ class RobotLayout:
     """The finalized plant as plain data (what the controller and the post-processing need):
     the leg names and each leg's joint indices (LegIndices); the motors' and the body's indices
     (StateIndices); nv, nx; hip positions (legs, 3) m and the robot's COM (3,) m in the body
-    frame; robot mass (kg) and inertia about the COM (3, 3) kg*m^2."""
+    frame; robot mass (kg) and inertia about the COM (3, 3) kg*m^2, payload included; the
+    plant's gravity (3,) m/s^2 in the world (the slope's frame)."""
 
     legs: tuple[str, ...]
     indices: dict[str, LegIndices]
@@ -171,3 +203,4 @@ class RobotLayout:
     com_m: np.ndarray
     mass_kg: float
     inertia_kg_m2: np.ndarray
+    gravity_m_s2: np.ndarray = field(default_factory=lambda: np.array([0.0, 0.0, -9.81]))

@@ -1,0 +1,203 @@
+"""The maneuvers that size a leg (issue 22), each run once, short, on the default robot: each is
+achieved (a jump leaves the ground and lands standing, a stand-up and a drop end standing, the
+gaits reach their speed within the tilt bound), and its physics holds by a second method: the
+jump's takeoff speed against the ground's impulse, its rise against the motors' work and the
+ballistic flight, the landing's impulse against the momentum it absorbs, the crawl's motor
+torques against the closed-form statics of the same poses under the measured foot loads; motors
+too weak to jump get not_achieved with exit 1."""
+
+import dataclasses
+import json
+
+import numpy as np
+import pytest
+
+from fivebar_drake.cli import main
+from fivebar_drake.core.footpath import PATHS, evaluate
+from fivebar_drake.core.validation import ParameterError
+from fivebar_drake.mechanisms.fivebar import forward, static_torques
+from fivebar_drake.pipeline import run_simulation, summarize_run
+from fivebar_drake.robots.quadruped.leg_loads import full_model
+from fivebar_drake.robots.quadruped.plant import standing_height
+from fivebar_drake.simulation.runner import load_run
+from fivebar_drake.simulation.scenario import load_scenario
+from fivebar_drake.simulation.summary import signals
+
+# each maneuver's scenario, as short as its verdict allows (3 whole cycles after the ramp for a
+# gait, the maneuver's span after standing for a one-shot one)
+RUNS = {
+    "jump": dict(gait="jump", duration_s=2.6),
+    "drop": dict(gait="drop", duration_s=1.5),
+    "stand_up": dict(gait="stand_up", duration_s=2.5),
+    "walk": dict(gait="walk", duration_s=4.5, gait_frequency_hz=1.0),
+    "trot_slow": dict(gait="trot", duration_s=5.9, gait_frequency_hz=0.75),
+    "trot_fast": dict(gait="trot", duration_s=3.9, gait_frequency_hz=1.5),
+    "bound": dict(gait="bound", duration_s=3.0),
+    "pronk": dict(gait="pronk", duration_s=2.5),
+    "trot_payload_slope": dict(gait="trot", duration_s=4.5, payload_kg=1.0,
+                               payload_offset_m=[0.03, 0.0, 0.04], slope_deg=5.0),
+}
+
+
+@pytest.fixture(scope="module")
+def runs():
+    out = {}
+    for name, fields in RUNS.items():
+        scenario = load_scenario(**{k: v for k, v in fields.items() if k != "payload_offset_m"})
+        if "payload_offset_m" in fields:
+            scenario.payload_offset_m = fields["payload_offset_m"]
+        record = run_simulation(scenario, progress=False)
+        out[name] = (record, signals(record), summarize_run(record))
+    return out
+
+
+@pytest.mark.parametrize("name", list(RUNS))
+def test_each_maneuver_is_achieved(runs, name):
+    record, sig, s = runs[name]
+    assert record.completed, record.error
+    assert s["verdict"] not in ("not_achieved", "insufficient"), s["answer"]
+    for leg in s["legs"].values():
+        for m in leg.values():
+            assert m["checks"]["achieved"]["verdict"] == "pass", m["checks"]["achieved"]
+    assert s["max_tilt_deg"] <= record.params.checks.achieved_max_tilt_deg
+    if s["periodic"]:                       # a gait reaches its speed
+        assert s["gait_speed_m_s"] > 0
+        assert s["mean_forward_speed_m_s"] >= 0.7 * s["gait_speed_m_s"]
+    else:                                   # a maneuver ends standing
+        assert abs(sig.body_p[-1, 2] - standing_height(record.params)) < 0.01
+    if name == "pronk":                     # all four feet off the ground, repeatedly
+        assert np.mean(sig.ground_force[sig.t > 1.5, 2] < 1.0) > 0.1
+    if name == "jump":
+        j = s["jump"]
+        air = (sig.t > j["takeoff_s"]) & (sig.t < j["apex_s"])
+        assert air.any() and np.all(sig.ground_force[air, 2] < 1.0)   # every foot off
+        assert j["height_m"] > 0.03 and j["agility_m_s"] > 0
+
+
+def test_trot_speeds_follow_the_scenario(runs):
+    """A slower and a faster trot walk at the path's speed 2 a / (beta T) of their frequency."""
+    slow, fast = runs["trot_slow"][2], runs["trot_fast"][2]
+    assert fast["gait_speed_m_s"] == pytest.approx(2 * slow["gait_speed_m_s"], rel=1e-12)
+    assert fast["mean_forward_speed_m_s"] > 1.5 * slow["mean_forward_speed_m_s"]
+
+
+def test_payload_and_slope(runs):
+    """The payload adds to the robot's mass; the gravity of the plant is tilted by the slope."""
+    record = runs["trot_payload_slope"][0]
+    base = runs["trot_slow"][0]
+    assert record.layout.mass_kg == pytest.approx(base.layout.mass_kg + 1.0, rel=1e-9)
+    g = record.layout.gravity_m_s2
+    assert np.degrees(np.arctan2(-g[0], -g[2])) == pytest.approx(5.0, rel=1e-12)
+    assert np.linalg.norm(g) == pytest.approx(record.params.robot.gravity_m_s2, rel=1e-12)
+
+
+def _weight(record):
+    return record.layout.mass_kg * record.params.robot.gravity_m_s2
+
+
+def _dt(sig, record):
+    return np.diff(sig.t, prepend=sig.t[0] - record.scenario.log_period_s)
+
+
+def test_jump_takeoff_speed_is_the_ground_impulse(runs):
+    """m (v_takeoff - v_onset) = sum of the per-step accumulated ground force over the push-off
+    minus m g t, within 2 %: the state's centre-of-mass speed against the contact forces."""
+    record, sig, s = runs["jump"]
+    j, mass, dt = s["jump"], record.layout.mass_kg, _dt(sig, record)
+    k0 = int(np.searchsorted(sig.t, j["onset_s"]))            # the row ending at the onset
+    k1 = int(np.searchsorted(sig.t, j["takeoff_s"]))
+    push = slice(k0 + 1, k1 + 1)
+    impulse = np.sum(sig.ground_force[push, 2] * dt[push]) - _weight(record) * (sig.t[k1] - sig.t[k0])
+    v = sig.com_v[k0, 2] + impulse / mass
+    assert v == pytest.approx(j["takeoff_speed_m_s"], rel=0.02)
+    assert j["takeoff_speed_m_s"] > 0.5
+
+
+def test_jump_height_against_ballistics_and_the_motors_work(runs):
+    """In flight the centre of mass rises v^2 / 2g; from the onset it rises no more than the
+    motors' work over the push-off allows, W / (m g), and not far less (the push-off is a
+    lift, most of the work goes into it)."""
+    record, _, s = runs["jump"]
+    j, g = s["jump"], record.params.robot.gravity_m_s2
+    assert j["com_rise_after_takeoff_m"] == pytest.approx(j["takeoff_speed_m_s"] ** 2 / (2 * g),
+                                                          rel=0.03)
+    assert j["com_rise_m"] <= j["energy_bound_rise_m"]
+    assert j["com_rise_m"] >= 0.8 * j["energy_bound_rise_m"]
+
+
+@pytest.mark.parametrize("name", ["drop", "jump"])
+def test_landing_impulse_absorbs_the_momentum(runs, name):
+    """Over the landing (touchdown until the centre of mass stops falling) the ground's
+    impulse is m v_touchdown + m g t_landing within 3 %, the touchdown speed is the fall's
+    (drop: sqrt(2 g h)), and the peak force is at least the mean the impulse needs."""
+    record, sig, s = runs[name]
+    ld, mass, g = s["landing"], record.layout.mass_kg, record.params.robot.gravity_m_s2
+    dt = _dt(sig, record)
+    land = (sig.t > ld["touchdown_s"]) & (sig.t <= ld["end_s"])
+    impulse = np.sum(sig.ground_force[land, 2] * dt[land])
+    need = mass * ld["touchdown_speed_m_s"] + _weight(record) * ld["duration_s"]
+    assert impulse == pytest.approx(need, rel=0.03)
+    assert ld["peak_force_N"] >= impulse / ld["duration_s"]
+    if name == "drop":
+        h = record.scenario.gait.height_m
+        assert ld["touchdown_speed_m_s"] == pytest.approx(np.sqrt(2 * g * h), rel=0.03)
+        assert ld["peak_force_N"] > mass * (g + ld["touchdown_speed_m_s"] / ld["duration_s"])
+
+
+def test_crawl_torques_match_the_closed_form_statics(runs):
+    """Mid-stance of a crawl (quasi-static), each motor's delivered torque against the full
+    model's static torque of the same pose with the measured vertical foot load (analysis
+    formula, dynamics.static_torques), within 10 % of the torques' RMS."""
+    record, sig, s = runs["walk"]
+    params = record.params
+    start, end = s["window_s"]
+    win = (sig.t > start) & (sig.t <= end)
+    path, gait = record.scenario.gait, params.gait
+    u = np.stack([path.phase(gait, sig.t - record.scenario.stand_s, ph)
+                  for ph in record.scenario.phases_rad], 1)
+    sigma = (u - path.stance_start(gait)) / (1 - path.stance_start(gait))
+    mid = win[:, None] & sig.stance & (sigma > 0.2) & (sigma < 0.8)
+    pose = forward(params.leg, sig.q)
+    model = dataclasses.replace(full_model(params), foot_load_N=sig.foot_force_plane[..., 1])
+    static = static_torques(params.leg, params.links, model, pose)
+    measured, predicted = sig.applied[mid], static[mid]
+    assert mid.sum() > 500
+    error = np.sqrt(np.mean((measured - predicted) ** 2))
+    assert error < 0.1 * np.sqrt(np.mean(measured ** 2))
+
+
+def test_motors_too_weak_to_jump_get_not_achieved(tmp_path, capsys):
+    """1.2 A instead of 3.36 A peak current: the robot stands (1.5 N m a motor) but cannot
+    jump; exit 1, verdict not_achieved with its reason, every file written."""
+    code = main(["simulate", "--gait", "jump", "--duration", "2.6", "--set",
+                 "motor.peak_current_A=1.2", "--out", str(tmp_path)])
+    assert code == 1
+    s = json.loads((tmp_path / "summary.json").read_text())
+    assert s["verdict"] == "not_achieved"
+    assert "NOT ACHIEVED" in s["answer"] and "not achieved" in capsys.readouterr().err
+    assert (tmp_path / "force_capability.png").exists() or s["force_capability"] is None
+
+
+@pytest.mark.parametrize("kind", ["jump", "drop", "stand_up", "pronk", "walk", "bound"])
+def test_paths_derivatives_by_central_differences(params, kind):
+    """Each new path's velocity and acceleration are its position's derivatives (away from the
+    maneuvers' deliberate speed steps at takeoff and touchdown)."""
+    path = PATHS[kind]()
+    gait = load_run(None, gait=kind)[1].gait
+    h = 1e-5
+    span = path.span_s(gait)
+    t = np.linspace(0.01, span - 0.01, 997)
+    p0, pm, pp = (evaluate(gait, path, t + d) for d in (0.0, -h, h))
+    smooth = np.all((pp.pos - pm.pos) / (2 * h) - p0.vel < 1e-3, axis=-1)   # not at a step
+    assert smooth.mean() > 0.98
+    np.testing.assert_allclose(((pp.pos - pm.pos) / (2 * h))[smooth], p0.vel[smooth], atol=2e-5)
+    np.testing.assert_allclose(((pp.vel - pm.vel) / (2 * h))[smooth], p0.acc[smooth], atol=5e-3)
+
+
+def test_a_crawl_keeps_three_feet_down():
+    with pytest.raises(ParameterError, match="scenario.gait.duty_factor = 0.7"):
+        load_scenario(gait={"kind": "walk", "duty_factor": 0.7})
+    scenario, params = load_run(None, gait="walk")
+    t = np.linspace(0, params.gait.period_s, 2001)
+    down = sum(evaluate(params.gait, scenario.gait, t, ph).stance for ph in scenario.phases_rad)
+    assert down.min() == 3
