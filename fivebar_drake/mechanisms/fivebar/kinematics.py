@@ -227,7 +227,7 @@ def inverse(leg: LegGeometry, foot, mode=KNEES_OUT, strict=True) -> LegPose:
         test = first_past(tests, i)
         raise UnreachableError(
             f"foot target {(foot.reshape(-1, 2)[i] * 1e3).round(3).tolist()} mm in mode "
-            f"{tuple(int(m) for m in mode)}: {test.text(np.ravel(test.value)[i])} "
+            f"{mode_name(mode)}: {test.text(np.ravel(test.value)[i])} "
             f"({int(np.count_nonzero(past))} of {past.size} poses past a limit)", i, test.field)
     nan = lambda v: np.where(past[..., None], np.nan, v)  # noqa: E731
     return LegPose(nan(pose.q), nan(pose.c), nan(pose.d), nan(pose.e), pose.f)
