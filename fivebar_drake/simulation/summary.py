@@ -26,7 +26,7 @@ import numpy as np
 from fivebar_drake.core.checks import CHECK_ORDER, SEVERITY, motor_checks
 from fivebar_drake.core.files import json_ready, write_atomic
 from fivebar_drake.core.footpath import cycle_phase, evaluate, stance_loads
-from fivebar_drake.core.rotation import body_rotation, tilt_deg
+from fivebar_drake.core.rotation import body_rotations, tilt_deg
 from fivebar_drake.mechanisms.fivebar import (MOTORS, forward, link_jacobians, static_torques,
                                               torques)
 from fivebar_drake.robots.quadruped.leg_loads import full_model, seed_model
@@ -100,7 +100,7 @@ def signals(record: SimulationRecord) -> Signals:
     pose = forward(params.leg, q)
     lj = link_jacobians(params.leg, params.links, pose)
     quat = st[:, lay.state.body_q:lay.state.body_q + 4]
-    r_world_plane = np.array([body_rotation(v) @ plane_rotation() for v in quat])
+    r_world_plane = body_rotations(np.ascontiguousarray(quat)) @ plane_rotation()
     # contact point: the bottom of the foot sphere, (0, 0, -r) from its centre in the world
     down = -params.body.foot_radius_m * r_world_plane[:, 2, :2]          # leg plane (x, y)
     force = foot_forces(table["contact_generalized"], lay, params, pose, down)
@@ -465,6 +465,10 @@ def markdown(s: dict, params: Params) -> str:
         f"gait cycles, t = {s['window_s'][0]:.2f} .. {s['window_s'][1]:.2f} s; every value is a "
         f"mean over {s['log_period_s'] * 1e3:g} ms of plant steps.",
     ]
+    if "timing" in s:
+        t = s["timing"]
+        lines[-1] += (f" Wall time: stepping {t['simulate_s']:.2f} s, writing the plots and the "
+                      f"recording {t['outputs_s']:.2f} s ({t['outputs_share']:.0%} of both).")
     if s["error"]:
         lines += ["", f"**The run stopped early:** {s['error']}"]
     clear = min(s["swing_clear_fraction"].values())
