@@ -5,7 +5,7 @@ BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 OUT    ?= out
 
-.PHONY: demo test bench clean
+.PHONY: demo test bench screenshot clean
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -41,6 +41,11 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_kinematics.py
 	$(BIN)/python benchmarks/bench_simulation.py
 	$(BIN)/python benchmarks/bench_sweep.py
+
+# the picture of a recording in the README: the Rerun web viewer, served locally, in headless
+# Chromium (Debian: apt-get install chromium)
+screenshot: $(STAMP)
+	$(BIN)/python tools/recording_screenshot.py --out docs/recording.png
 
 clean:
 	rm -rf $(VENV) $(OUT)

@@ -3,8 +3,10 @@
 run's key events (simulation/events.py) on the timeline.
 
 Entities (timeline "sim_time"), SI units unless the name says otherwise:
-- world/ground (a patch under the path walked), world/body (box + pose), world/legs/<leg> (link
-  segments A-C-E-F and B-D-E-F), world/feet/<leg> (foot trace), world/forces/<leg> (ground
+- world/ground (a patch under the path walked, world/ground/grid its lines every GRID_M),
+  world/follow (the point of the ground under the
+  body: the 3-D view's frame), world/body (box + pose), world/legs/<leg> (link
+  segments A-C-E-F and B-D-E-F, in the hue of their motor), world/feet/<leg> (foot trace), world/forces/<leg> (ground
   force at the foot, 1 mm per N), at pose_rate_hz;
 - per log interval (means over the plant steps of the interval): torque/<leg>/<A|B>/{applied,
   commanded, static_trot, static_contact, static_seed} and torque/<leg>/limit_{pos,neg}
@@ -43,7 +45,8 @@ FORCE_ARROW_M_PER_N = 0.001    # 1 mm of arrow per newton
 # of link_points' A, C, E, F, B, D: A-C-E-F and B-D-E-F (link DE carries the foot F)
 LEG_STRIPS = ([0, 1, 2, 3], [4, 5, 2, 3])
 GROUND_MARGIN_M = 0.4          # the ground patch reaches this far beyond the path of the body
-EYE_OFFSET_M = (0.45, -0.95, 0.30)   # the camera from the body (world axes), following it
+GRID_M = 0.1                   # spacing of the lines on the ground (the robot passes over them)
+EYE_OFFSET_M = (0.40, -0.80, 0.25)   # the camera from the body (world axes), following it
 # per torque series: shade of the motor's hue (0 light .. 2 dark), line width, drawn at first
 TORQUE_SERIES = {"applied": (1, 2.5, True), "commanded": (0, 1.2, True),
                  "static_trot": (2, 1.5, True), "static_contact": (1, 1.0, False),
@@ -58,26 +61,28 @@ EVENT_MARKERS = {"takeoff": "Up", "apex": "Diamond", "touchdown": "Down", "lift-
 FLIGHT_COLOR = (255, 230, 0)
 
 
-def blueprint(legs, start_m) -> rrb.Blueprint:
-    """The viewer's layout: the robot (the camera starts EYE_OFFSET_M from the body's start
-    position start_m and follows the body) and the event log on the left; on the right the four
-    legs' motor torques, the body's height, speed and tilt, and tabs with the foot forces, loop
-    gaps, joint angles and speeds, per-cycle peaks and the statistics window. The torque and
-    force plots name their colours in their titles (their legends would cover the curves)."""
+def blueprint(legs, height_m: float) -> rrb.Blueprint:
+    """The viewer's layout: the robot seen from the frame world/follow (it moves with the body
+    over the ground, so the robot stays framed while the ground and the foot traces pass under
+    it; the camera EYE_OFFSET_M from a point height_m above the ground under the body) and the
+    event log on the left; on the right the four legs' motor torques, the body's height, speed
+    and tilt, and tabs with the foot forces, loop gaps, joint angles and speeds, per-cycle peaks
+    and the statistics window. The torque and force plots name their colours in their titles
+    (their legends would cover the curves; FL's shows the series)."""
     torque = [rrb.TimeSeriesView(origin=f"torque/{leg}", name=f"{leg} torque (N·m): A blue, B "
                                  "orange", plot_legend=rrb.PlotLegend("LeftBottom", visible=k == 0))
               for k, leg in enumerate(legs)]
     colours = ", ".join(f"{leg} {name}" for leg, name in zip(legs, LEG_COLOR_NAMES))
-    look = np.asarray(start_m, dtype=float)
+    look = np.array([0.0, 0.0, height_m])
     return rrb.Blueprint(
         rrb.Horizontal(
             rrb.Vertical(
                 rrb.Spatial3DView(
-                    origin="world", name="robot (the camera follows the body)",
-                    line_grid=rrb.LineGrid3D(visible=True, spacing=0.1),
-                    eye_controls=rrb.EyeControls3D(
-                        position=look + EYE_OFFSET_M, look_target=look,
-                        eye_up=[0.0, 0.0, 1.0], tracking_entity="world/body")),
+                    origin="world/follow", contents="world/**",
+                    name="robot (the camera follows the body)",
+                    line_grid=rrb.LineGrid3D(visible=False),
+                    eye_controls=rrb.EyeControls3D(position=look + EYE_OFFSET_M,
+                                                   look_target=look, eye_up=[0.0, 0.0, 1.0])),
                 rrb.TextLogView(origin="events", name="events", columns=rrb.TextLogColumns(
                     text_log_columns=[rrb.encodings.TextLogColumn(kind, visible=kind == "Body")
                                       for kind in ("EntityPath", "LogLevel", "Body")])),
@@ -138,8 +143,8 @@ def write_recording(path: Path, sig: Signals, record: SimulationRecord, summary:
     scenario = record.scenario
     path.parent.mkdir(parents=True, exist_ok=True)
     with recording_file(path, f"fivebar_drake-{scenario.gait.kind}-{scenario.closure.kind}",
-                        blueprint(record.layout.legs, sig.body_p[0] if len(sig.t) else
-                                  np.zeros(3))) as rec:
+                        blueprint(record.layout.legs, float(sig.body_p[0, 2]) if len(sig.t)
+                                  else 0.0)) as rec:
         if len(sig.t):
             _log_scene(rec, sig, record)
             _log_series(rec, sig, record.layout.legs, record.params, summary)
@@ -154,6 +159,12 @@ def _log_scene(rec, sig: Signals, record: SimulationRecord):
     rec.log("world/ground", rr.Boxes3D(centers=[[*(low + high) / 2, -0.006]],
                                        half_sizes=[[*(high - low) / 2, 0.005]],
                                        colors=[[95, 105, 95]]), static=True)
+    lines = [np.arange(np.ceil(lo / GRID_M), np.floor(hi / GRID_M) + 1) * GRID_M
+             for lo, hi in zip(low, high)]
+    rec.log("world/ground/grid", rr.LineStrips3D(
+        [[[x, low[1], 0.0], [x, high[1], 0.0]] for x in lines[0]]
+        + [[[low[0], y, 0.0], [high[0], y, 0.0]] for y in lines[1]],
+        radii=0.0008, colors=[[150, 160, 150]]), static=True)
     rec.log("world/body", rr.Boxes3D(half_sizes=[[b.length_m / 2, b.width_m / 2, b.height_m / 2]],
                                      colors=[[150, 150, 165]]), static=True)
     t = sig.t
@@ -162,15 +173,17 @@ def _log_scene(rec, sig: Signals, record: SimulationRecord):
     quat = sig.body_quat[frames]
     rec.send_columns("world/body", indexes=time, columns=rr.Transform3D.columns(
         translation=sig.body_p[frames], quaternion=np.column_stack([quat[:, 1:], quat[:, :1]])))
+    under = sig.body_p[frames] * [1.0, 1.0, 0.0]                  # the ground under the body
+    rec.send_columns("world/follow", indexes=time, columns=rr.Transform3D.columns(
+        translation=under))
     points = link_points(record.layout, record.params, record.table["state"][frames])
     for i, leg in enumerate(record.layout.legs):
         strips = np.ascontiguousarray(points[:, i][:, LEG_STRIPS])     # (frames, strips, 4, 3)
         rec.send_columns(f"world/legs/{leg}", indexes=time, columns=rr.LineStrips3D.columns(
             strips=strips.reshape(-1, *strips.shape[2:])).partition(
                 np.full(len(frames), len(LEG_STRIPS))))
-        rec.log(f"world/legs/{leg}", rr.LineStrips3D.from_fields(radii=0.004,
-                                                                 colors=[[220, 220, 230]]),
-                static=True)
+        rec.log(f"world/legs/{leg}", rr.LineStrips3D.from_fields(
+            radii=0.004, colors=[MOTOR_SHADES[m][1] for m in MOTORS]), static=True)
         rec.log(f"world/feet/{leg}", rr.LineStrips3D([points[:, i, 3]], radii=0.0015,
                                                      colors=[LEG_COLORS[i]]), static=True)
         origin = points[:, i, 3] - np.array([0.0, 0.0, b.foot_radius_m])

@@ -465,10 +465,6 @@ def markdown(s: dict, params: Params) -> str:
         f"gait cycles, t = {s['window_s'][0]:.2f} .. {s['window_s'][1]:.2f} s; every value is a "
         f"mean over {s['log_period_s'] * 1e3:g} ms of plant steps.",
     ]
-    if "timing" in s:
-        t = s["timing"]
-        lines[-1] += (f" Wall time: stepping {t['simulate_s']:.2f} s, writing the plots and the "
-                      f"recording {t['outputs_s']:.2f} s ({t['outputs_share']:.0%} of both).")
     if s["error"]:
         lines += ["", f"**The run stopped early:** {s['error']}"]
     clear = min(s["swing_clear_fraction"].values())

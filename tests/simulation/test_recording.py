@@ -142,7 +142,7 @@ def test_blueprint_frames_the_robot_and_keeps_one_unit_per_plot(short_run):
     views = {v["ViewBlueprint:space_origin"][0]: (v["ViewBlueprint:class_identifier"][0],
                                                  v["ViewBlueprint:display_name"][0])
              for v in rows.values() if "ViewBlueprint:space_origin" in v}
-    assert views["world"][0] == "3D"
+    assert views["world/follow"][0] == "3D"
     for origin, unit in (("body/height_m", "(m)"), ("body/forward_speed_m_s", "(m/s)"),
                          ("body/tilt_deg", "(deg)"), ("loop_gap_um", "(µm)"),
                          ("contact/normal", "(N)"), ("joints/angle", "(rad)"),
@@ -151,12 +151,20 @@ def test_blueprint_frames_the_robot_and_keeps_one_unit_per_plot(short_run):
         assert kind == "TimeSeries" and unit in name, (origin, name)
         assert sum(u in name for u in ("(m)", "(m/s)", "(deg)", "(µm)", "(N)", "(rad)")) <= 1
     assert views["events"][0] == "TextLog"
-    # the camera: EYE_OFFSET_M from the body's first position, following the body
+    # the camera: EYE_OFFSET_M from the body's standing height, in the frame world/follow,
+    # which is the ground under the body at every pose frame
     eye = next(v for k, v in rows.items() if k.endswith("EyeControls3D"))
-    start = sig.body_p[0]
-    assert np.allclose(eye["EyeControls3D:look_target"], start, atol=1e-6)
-    assert np.allclose(np.subtract(eye["EyeControls3D:position"], start), EYE_OFFSET_M, atol=1e-6)
-    assert eye["EyeControls3D:tracking_entity"][0].strip("/") == "world/body"
+    look = [0.0, 0.0, sig.body_p[0, 2]]
+    assert np.allclose(eye["EyeControls3D:look_target"], look, atol=1e-6)
+    assert np.allclose(np.subtract(eye["EyeControls3D:position"], look), EYE_OFFSET_M, atol=1e-6)
+    chunks = RrdReader(out / "run.rrd").stream().filter(content="/world/follow",
+                                                         is_static=False).to_chunks()
+    batch = chunks[0].to_record_batch()
+    t = batch.column("sim_time").cast("int64").to_numpy() * 1e-9
+    follow = np.array([row[0] for row in batch.column("Transform3D:translation").to_pylist()])
+    rows_at = np.searchsorted(sig.t, t - 1e-9)
+    assert len(t) > 50 and np.allclose(sig.t[rows_at], t)
+    assert np.allclose(follow[:, :2], sig.body_p[rows_at, :2]) and np.all(follow[:, 2] == 0)
     # the ground: a patch under the path of the body, not a 6 m plane
     half = np.asarray(static_value(out / "run.rrd", "/world/ground", "Boxes3D:half_sizes")[0])
     walked = np.ptp(sig.body_p[:, :2], axis=0)
@@ -241,4 +249,3 @@ def test_summary_records_the_timing_split(short_run):
     assert 0 < timing["outputs_s"] <= measured
     assert timing["outputs_share"] == pytest.approx(
         timing["outputs_s"] / (timing["outputs_s"] + timing["simulate_s"]))
-    assert f"Wall time: stepping {timing['simulate_s']:.2f} s" in (out / "summary.md").read_text()
