@@ -1,25 +1,38 @@
 """Plots of a simulated run: motor torques against the static predictions and the motor limit,
 loop gap and body motion (PNG).
 
-Drawn for speed (they are written after every run, and matplotlib's fixed costs dominate): the
-curves at most PLOT_POINTS per axes, keeping each bucket's extremes (no peak is lost); few
-axes (both motors of a leg in one, in two hues), x tick labels on the bottom axes only (the
-others get grid lines, not Tick objects), no titles (the y labels say what and in which unit),
-plain-text labels (no mathtext), fast PNG compression."""
+Each figure is a strip chart: one matplotlib axes holding stacked bands that share the time
+axis, each band with its own quantity, unit and scale (its grid lines labelled in that unit).
+They are written after every run, and matplotlib's fixed costs per axes (its Tick objects,
+axes set-up and drawing) were most of the output files' time: one axes per figure instead of
+four. The curves are reduced to at most PLOT_POINTS, keeping each bucket's extremes (no peak is
+lost); plain-text labels (no mathtext); fast PNG compression."""
 
 from __future__ import annotations
 
 from pathlib import Path
+from typing import NamedTuple
 import matplotlib.pyplot as plt
-from matplotlib.ticker import FixedLocator, MaxNLocator, NullLocator
+from matplotlib.patches import Rectangle
+from matplotlib.ticker import MaxNLocator
 import numpy as np
 
 from fivebar_drake.core.files import save_figure
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.simulation.summary import MOTORS, Signals
 
-PLOT_POINTS = 1500       # points per curve at most (~ the axes' width in pixels)
+PLOT_POINTS = 1500       # points per curve at most (~ the plot's width in pixels)
+BAND_FILL = 0.86         # the share of its band a strip's range takes (the rest: a gap)
 STYLE = {"font.size": 8}
+# per torque series: the signal, its label, line style; the motor's colour (A blue, B orange)
+# in its shade: applied full, demand light, the static estimates dark
+TORQUE_LINES = (("command", "demand (command)", dict(lw=0.8, alpha=0.45)),
+                ("applied", "applied (motor output)", dict(lw=1.3)),
+                ("static_trot", "static: trot load", dict(lw=1.0, ls=":", color_dark=True)),
+                ("static_seed", "static: seed G(q)", dict(lw=0.9, ls="--", color_dark=True)))
+MOTOR_COLORS = {"A": ("#1f6fd1", "#0b2f6b"), "B": ("#ef6c0f", "#7a3000")}
+LEG_COLORS = ("C0", "C1", "C2", "C3")
+LEG_COLOR_NAMES = ("blue", "orange", "green", "red")
 
 
 def extremes(t: np.ndarray, values: np.ndarray, points: int = PLOT_POINTS):
@@ -38,37 +51,75 @@ def extremes(t: np.ndarray, values: np.ndarray, points: int = PLOT_POINTS):
     return t[rows], values[rows]
 
 
-def _axes(fig, rows: int, span) -> list:
-    """rows axes stacked over one time span (s): tick labels on the bottom one only (an axes
-    without x ticks makes no Tick objects; its vertical grid lines are drawn directly)."""
-    axes = fig.subplots(rows, 1)
-    xs = MaxNLocator(6).tick_values(*span)
-    for k, ax in enumerate(axes):
-        ax.set_xlim(*span)
-        ax.yaxis.set_major_locator(MaxNLocator(4))
-        ax.grid(alpha=0.3, axis="y")
-        if k < rows - 1:
-            ax.xaxis.set_major_locator(NullLocator())
-            ax.vlines(xs, 0, 1, transform=ax.get_xaxis_transform(), color="0.9", lw=0.8,
-                      zorder=0)
-        else:
-            ax.xaxis.set_major_locator(FixedLocator(xs))
-            ax.grid(alpha=0.3, axis="x")
-            ax.set_xlabel("time (s)")
-    return axes
+class Band(NamedTuple):
+    """One strip of a strip chart: its y label (quantity and unit) and the range of values it
+    shows, bottom to top."""
+
+    label: str
+    low: float
+    high: float
+
+
+def band_of(label: str, *series, margin: float = 0.08) -> Band:
+    """A band spanning the values of the series with a margin (a share of their range)."""
+    low = min(float(np.nanmin(s)) for s in series)
+    high = max(float(np.nanmax(s)) for s in series)
+    pad = margin * (high - low) if high > low else max(abs(high), 1.0) * 0.1
+    return Band(label, low - pad, high + pad)
+
+
+class StripChart:
+    """One axes holding bands stacked top to bottom over the time span (s): put(k, v) maps values
+    of band k into the axes' y coordinates (band k takes [K-1-k, K-k))."""
+
+    def __init__(self, fig, span, bands: list[Band]):
+        self.ax, self.bands, self.span = fig.add_subplot(), bands, span
+        self.ax.set_xlim(*span)
+        self.ax.set_ylim(0.0, len(bands))
+        self.ax.set_axis_off()
+
+    def put(self, k: int, values):
+        band = self.bands[k]
+        gap = (1.0 - BAND_FILL) / 2
+        scale = BAND_FILL / (band.high - band.low)
+        return len(self.bands) - 1 - k + gap + (np.asarray(values, dtype=float) - band.low) * scale
+
+    def plot(self, k: int, t, values, **style):
+        return self.ax.plot(*(lambda a, b: (a, self.put(k, b)))(*extremes(t, values)), **style)
+
+    def hline(self, k: int, value: float, **style):
+        y = float(self.put(k, value))
+        return self.ax.hlines(y, *self.span, **style)
+
+    def finish(self, x_label: str = "time (s)") -> None:
+        """Frames, grid lines and their labels in each band's unit, the band labels and the
+        time axis under the bottom band."""
+        ax, (t0, t1), gap = self.ax, self.span, (1.0 - BAND_FILL) / 2
+        xs = MaxNLocator(6).tick_values(t0, t1)
+        xs = xs[(xs >= t0) & (xs <= t1)]
+        grid = dict(color="0.88", lw=0.7, zorder=0)
+        for k, band in enumerate(self.bands):
+            bottom = len(self.bands) - 1 - k + gap / 2
+            top = bottom + BAND_FILL + gap
+            ax.add_patch(Rectangle((t0, bottom), t1 - t0, top - bottom, fill=False, lw=0.8,
+                                   zorder=3))
+            ax.vlines(xs, bottom, top, **grid)
+            ys = MaxNLocator(4).tick_values(band.low, band.high)
+            ys = ys[(ys >= band.low) & (ys <= band.high)]
+            ax.hlines(self.put(k, ys), t0, t1, **grid)
+            for y in ys:
+                ax.text(t0 - 0.005 * (t1 - t0), self.put(k, y), f"{y:g}", ha="right",
+                        va="center")
+            ax.text(t0 - 0.06 * (t1 - t0), (bottom + top) / 2, band.label, rotation=90,
+                    ha="center", va="center")
+        bottom = gap / 2
+        for x in xs:
+            ax.text(x, bottom - 0.03, f"{x:g}", ha="center", va="top")
+        ax.text((t0 + t1) / 2, bottom - 0.16, x_label, ha="center", va="top")
 
 
 def _span(sig: Signals) -> tuple[float, float]:
     return (0.0, float(sig.t[-1])) if len(sig.t) else (0.0, 1.0)
-
-
-# per torque series: the signal, its label, line style; the motor's colour (A blue, B orange)
-# in its shade: applied full, demand light, the static estimates dark
-TORQUE_LINES = (("command", "demand (command)", dict(lw=0.8, alpha=0.45)),
-                ("applied", "applied (motor output)", dict(lw=1.3)),
-                ("static_trot", "static: trot load", dict(lw=1.0, ls=":", color_dark=True)),
-                ("static_seed", "static: seed G(q)", dict(lw=0.9, ls="--", color_dark=True)))
-MOTOR_COLORS = {"A": ("#1f6fd1", "#0b2f6b"), "B": ("#ef6c0f", "#7a3000")}
 
 
 def torque_figure(sig: Signals, legs, params: Params, window) -> plt.Figure:
@@ -77,47 +128,49 @@ def torque_figure(sig: Signals, legs, params: Params, window) -> plt.Figure:
     limit = params.motor.peak_torque_Nm
     with plt.rc_context(STYLE):
         fig = plt.figure(figsize=(12, 1.9 * len(legs) + 0.9))
-        axes = _axes(fig, len(legs), _span(sig))
-        for i, (leg, ax) in enumerate(zip(legs, axes)):
-            ax.axvspan(*window, color="0.94", zorder=0)
+        chart = StripChart(fig, _span(sig), [Band(f"{leg} torque (N·m)", -1.1 * limit,
+                                                  1.1 * limit) for leg in legs])
+        chart.ax.axvspan(*window, color="0.94", zorder=0)
+        for i, leg in enumerate(legs):
             for j, motor in enumerate(MOTORS):
                 full, dark = MOTOR_COLORS[motor]
                 for name, label, style in TORQUE_LINES:
                     style = dict(style)
                     color = dark if style.pop("color_dark", False) else full
-                    ax.plot(*extremes(sig.t, getattr(sig, name)[:, i, j]), color=color,
-                            label=f"{motor} {label}", **style)
+                    chart.plot(i, sig.t, getattr(sig, name)[:, i, j], color=color,
+                               label=f"{motor} {label}" if i == 0 else None, **style)
             for sign in (1, -1):
-                ax.axhline(sign * limit, color="r", lw=1.0,
-                           label=f"limit ±{limit:g} N·m" if sign > 0 else None)
-            ax.set_ylim(-1.12 * limit, 1.12 * limit)
-            ax.set_ylabel(f"{leg} torque (N·m)")
-        fig.legend(*axes[0].get_legend_handles_labels(), loc="upper left", ncol=5,
-                   fontsize=7.5, frameon=False, bbox_to_anchor=(0.06, 0.995))
-        fig.subplots_adjust(left=0.06, right=0.99, bottom=0.6 / fig.get_figheight(),
-                            top=1 - 0.75 / fig.get_figheight(), hspace=0.08)
+                chart.hline(i, sign * limit, color="r", lw=1.0,
+                            label=f"limit ±{limit:g} N·m" if i == 0 and sign > 0 else None)
+        chart.finish()
+        chart.ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.0), ncol=5, fontsize=7.5,
+                        frameon=False)
+        fig.subplots_adjust(left=0.07, right=0.99, bottom=0.45 / fig.get_figheight(),
+                            top=1 - 0.45 / fig.get_figheight())
     return fig
 
 
 def motion_figure(sig: Signals, legs, gait_speed: float) -> plt.Figure:
-    """Loop gap per leg (µm), body height (mm), tilt (deg) and forward speed (m/s): one unit
-    per axes."""
+    """Loop gap per leg (µm, worst per interval), body height (mm), tilt (deg) and forward
+    speed (m/s) against the gait's: one unit per band."""
+    gap, height = sig.gap * 1e6, sig.body_p[:, 2] * 1e3
     with plt.rc_context(STYLE):
         fig = plt.figure(figsize=(10, 7.5))
-        ag, ah, at, av = _axes(fig, 4, _span(sig))
+        chart = StripChart(fig, _span(sig), [
+            band_of("loop gap (µm)", gap), band_of("body height (mm)", height),
+            band_of("tilt (deg)", sig.tilt_deg),
+            band_of("forward speed (m/s)", sig.body_v[:, 0], [gait_speed])])
         for i, leg in enumerate(legs):
-            ag.plot(*extremes(sig.t, sig.gap[:, i] * 1e6), lw=0.8, label=leg)
-        ag.set_ylabel("loop gap (µm)\nworst per interval")
-        ag.legend(fontsize=7.5, ncol=len(legs), loc="upper right")
-        ah.plot(*extremes(sig.t, sig.body_p[:, 2] * 1e3))
-        ah.set_ylabel("body height (mm)")
-        at.plot(*extremes(sig.t, sig.tilt_deg))
-        at.set_ylabel("tilt (deg)")
-        av.plot(*extremes(sig.t, sig.body_v[:, 0]), label="body")
-        av.axhline(gait_speed, color="k", ls="--", lw=1, label="gait speed")
-        av.set_ylabel("forward speed (m/s)")
-        av.legend(fontsize=7.5, loc="lower right")
-        fig.subplots_adjust(left=0.09, right=0.98, bottom=0.07, top=0.98, hspace=0.08)
+            chart.plot(0, sig.t, gap[:, i], lw=0.8, color=LEG_COLORS[i])
+        chart.plot(1, sig.t, height, color="C0")
+        chart.plot(2, sig.t, sig.tilt_deg, color="C0")
+        chart.plot(3, sig.t, sig.body_v[:, 0], color="C0")
+        chart.hline(3, gait_speed, color="k", ls="--", lw=1)
+        chart.finish()
+        # a key in words (a legend's line samples and layout cost a tenth of the figure)
+        fig.text(0.98, 0.985, "loop gap: " + ", ".join(f"{leg} {name}" for leg, name in zip(
+            legs, LEG_COLOR_NAMES)) + "; dashed: the gait's speed", ha="right", va="top")
+        fig.subplots_adjust(left=0.09, right=0.98, bottom=0.06, top=0.96)
     return fig
 
 

@@ -161,9 +161,9 @@ def _log_scene(rec, sig: Signals, record: SimulationRecord):
                                        colors=[[95, 105, 95]]), static=True)
     lines = [np.arange(np.ceil(lo / GRID_M), np.floor(hi / GRID_M) + 1) * GRID_M
              for lo, hi in zip(low, high)]
-    rec.log("world/ground/grid", rr.LineStrips3D(
+    rec.log("world/ground/grid", rr.LineStrips3D(np.array(
         [[[x, low[1], 0.0], [x, high[1], 0.0]] for x in lines[0]]
-        + [[[low[0], y, 0.0], [high[0], y, 0.0]] for y in lines[1]],
+        + [[[low[0], y, 0.0], [high[0], y, 0.0]] for y in lines[1]]),
         radii=0.0008, colors=[[150, 160, 150]]), static=True)
     rec.log("world/body", rr.Boxes3D(half_sizes=[[b.length_m / 2, b.width_m / 2, b.height_m / 2]],
                                      colors=[[150, 150, 165]]), static=True)

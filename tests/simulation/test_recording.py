@@ -16,7 +16,7 @@ from rerun.chunk import RrdReader
 from fivebar_drake.analysis.torques import analyze, seed_results
 from fivebar_drake.pipeline import run_simulation, write_simulation
 from fivebar_drake.simulation.events import CONTACT_N, detect_events, phases
-from fivebar_drake.simulation.plots import extremes
+from fivebar_drake.simulation.plots import Band, StripChart, band_of, extremes
 from fivebar_drake.simulation.recording import EYE_OFFSET_M, read_series
 from fivebar_drake.simulation.scenario import load_scenario
 from fivebar_drake.simulation.summary import signals
@@ -100,6 +100,22 @@ def test_extremes_keep_every_buckets_minimum_and_maximum(rng):
         assert rv[inside].max() == v[k:k + size].max() and rv[inside].min() == v[k:k + size].min()
     short = v[:50]
     assert extremes(t[:50], short, 1000)[1] is short                # short enough: as it is
+
+
+def test_strip_chart_bands_hold_their_values_apart():
+    """Band k's range maps linearly into [K-1-k, K-k) of the axes: bands stacked top down,
+    none overlapping, each value at its place."""
+    import matplotlib.pyplot as plt
+
+    fig = plt.figure()
+    bands = [Band("torque (N·m)", -5.0, 5.0), band_of("height (mm)", [200.0, 215.0])]
+    chart = StripChart(fig, (0.0, 10.0), bands)
+    top, bottom = chart.put(0, [-5.0, 0.0, 5.0]), chart.put(1, [bands[1].low, bands[1].high])
+    assert 1.0 <= top[0] < top[1] < top[2] < 2.0 and 0.0 <= bottom[0] < bottom[1] < 1.0
+    assert top[1] - top[0] == pytest.approx(top[2] - top[1])
+    assert bands[1].low < 200.0 and bands[1].high > 215.0             # a margin around the data
+    assert chart.ax.get_ylim() == (0.0, 2.0)
+    plt.close(fig)
 
 
 def test_seed_results_are_the_analysis_seed_results(params):
