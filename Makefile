@@ -5,7 +5,7 @@ BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 OUT    ?= out
 
-.PHONY: demo test bench clean
+.PHONY: demo test bench screenshot clean
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -46,6 +46,11 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_simulation.py
 	$(BIN)/python benchmarks/bench_sweep.py
 	$(BIN)/python benchmarks/bench_envelope.py
+
+# the picture of a recording in the README: the Rerun web viewer, served locally, in headless
+# Chromium (Debian: apt-get install chromium)
+screenshot: $(STAMP)
+	$(BIN)/python tools/recording_screenshot.py --out docs/recording.png
 
 clean:
 	rm -rf $(VENV) $(OUT)

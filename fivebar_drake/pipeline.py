@@ -19,11 +19,12 @@ from __future__ import annotations
 import dataclasses
 from dataclasses import dataclass
 from pathlib import Path
+import time
 from typing import Callable
 
 from fivebar_drake.analysis.plots import write_plots
 from fivebar_drake.analysis.report import ANALYSIS_FILES, write_report
-from fivebar_drake.analysis.torques import Analysis, analyze
+from fivebar_drake.analysis.torques import Analysis, analyze, seed_results
 from fivebar_drake.core.files import prepare_output_dir
 from fivebar_drake.robots.quadruped.config import load_params, sampling_error
 from fivebar_drake.robots.quadruped.params import Params
@@ -102,16 +103,10 @@ def run_step_check(record: SimulationRecord, progress: bool = True,
     return run_simulation(scenario, record.params, progress=progress, stop=stop)
 
 
-def seed_reference(params: Params) -> dict:
-    """The static reference of every simulation summary: the seed model on the seed's ellipse
-    (report.json's results.seed, per motor)."""
-    return analyze(params).results["results"]["seed"]
-
-
 def _review(record: SimulationRecord, half: SimulationRecord | None = None):
     """(Signals, summary dictionary) of a run; with `half` (run_step_check) its step check."""
     sig = signals(record)
-    reference = seed_reference(record.params)
+    reference = seed_results(record.params)
     summary = summarize(sig, record, reference)
     if half is not None:
         apply_step_check(summary, summarize(signals(half), half, reference), record.params)
@@ -134,10 +129,19 @@ def write_simulation(record: SimulationRecord, out_dir: str | Path,
     previous run's files, then the plots, the Rerun recording, summary.md and summary.json
     last, so a summary.json always describes complete files. Returns (the summary as written,
     the paths in the order written). half: the step check's run (summarize_run); name: the
-    run's name in its recording's id."""
+    run's name in its recording's id.
+    summary["timing"]: simulate_s, the wall time of the stepping (s; with the step check, of
+    both runs), outputs_s, the wall time of this function up to the summary files (the review,
+    plots and recording; the summary files take milliseconds), and outputs_share, outputs_s
+    over their sum."""
+    start = time.perf_counter()
     out = prepare_output_dir(out_dir, "out_dir", SIMULATION_FILES)
     sig, summary = _review(record, half)
     written = write_sim_plots(sig, record.layout.legs, record.params, summary, out)
     written.append(write_recording(out / RECORDING_FILE, sig, record, summary, name))
+    outputs = time.perf_counter() - start
+    simulated = record.wall_s + (half.wall_s if half is not None else 0.0)
+    summary["timing"] = {"simulate_s": simulated, "outputs_s": outputs,
+                         "outputs_share": outputs / (simulated + outputs)}
     written += write_summary(summary, record.params, out)
     return summary, written

@@ -63,6 +63,14 @@ def motor_results(params: Params, samples: GaitSamples, tb: TorqueBreakdown, j: 
     }
 
 
+def seed_results(params: Params) -> dict:
+    """analyze(params)'s results of the seed model on the seed's ellipse (results.seed, per
+    motor) alone: the reference every simulation summary compares with."""
+    samples = sample_gait(params.leg, params.gait, "seed_ellipse")
+    tb = params.fivebar_leg.torques(seed_model(params), samples.pose, samples.qd, samples.qdd)
+    return {motor: motor_results(params, samples, tb, j) for j, motor in enumerate(MOTORS)}
+
+
 def analyze(params: Params, path: str = "seed_ellipse") -> Analysis:
     """Run the seed's analysis over one cycle of the foot path (footpath.PATHS) for the seed
     model, the full model and the full model under trot loading."""

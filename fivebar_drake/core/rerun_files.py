@@ -1,5 +1,6 @@
 """Rerun recordings (.rrd) of every simulation: a file written atomically with its blueprint
-and footer, scalar series logged in columns, and the frames at which 3-D poses are logged."""
+and footer, scalar series logged in columns with their legend and style, and the frames at which
+3-D poses are logged."""
 
 from __future__ import annotations
 
@@ -30,12 +31,15 @@ def recording_file(path: Path, name: str, blueprint):
         rec.disconnect()
 
 
-def scalars(rec, path: str, t, values, name: str | None = None) -> None:
-    """A scalar series at times t (s) in one column; name: its legend."""
+def scalars(rec, path: str, t, values, name: str | None = None, color=None,
+            width: float | None = None, visible: bool = True) -> None:
+    """A scalar series at times t (s) in one column; name: its legend, color (r, g, b) and
+    width (ui points) its line; visible False: drawn only once picked in the legend."""
     rec.send_columns(path, indexes=[rr.TimeColumn(TIMELINE, duration=t)],
                      columns=rr.Scalars.columns(scalars=np.asarray(values, dtype=float)))
-    if name:
-        rec.log(path, rr.SeriesLines(names=name), static=True)
+    if name or color is not None or width is not None or not visible:
+        rec.log(path, rr.SeriesLines(names=name, colors=color, widths=width,
+                                     visible_series=None if visible else [False]), static=True)
 
 
 def pose_frames(t, rate_hz: float) -> np.ndarray:

@@ -30,6 +30,15 @@ def body_rotation(quaternion_wxyz):
                      [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
 
 
+@jit
+def body_rotations(quaternions_wxyz):
+    """body_rotation of each row of quaternions_wxyz (n, 4): (n, 3, 3)."""
+    out = np.empty((quaternions_wxyz.shape[0], 3, 3))
+    for i in range(quaternions_wxyz.shape[0]):
+        out[i] = body_rotation(quaternions_wxyz[i])
+    return out
+
+
 def tilt_deg(quat_wxyz) -> np.ndarray:
     """Angle (deg) between a floating body's z axis and the vertical, for quaternions
     [w, x, y, z] (..., 4) as stored in the plant state (not necessarily unit length)."""

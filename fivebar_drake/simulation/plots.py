@@ -1,63 +1,178 @@
 """Plots of a simulated run: motor torques against the static predictions and the motor limit,
-loop gap and body motion (PNG). Fixed margins, not tight_layout: the layout pass measured every
-tick label and cost half of the output files' time."""
+loop gap and body motion (PNG).
+
+Each figure is a strip chart: one matplotlib axes holding stacked bands that share the time
+axis, each band with its own quantity, unit and scale (its grid lines labelled in that unit).
+They are written after every run, and matplotlib's fixed costs per axes (its Tick objects,
+axes set-up and drawing) were most of the output files' time: one axes per figure instead of
+four. The curves are reduced to at most PLOT_POINTS, keeping each bucket's extremes (no peak is
+lost); plain-text labels (no mathtext); fast PNG compression."""
 
 from __future__ import annotations
 
 from pathlib import Path
+from typing import NamedTuple
 import matplotlib.pyplot as plt
+from matplotlib.patches import Rectangle
+from matplotlib.ticker import MaxNLocator
 import numpy as np
 
 from fivebar_drake.core.files import save_figure
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.simulation.summary import MOTORS, Signals, capability_along
 
+PLOT_POINTS = 1500       # points per curve at most (~ the plot's width in pixels)
+BAND_FILL = 0.86         # the share of its band a strip's range takes (the rest: a gap)
+STYLE = {"font.size": 8}
+# per torque series: the signal, its label, line style; the motor's colour (A blue, B orange)
+# in its shade: applied full, demand light, the static estimates dark
+TORQUE_LINES = (("command", "demand (command)", dict(lw=0.8, alpha=0.45)),
+                ("applied", "applied (motor output)", dict(lw=1.3)),
+                ("static_trot", "static: trot load", dict(lw=1.0, ls=":", color_dark=True)),
+                ("static_seed", "static: seed G(q)", dict(lw=0.9, ls="--", color_dark=True)))
+MOTOR_COLORS = {"A": ("#1f6fd1", "#0b2f6b"), "B": ("#ef6c0f", "#7a3000")}
+LEG_COLORS = ("C0", "C1", "C2", "C3")
+LEG_COLOR_NAMES = ("blue", "orange", "green", "red")
+
+
+def extremes(t: np.ndarray, values: np.ndarray, points: int = PLOT_POINTS):
+    """(t, values) reduced to about `points` samples: the minimum and the maximum of each of
+    points / 2 buckets of equal rows (the last one shorter), in time order; unchanged when
+    already short enough."""
+    n = len(t)
+    if n <= points:
+        return t, values
+    size = -(-n // (points // 2))                                   # rows per bucket
+    padded = np.concatenate([values, np.full(-n % size, values[-1])]).reshape(-1, size)
+    base = np.arange(0, padded.size, size)
+    low, high = base + padded.argmin(1), base + padded.argmax(1)
+    rows = np.minimum(np.column_stack([np.minimum(low, high), np.maximum(low, high)]).ravel(),
+                      n - 1)
+    return t[rows], values[rows]
+
+
+class Band(NamedTuple):
+    """One strip of a strip chart: its y label (quantity and unit) and the range of values it
+    shows, bottom to top."""
+
+    label: str
+    low: float
+    high: float
+
+
+def band_of(label: str, *series, margin: float = 0.08) -> Band:
+    """A band spanning the values of the series with a margin (a share of their range)."""
+    low = min(float(np.nanmin(s)) for s in series)
+    high = max(float(np.nanmax(s)) for s in series)
+    pad = margin * (high - low) if high > low else max(abs(high), 1.0) * 0.1
+    return Band(label, low - pad, high + pad)
+
+
+class StripChart:
+    """One axes holding bands stacked top to bottom over the time span (s): put(k, v) maps values
+    of band k into the axes' y coordinates (band k takes [K-1-k, K-k))."""
+
+    def __init__(self, fig, span, bands: list[Band]):
+        self.ax, self.bands, self.span = fig.add_subplot(), bands, span
+        self.ax.set_xlim(*span)
+        self.ax.set_ylim(0.0, len(bands))
+        self.ax.set_axis_off()
+
+    def put(self, k: int, values):
+        band = self.bands[k]
+        gap = (1.0 - BAND_FILL) / 2
+        scale = BAND_FILL / (band.high - band.low)
+        return len(self.bands) - 1 - k + gap + (np.asarray(values, dtype=float) - band.low) * scale
+
+    def plot(self, k: int, t, values, **style):
+        return self.ax.plot(*(lambda a, b: (a, self.put(k, b)))(*extremes(t, values)), **style)
+
+    def hline(self, k: int, value: float, **style):
+        y = float(self.put(k, value))
+        return self.ax.hlines(y, *self.span, **style)
+
+    def finish(self, x_label: str = "time (s)") -> None:
+        """Frames, grid lines and their labels in each band's unit, the band labels and the
+        time axis under the bottom band."""
+        ax, (t0, t1), gap = self.ax, self.span, (1.0 - BAND_FILL) / 2
+        xs = MaxNLocator(6).tick_values(t0, t1)
+        xs = xs[(xs >= t0) & (xs <= t1)]
+        grid = dict(color="0.88", lw=0.7, zorder=0)
+        for k, band in enumerate(self.bands):
+            bottom = len(self.bands) - 1 - k + gap / 2
+            top = bottom + BAND_FILL + gap
+            ax.add_patch(Rectangle((t0, bottom), t1 - t0, top - bottom, fill=False, lw=0.8,
+                                   zorder=3))
+            ax.vlines(xs, bottom, top, **grid)
+            ys = MaxNLocator(4).tick_values(band.low, band.high)
+            ys = ys[(ys >= band.low) & (ys <= band.high)]
+            ax.hlines(self.put(k, ys), t0, t1, **grid)
+            for y in ys:
+                ax.text(t0 - 0.005 * (t1 - t0), self.put(k, y), f"{y:g}", ha="right",
+                        va="center")
+            ax.text(t0 - 0.06 * (t1 - t0), (bottom + top) / 2, band.label, rotation=90,
+                    ha="center", va="center")
+        bottom = gap / 2
+        for x in xs:
+            ax.text(x, bottom - 0.03, f"{x:g}", ha="center", va="top")
+        ax.text((t0 + t1) / 2, bottom - 0.16, x_label, ha="center", va="top")
+
+
+def _span(sig: Signals) -> tuple[float, float]:
+    return (0.0, float(sig.t[-1])) if len(sig.t) else (0.0, 1.0)
+
 
 def torque_figure(sig: Signals, legs, params: Params, window) -> plt.Figure:
+    """Per leg, both motors' demand, applied torque and static estimates over time, the motor
+    limit and the statistics window (shaded)."""
     limit = params.motor.peak_torque_Nm
-    fig, axes = plt.subplots(len(legs), 2, figsize=(13, 2.6 * len(legs)), sharex=True, sharey=True)
-    for i, leg in enumerate(legs):
-        for j, motor in enumerate(MOTORS):
-            ax = axes[i, j]
-            ax.axvspan(*window, color="0.93", zorder=0,
-                       label="statistics window" if i == j == 0 else None)
-            ax.plot(sig.t, sig.command[:, i, j], color="0.6", lw=0.8, label="demand (command)")
-            ax.plot(sig.t, sig.applied[:, i, j], lw=1.2, label="applied (motor output)")
-            ax.plot(sig.t, sig.static_contact[:, i, j], lw=1.0, label="quasi-static: $-J^T F$")
-            ax.plot(sig.t, sig.static_trot[:, i, j], ":", lw=1.2, label="static: trot load")
-            ax.plot(sig.t, sig.static_seed[:, i, j], "--", lw=1.0, label="static: seed G(q)")
+    with plt.rc_context(STYLE):
+        fig = plt.figure(figsize=(12, 1.9 * len(legs) + 0.9))
+        chart = StripChart(fig, _span(sig), [Band(f"{leg} torque (N·m)", -1.1 * limit,
+                                                  1.1 * limit) for leg in legs])
+        chart.ax.axvspan(*window, color="0.94", zorder=0)
+        for i, leg in enumerate(legs):
+            for j, motor in enumerate(MOTORS):
+                full, dark = MOTOR_COLORS[motor]
+                for name, label, style in TORQUE_LINES:
+                    style = dict(style)
+                    color = dark if style.pop("color_dark", False) else full
+                    chart.plot(i, sig.t, getattr(sig, name)[:, i, j], color=color,
+                               label=f"{motor} {label}" if i == 0 else None, **style)
             for sign in (1, -1):
-                ax.axhline(sign * limit, color="r", lw=1.2,
-                           label=f"limit ±{limit:g} N·m" if sign > 0 else None)
-            ax.set(title=f"{leg} motor {motor}", ylabel="torque (N·m)")
-            ax.grid(alpha=0.3)
-    for ax in axes[-1]:
-        ax.set_xlabel("time (s)")
-    axes[0, 1].legend(fontsize=7, loc="upper right")
-    fig.suptitle("Motor torques in the simulated trot vs static predictions")
-    fig.subplots_adjust(left=0.06, right=0.99, bottom=0.05, top=0.93, hspace=0.3, wspace=0.05)
+                chart.hline(i, sign * limit, color="r", lw=1.0,
+                            label=f"limit ±{limit:g} N·m" if i == 0 and sign > 0 else None)
+        chart.finish()
+        chart.ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.0), ncol=5, fontsize=7.5,
+                        frameon=False)
+        fig.subplots_adjust(left=0.07, right=0.99, bottom=0.45 / fig.get_figheight(),
+                            top=1 - 0.45 / fig.get_figheight())
     return fig
 
 
 def motion_figure(sig: Signals, legs, gait_speed: float) -> plt.Figure:
-    fig, (ag, ah, at, av) = plt.subplots(4, 1, figsize=(10, 9), sharex=True)
-    for i, leg in enumerate(legs):
-        ag.plot(sig.t, sig.gap[:, i] * 1e3, lw=0.8, label=leg)
-    ag.axhline(0.1, color="r", ls="--", lw=1, label="0.1 mm")
-    ag.set(ylabel="loop gap (mm)", title="Loop closure gap per leg (worst per interval)")
-    ah.plot(sig.t, sig.body_p[:, 2] * 1e3)
-    ah.set(ylabel="body height (mm)")
-    at.plot(sig.t, sig.tilt_deg)
-    at.set(ylabel="tilt (deg)")
-    av.plot(sig.t, sig.body_v[:, 0], label="body")
-    av.axhline(gait_speed, color="k", ls="--", lw=1, label="gait speed")
-    av.set(ylabel="forward speed (m/s)", xlabel="time (s)")
-    av.legend(fontsize=8)
-    for ax in (ag, ah, at, av):
-        ax.grid(alpha=0.3)
-    ag.legend(fontsize=8, ncol=5)
-    fig.subplots_adjust(left=0.09, right=0.98, bottom=0.06, top=0.96, hspace=0.25)
+    """Loop gap per leg (µm, worst per interval), body height (mm), tilt (deg) and forward
+    speed (m/s) against the gait's: one unit per band."""
+    gap, height = sig.gap * 1e6, sig.body_p[:, 2] * 1e3
+    with plt.rc_context(STYLE):
+        fig = plt.figure(figsize=(10, 7.5))
+        chart = StripChart(fig, _span(sig), [
+            band_of("loop gap (µm)", gap), band_of("body height (mm)", height),
+            band_of("tilt (deg)", sig.tilt_deg),
+            band_of("forward speed (m/s)", sig.body_v[:, 0], [gait_speed])])
+        for i, leg in enumerate(legs):
+            chart.plot(0, sig.t, gap[:, i], lw=0.8, color=LEG_COLORS[i])
+        chart.plot(1, sig.t, height, color="C0")
+        chart.plot(2, sig.t, sig.tilt_deg, color="C0")
+        chart.plot(3, sig.t, sig.body_v[:, 0], color="C0")
+        chart.hline(3, gait_speed, color="k", ls="--", lw=1)
+        chart.finish()
+        # a key in words (a legend's line samples and layout cost a tenth of the figure)
+        fig.text(0.98, 0.985, "loop gap: " + ", ".join(f"{leg} {name}" for leg, name in zip(
+            legs, LEG_COLOR_NAMES)) + "; dashed: the gait's speed", ha="right", va="top")
+        fig.subplots_adjust(left=0.09, right=0.98, bottom=0.06, top=0.96)
     return fig
+
 
 SIM_PLOT_FILES = ("sim_torques.png", "sim_motion.png")
 CAPABILITY_FILE = "force_capability.png"    # jump and drop only
@@ -69,10 +184,11 @@ def write_sim_plots(sig: Signals, legs, params: Params, summary: dict,
     a push-off or a landing; returns their paths."""
     figures = (torque_figure(sig, legs, params, summary["window_s"]),
                motion_figure(sig, legs, summary["gait_speed_m_s"]))
-    written = [save_figure(fig, out_dir / name) for name, fig in zip(SIM_PLOT_FILES, figures)]
+    written = [save_figure(fig, out_dir / name, dpi=90, compress_level=1)
+               for name, fig in zip(SIM_PLOT_FILES, figures)]
     if summary.get("force_capability"):
         written.append(save_figure(capability_figure(sig, legs, params, summary),
-                                   out_dir / CAPABILITY_FILE))
+                                   out_dir / CAPABILITY_FILE, dpi=90, compress_level=1))
     return written
 
 

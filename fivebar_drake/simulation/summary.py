@@ -27,10 +27,10 @@ import numpy as np
 from fivebar_drake.core.checks import CHECK_ORDER, SEVERITY, motor_checks
 from fivebar_drake.core.files import json_ready, write_atomic
 from fivebar_drake.core.footpath import evaluate, stance_loads
-from fivebar_drake.core.rotation import body_rotation, tilt_deg
+from fivebar_drake.core.rotation import body_rotations, tilt_deg
 from fivebar_drake.mechanisms.fivebar import (MOTORS, LimitTest, forward, held_force, inverse,
-                                              limit_tests, link_coms,
-                                              link_jacobians, static_torques, torques)
+                                              limit_tests, link_coms, link_jacobians,
+                                              static_torques, torques)
 from fivebar_drake.robots.quadruped.leg_loads import full_model, seed_model
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.plant import RobotLayout, standing_height
@@ -115,7 +115,7 @@ def signals(record: SimulationRecord) -> Signals:
     pose = forward(params.leg, q)
     lj = link_jacobians(params.leg, params.links, pose)
     quat = st[:, lay.state.body_q:lay.state.body_q + 4]
-    r_world_plane = np.array([body_rotation(v) @ plane_rotation() for v in quat])
+    r_world_plane = body_rotations(np.ascontiguousarray(quat)) @ plane_rotation()
     # contact point: the bottom of the foot sphere, (0, 0, -r) from its centre in the world
     down = -params.body.foot_radius_m * r_world_plane[:, 2, :2]          # leg plane (x, y)
     force = foot_forces(table["contact_generalized"], lay, params, pose, down)
@@ -212,7 +212,7 @@ def com_motion(record: SimulationRecord) -> tuple[np.ndarray, np.ndarray]:
     plane = plane_rotation()[:, :2]
     r_b = lay.com_m + (shift @ plane.T) / lay.mass_kg                  # (rows, 3) body frame
     quat = st[:, lay.state.body_q:lay.state.body_q + 4]
-    r_wb = np.array([body_rotation(v) for v in quat])
+    r_wb = body_rotations(quat)
     r_w = np.einsum("sij,sj->si", r_wb, r_b)
     w0 = lay.state.nq + lay.state.body_v
     omega, v_body = st[:, w0:w0 + 3], st[:, w0 + 3:w0 + 6]

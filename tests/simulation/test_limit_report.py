@@ -8,13 +8,13 @@ import numpy as np
 import pytest
 
 from fivebar_drake.pipeline import run_simulation, summarize_run
-from fivebar_drake.robots.quadruped.config import check_gait_reachable, load_params, with_changes
+from fivebar_drake.robots.quadruped.config import check_path, load_params, with_changes
 from fivebar_drake.simulation.scenario import load_scenario
 from fivebar_drake.simulation.summary import LIMIT_REACHED, markdown
 
 # 0.2 s standing, 0.3 s ramp, one whole trot cycle
 SHORT = dict(duration_s=1.5, stand_s=0.2, ramp_s=0.3)
-# Within every planned path (170 .. 230 mm from the hips, knees >= 66.84 deg) but reached by the
+# Within the planned trot (170 .. 209 mm from the hips, knees >= 66.99 deg) but reached by the
 # simulated trot, whose stance legs and catch reflex leave the plan (measured 166 mm, 65.3 deg
 # without limits)
 TOUCHED = {"limits.extension_min_m": 0.1699, "limits.knee_min_deg": 66.8}
@@ -43,7 +43,7 @@ def logged(record) -> dict[str, np.ndarray]:
 @pytest.fixture(scope="module")
 def touched():
     params = with_changes(load_params(), TOUCHED)
-    check_gait_reachable(params)                      # the plan is within the limits
+    check_path(params, "trot")                        # the trot planned is within the limits
     return run(params)
 
 

@@ -283,17 +283,19 @@ def check_recording(path, summary):
     assert samples == pytest.approx(duration / summary["log_period_s"], abs=2)
     for entity in ("/torque/RR/B/commanded", "/torque/RR/B/static_contact",
                    "/torque/RR/B/static_trot", "/torque/RR/B/static_seed",
-                   "/torque/RR/B/limit_pos", "/contact/FL/normal", "/loop_gap/FL",
-                   "/joints/RR/B/speed", "/body/height", "/stats/window"):
+                   "/contact/normal/FL", "/contact/tangential/RR", "/loop_gap_um/FL",
+                   "/joints/speed/RR/B", "/joints/angle/FL/A", "/body/height_m",
+                   "/body/forward_speed_m_s", "/body/tilt_deg", "/stats/window"):
         assert rows(path, entity) == samples, entity
+    assert rows(path, "/torque/RR/limit_pos") == 2                  # a line from start to end
     frames = rows(path, "/world/body")
     assert frames == pytest.approx(duration * 50, abs=2)            # 3-D poses at 50 Hz
     for leg in ("FL", "FR", "RL", "RR"):
         assert rows(path, f"/world/legs/{leg}") == frames
         assert rows(path, f"/world/forces/{leg}") == frames
         assert rows(path, f"/cycle_peak/{leg}/A") == summary["cycles_in_window"]
-    _, gap = read_series(path, "/loop_gap/FL")
-    assert gap.max() == pytest.approx(summary["max_loop_gap_per_leg_m"]["FL"], rel=1e-12)
+    _, gap = read_series(path, "/loop_gap_um/FL")
+    assert gap.max() == pytest.approx(summary["max_loop_gap_per_leg_m"]["FL"] * 1e6, rel=1e-12)
     t, applied = read_series(path, "/torque/FL/A/applied")
     assert len(t) == samples and np.all(np.diff(t) > 0)
     start, end = summary["window_s"]

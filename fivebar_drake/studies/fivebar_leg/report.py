@@ -36,6 +36,10 @@ def simulation_lines(summary: dict) -> list[str]:
              f"{s['max_loop_gap_m'] * 1e3:.4f} mm, {s['cycles_in_window']} whole cycles, walking "
              f"{s['mean_forward_speed_m_s']:.3f} m/s (gait {s['gait_speed_m_s']:.3f} m/s), "
              f"largest tilt {s['max_tilt_deg']:.1f} deg"]
+    if "timing" in s:
+        t = s["timing"]
+        lines.append(f"wall time: stepping {t['simulate_s']:.2f} s, output files "
+                     f"{t['outputs_s']:.2f} s ({t['outputs_share']:.0%} of both)")
     for leg, motors in s["legs"].items():
         lines.append("  " + leg + ": " + ", ".join(
             f"{m} demand p99 {v['demand_p99_Nm']:.2f} N m (RMS {v['rms_torque_Nm']:.2f}, "
