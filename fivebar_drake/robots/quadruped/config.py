@@ -61,10 +61,13 @@ def params_from_dict(data: dict) -> Params:
 
 
 def check_gait_reachable(params: Params) -> None:
-    """Raise ParameterError if the home point or a sample of any foot path (with its defaults)
-    lies outside the knees-out workspace or past one of the leg's limits (check_path)."""
-    for path in PATHS:
-        check_path(params, path)
+    """Raise ParameterError if the home point or a sample of any periodic foot path (with its
+    defaults: the paths `analyze` runs) lies outside the knees-out workspace or past one of the
+    leg's limits (check_path). A one-shot maneuver's path depends on its scenario fields (a
+    jump's height, a drop's stroke): `simulate` and `envelope` check the path they run."""
+    for path, kind in PATHS.items():
+        if kind.periodic:
+            check_path(params, path)
     g = params.gait
     try:
         inverse(params.leg, np.array([g.x_center_m, g.y_home_m]), KNEES_OUT)
