@@ -21,7 +21,7 @@ def test_the_limits_are_outlined_and_named(params):
     labels = [t.get_text() for t in ax.get_legend().get_texts()]
     assert labels[0] == "reachable, cut by the limits"
     assert set(labels[1:]) == {"motor A angle >= -170 deg", "motor A angle <= 10 deg",
-                               "motor B angle >= -170 deg", "motor B angle <= 10 deg",
+                               "motor B angle >= -170 deg", "motor B angle <= 110 deg",
                                "leg extension >= 0.1 m", "leg extension <= 0.27 m",
                                "knee C angle >= 20 deg", "knee D angle >= 20 deg",
                                "upper links' angle >= 10 deg"}
