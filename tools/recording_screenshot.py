@@ -11,6 +11,7 @@ until two screenshots are the same; the PNG is reduced to a 256-colour palette (
 from __future__ import annotations
 
 import argparse
+import asyncio
 import base64
 import io
 import json
@@ -80,14 +81,14 @@ def capture(page_url: str, size: tuple[int, int], wait_s: float) -> bytes:
             await call("Emulation.setDeviceMetricsOverride", width=size[0], height=size[1],
                        deviceScaleFactor=1, mobile=False)
             await call("Page.navigate", url=page_url)
-            time.sleep(wait_s)
+            await asyncio.sleep(wait_s)
             # until two screenshots STABLE_S apart are the same: the file is loaded and drawn
             shots = [None]
             while len(shots) * STABLE_S < MAX_WAIT_S:
                 shots.append((await call("Page.captureScreenshot", format="png"))["data"])
                 if shots[-1] == shots[-2]:
                     break
-                time.sleep(STABLE_S)
+                await asyncio.sleep(STABLE_S)
             ws.close()
             return base64.b64decode(shots[-1])
 

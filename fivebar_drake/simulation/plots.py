@@ -86,7 +86,8 @@ class StripChart:
         return len(self.bands) - 1 - k + gap + (np.asarray(values, dtype=float) - band.low) * scale
 
     def plot(self, k: int, t, values, **style):
-        return self.ax.plot(*(lambda a, b: (a, self.put(k, b)))(*extremes(t, values)), **style)
+        t, values = extremes(t, values)
+        return self.ax.plot(t, self.put(k, values), **style)
 
     def hline(self, k: int, value: float, **style):
         y = float(self.put(k, value))
