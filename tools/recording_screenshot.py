@@ -11,10 +11,12 @@ until two screenshots are the same; the PNG is reduced to a 256-colour palette (
 from __future__ import annotations
 
 import argparse
+import asyncio
 import base64
 import io
 import json
 import os
+import signal
 import socket
 import subprocess
 import sys
@@ -60,7 +62,7 @@ def capture(page_url: str, size: tuple[int, int], wait_s: float) -> bytes:
         ["chromium", *CHROMIUM_FLAGS, f"--remote-debugging-port={port}",
          f"--user-data-dir={tempfile.mkdtemp(prefix='chromium-')}",
          f"--window-size={size[0]},{size[1]}", "about:blank"],
-        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
     try:
         targets = json.loads(wait_for(f"http://127.0.0.1:{port}/json/list", 30))
         ws_url = next(t["webSocketDebuggerUrl"] for t in targets if t["type"] == "page")
@@ -80,20 +82,20 @@ def capture(page_url: str, size: tuple[int, int], wait_s: float) -> bytes:
             await call("Emulation.setDeviceMetricsOverride", width=size[0], height=size[1],
                        deviceScaleFactor=1, mobile=False)
             await call("Page.navigate", url=page_url)
-            time.sleep(wait_s)
+            await asyncio.sleep(wait_s)
             # until two screenshots STABLE_S apart are the same: the file is loaded and drawn
             shots = [None]
             while len(shots) * STABLE_S < MAX_WAIT_S:
                 shots.append((await call("Page.captureScreenshot", format="png"))["data"])
                 if shots[-1] == shots[-2]:
                     break
-                time.sleep(STABLE_S)
+                await asyncio.sleep(STABLE_S)
             ws.close()
             return base64.b64decode(shots[-1])
 
         return IOLoop.current().run_sync(drive)
     finally:
-        chrome.terminate()
+        os.killpg(chrome.pid, signal.SIGTERM)           # the browser and its helpers
         chrome.wait(10)
 
 
@@ -103,17 +105,18 @@ def screenshot(rrd: Path, out: Path, size=(1600, 1000), wait_s: float = 10.0) ->
 
     web, grpc = free_port(), free_port()
     rerun = Path(sys.executable).with_name("rerun")
+    # its own process group: the `rerun` script starts the viewer binary as a child
     viewer = subprocess.Popen(
         [str(rerun), "--web-viewer", "--bind", "127.0.0.1", "--web-viewer-port", str(web),
          "--port", str(grpc), str(rrd)],
         env={**os.environ, "BROWSER": "true"}, stdout=subprocess.DEVNULL,
-        stderr=subprocess.DEVNULL)
+        stderr=subprocess.DEVNULL, start_new_session=True)
     try:
         wait_for(f"http://127.0.0.1:{web}", 30)
         source = urllib.parse.quote(f"rerun+http://127.0.0.1:{grpc}/proxy", safe="")
         png = capture(f"http://127.0.0.1:{web}/?url={source}", size, wait_s)
     finally:
-        viewer.terminate()
+        os.killpg(viewer.pid, signal.SIGTERM)
         viewer.wait(10)
     image = Image.open(io.BytesIO(png)).convert("RGB").quantize(256)
     out.parent.mkdir(parents=True, exist_ok=True)

@@ -6,7 +6,8 @@ axis, each band with its own quantity, unit and scale (its grid lines labelled i
 They are written after every run, and matplotlib's fixed costs per axes (its Tick objects,
 axes set-up and drawing) were most of the output files' time: one axes per figure instead of
 four. The curves are reduced to at most PLOT_POINTS, keeping each bucket's extremes (no peak is
-lost); plain-text labels (no mathtext); fast PNG compression."""
+lost); keys in words, not legends (their line samples and layout cost a tenth of a figure);
+plain-text labels (no mathtext); fast PNG compression."""
 
 from __future__ import annotations
 
@@ -85,7 +86,8 @@ class StripChart:
         return len(self.bands) - 1 - k + gap + (np.asarray(values, dtype=float) - band.low) * scale
 
     def plot(self, k: int, t, values, **style):
-        return self.ax.plot(*(lambda a, b: (a, self.put(k, b)))(*extremes(t, values)), **style)
+        t, values = extremes(t, values)
+        return self.ax.plot(t, self.put(k, values), **style)
 
     def hline(self, k: int, value: float, **style):
         y = float(self.put(k, value))
@@ -137,14 +139,16 @@ def torque_figure(sig: Signals, legs, params: Params, window) -> plt.Figure:
                 for name, label, style in TORQUE_LINES:
                     style = dict(style)
                     color = dark if style.pop("color_dark", False) else full
-                    chart.plot(i, sig.t, getattr(sig, name)[:, i, j], color=color,
-                               label=f"{motor} {label}" if i == 0 else None, **style)
+                    chart.plot(i, sig.t, getattr(sig, name)[:, i, j], color=color, **style)
             for sign in (1, -1):
-                chart.hline(i, sign * limit, color="r", lw=1.0,
-                            label=f"limit ±{limit:g} N·m" if i == 0 and sign > 0 else None)
+                chart.hline(i, sign * limit, color="r", lw=1.0)
         chart.finish()
-        chart.ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.0), ncol=5, fontsize=7.5,
-                        frameon=False)
+        fig.text(0.07, 1 - 0.06 / fig.get_figheight(),
+                 f"motor A blue, motor B orange; red: the motor's limit ±{limit:g} N·m; "
+                 "shaded: the statistics window\n" + "; ".join(
+                     f"{what}: {label}" for what, (_, label, _) in zip(
+                         ("light", "bold", "dotted, dark", "dashed, dark"), TORQUE_LINES)),
+                 va="top")
         fig.subplots_adjust(left=0.07, right=0.99, bottom=0.45 / fig.get_figheight(),
                             top=1 - 0.45 / fig.get_figheight())
     return fig
@@ -167,7 +171,6 @@ def motion_figure(sig: Signals, legs, gait_speed: float) -> plt.Figure:
         chart.plot(3, sig.t, sig.body_v[:, 0], color="C0")
         chart.hline(3, gait_speed, color="k", ls="--", lw=1)
         chart.finish()
-        # a key in words (a legend's line samples and layout cost a tenth of the figure)
         fig.text(0.98, 0.985, "loop gap: " + ", ".join(f"{leg} {name}" for leg, name in zip(
             legs, LEG_COLOR_NAMES)) + "; dashed: the gait's speed", ha="right", va="top")
         fig.subplots_adjust(left=0.09, right=0.98, bottom=0.06, top=0.96)

@@ -46,11 +46,13 @@ FORCE_ARROW_M_PER_N = 0.001    # 1 mm of arrow per newton
 LEG_STRIPS = ([0, 1, 2, 3], [4, 5, 2, 3])
 GROUND_MARGIN_M = 0.4          # the ground patch reaches this far beyond the path of the body
 GRID_M = 0.1                   # spacing of the lines on the ground (the robot passes over them)
-EYE_OFFSET_M = (0.40, -0.80, 0.25)   # the camera from the body (world axes), following it
-# per torque series: shade of the motor's hue (0 light .. 2 dark), line width, drawn at first
-TORQUE_SERIES = {"applied": (1, 2.5, True), "commanded": (0, 1.2, True),
-                 "static_trot": (2, 1.5, True), "static_contact": (1, 1.0, False),
-                 "static_seed": (2, 1.0, False)}
+EYE_OFFSET_M = (0.40, -0.80, 0.25)   # the camera from the body at standing height (world/follow)
+# per torque series: its Signals field, the shade of the motor's hue (0 light .. 2 dark), line
+# width, drawn at first (else once picked in the legend)
+TORQUE_SERIES = {"applied": ("applied", 1, 2.5, True), "commanded": ("command", 0, 1.2, True),
+                 "static_trot": ("static_trot", 2, 1.5, True),
+                 "static_contact": ("static_contact", 1, 1.0, False),
+                 "static_seed": ("static_seed", 2, 1.0, False)}
 MOTOR_SHADES = {"A": ((150, 200, 240), (40, 120, 220), (20, 50, 140)),      # blues
                 "B": ((255, 190, 120), (240, 110, 20), (150, 55, 0))}       # oranges
 LIMIT_COLOR = (200, 40, 40)
@@ -217,8 +219,8 @@ def _log_series(rec, sig: Signals, legs, params: Params, summary: dict):
                     LEG_COLORS[i], MOTOR_WIDTHS[m])
             scalars(rec, f"joints/speed/{leg}/{m}", sig.t, sig.qd[:, i, j], f"{leg} {m}",
                     LEG_COLORS[i], MOTOR_WIDTHS[m])
-            for name, (shade, width, visible) in TORQUE_SERIES.items():
-                scalars(rec, f"torque/{leg}/{m}/{name}", sig.t, getattr(sig, _SIGNAL[name])[:, i, j],
+            for name, (field, shade, width, visible) in TORQUE_SERIES.items():
+                scalars(rec, f"torque/{leg}/{m}/{name}", sig.t, getattr(sig, field)[:, i, j],
                         f"{m} {name}", MOTOR_SHADES[m][shade], width, visible)
             if len(cycle_ends):
                 scalars(rec, f"cycle_peak/{leg}/{m}", cycle_ends,
@@ -232,10 +234,6 @@ def _log_series(rec, sig: Signals, legs, params: Params, summary: dict):
     scalars(rec, "body/tilt_deg", sig.t, sig.tilt_deg, "tilt (deg)", (255, 200, 80), 1.5)
     scalars(rec, "stats/window", sig.t, ((sig.t > start) & (sig.t <= end)).astype(float),
             "statistics window")
-
-
-_SIGNAL = {"applied": "applied", "commanded": "command", "static_trot": "static_trot",
-           "static_contact": "static_contact", "static_seed": "static_seed"}
 
 
 def _log_events(rec, sig: Signals, legs):
