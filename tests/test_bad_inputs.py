@@ -293,6 +293,17 @@ CASES = {
     "doggo negative depth": scen("gait: {kind: doggo, stance_depth_m: -0.01}\n",
                                  "stance_depth_m = -0.01"),
     "doggo unknown field": scen("gait: {kind: doggo, wings: 2}\n", "wings"),
+    # the maneuvers' fields and modifiers (issue 22)
+    "negative payload": scen("payload_kg: -1.0\n", "scenario.payload_kg = -1.0"),
+    "payload offset of 2 values": scen("payload_kg: 1.0\npayload_offset_m: [0.0, 0.1]\n",
+                                       "scenario.payload_offset_m", "3 values"),
+    "slope of 80 deg": scen("slope_deg: 80.0\n", "scenario.slope_deg = 80.0"),
+    "slope as text": scen("slope_deg: steep\n", "scenario.slope_deg", "steep"),
+    "jump of negative height": scen("gait: {kind: jump, height_m: -0.1}\n", "height_m", "-0.1"),
+    "drop height as text": scen("gait: {kind: drop, height_m: high}\n", "height_m", "high"),
+    "crawl below three feet down": scen("gait: {kind: walk, duty_factor: 0.5}\n",
+                                        "duty_factor", "0.5"),
+    "pronk unknown field": scen("gait: {kind: pronk, spring: 2}\n", "spring"),
     "models into an empty --out": (lambda t: ["models", "--out", ""], "command line", "--out = ''"),
     "simulator config text for a number": scen(
         "simulator_config: {target_realtime_rate: fast}\n",
