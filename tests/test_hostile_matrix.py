@@ -10,18 +10,26 @@ from fivebar_drake import catalog
 from fivebar_drake.cli import main
 
 
-def _config(t, kind):
-    path = t / f"{kind}.toml"
-    if kind == "missing":
-        return str(path)
+ALIAS_BOMB = ('a: &a ["x","x","x","x","x","x","x","x","x"]\n'
+              + "".join(f"{c}: &{c} [*{p},*{p},*{p},*{p},*{p},*{p},*{p},*{p},*{p}]\n"
+                        for p, c in zip("abcdefgh", "bcdefghi")))
+# the content of each hostile file kind by suffix; missing, fifo and folder are not contents
+CONTENTS = {".toml": {"binary": b"\xff\xfe\x00 [motor]\n", "not toml": b"[motor\n"},
+            ".yaml": {"binary": b"\xff\xfe\x00 maneuvers:\n", "not yaml": b"maneuvers: [\n",
+                      "alias bomb": ALIAS_BOMB.encode(),
+                      "duplicate key": b"duration_s: 1.0\nduration_s: 2.0\n"}}
+
+
+def _hostile_file(t, kind, suffix):
+    """The path (str) of an input file of the given hostile kind: missing, a FIFO, a folder, or
+    a file holding CONTENTS[suffix][kind]."""
+    path = t / f"{kind}{suffix}"
     if kind == "fifo":
         os.mkfifo(path)
-    elif kind == "binary":
-        path.write_bytes(b"\xff\xfe\x00 [motor]\n")
     elif kind == "folder":
         path.mkdir()
-    elif kind == "not toml":
-        path.write_text("[motor\n")
+    elif kind != "missing":
+        path.write_bytes(CONTENTS[suffix][kind])
     return str(path)
 
 
@@ -35,7 +43,7 @@ WORDS = {"missing": "not found", "fifo": "not a regular file", "binary": "not UT
 @pytest.mark.parametrize("kind", CONFIGS)
 def test_bad_parameter_file(name, command, kind, tmp_path, capsys):
     out = tmp_path / "out"
-    config = _config(tmp_path, kind)
+    config = _hostile_file(tmp_path, kind, ".toml")
     assert main([command, "--mechanism", name, "--config", config, "--out", str(out)]) == 2
     err = capsys.readouterr().err
     assert WORDS[kind] in err and os.path.basename(config) in err, err
@@ -64,28 +72,6 @@ def test_bad_duration(name, duration, tmp_path, capsys):
     assert not out.exists()
 
 
-def _spec(t, kind):
-    """A spec file (YAML) of the given hostile kind, as _config makes parameter files."""
-    path = t / f"{kind}.yaml"
-    if kind == "missing":
-        return str(path)
-    if kind == "fifo":
-        os.mkfifo(path)
-    elif kind == "binary":
-        path.write_bytes(b"\xff\xfe\x00 maneuvers:\n")
-    elif kind == "folder":
-        path.mkdir()
-    elif kind == "not yaml":
-        path.write_text("maneuvers: [\n")
-    elif kind == "alias bomb":
-        path.write_text('a: &a ["x","x","x","x","x","x","x","x","x"]\n'
-                        + "".join(f"{c}: &{c} [*{p},*{p},*{p},*{p},*{p},*{p},*{p},*{p},*{p}]\n"
-                                  for p, c in zip("abcdefgh", "bcdefghi")))
-    elif kind == "duplicate key":
-        path.write_text("duration_s: 1.0\nduration_s: 2.0\n")
-    return str(path)
-
-
 SPECS = ("missing", "fifo", "binary", "folder", "not yaml", "alias bomb", "duplicate key")
 SPEC_WORDS = {"missing": "not found", "fifo": "not a regular file", "binary": "not UTF-8",
               "folder": "is a folder", "not yaml": "not valid YAML", "alias bomb": "alias",
@@ -96,7 +82,7 @@ SPEC_WORDS = {"missing": "not found", "fifo": "not a regular file", "binary": "n
 @pytest.mark.parametrize("kind", SPECS)
 def test_bad_spec_file(command, kind, tmp_path, capsys):
     out = tmp_path / "out"
-    spec = _spec(tmp_path, kind)
+    spec = _hostile_file(tmp_path, kind, ".yaml")
     assert main([command, spec, "--out", str(out)]) == 2
     err = capsys.readouterr().err
     assert SPEC_WORDS[kind] in err and os.path.basename(spec) in err, err
