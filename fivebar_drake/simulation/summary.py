@@ -24,7 +24,7 @@ from dataclasses import dataclass
 from pathlib import Path
 import numpy as np
 
-from fivebar_drake.core.checks import CHECK_ORDER, SEVERITY, motor_checks
+from fivebar_drake.core.checks import CHECK_ORDER, SEVERITY, at_limit, motor_checks
 from fivebar_drake.core.files import json_ready, write_atomic
 from fivebar_drake.core.footpath import evaluate, stance_loads
 from fivebar_drake.core.rotation import body_rotations, tilt_deg
@@ -292,10 +292,13 @@ def motor_summary(sig: Signals, params: Params, win, cycle, cycles: int, i: int,
     per_cycle = [(applied[cycle == c], demand[cycle == c]) for c in range(cycles)]
     demand_p99 = _p(demand)
     static_seed, static_trot = _peak(sig.static_seed[win, i, j]), _peak(sig.static_trot[win, i, j])
-    sf = _ratio(motor.peak_torque_Nm, demand_p99)
-    checks = motor_checks(motor, params.checks, demand, speed, demand_p99, applied) if \
-        demand.size else None
-    clipped = sig.clipped_peak[win, i, j] + sig.clipped_line[win, i, j]
+    clipped_peak, clipped_line = sig.clipped_peak[win, i, j], sig.clipped_line[win, i, j]
+    checks = at_limit(motor_checks(motor, params.checks, demand, speed, demand_p99, applied),
+                      motor.peak_torque_Nm, _p(applied), _mean(clipped_peak),
+                      _mean(clipped_line), 1.0 - PERCENTILE / 100) if demand.size else None
+    at_torque_limit = bool(checks) and "demand_sf" in checks["torque"]
+    sf = _ratio(motor.peak_torque_Nm, _p(applied) if at_torque_limit else demand_p99)
+    clipped = clipped_peak + clipped_line
     saturated, unsaturated = _mean(clipped), demand[clipped == 0]
     return {
         "checks": checks, "unsaturated_demand_p99_Nm": _p(unsaturated),
@@ -309,8 +312,8 @@ def motor_summary(sig: Signals, params: Params, win, cycle, cycles: int, i: int,
         "safety_factor": sf, "verdict": checks["verdict"] if checks else "insufficient",
         "deciding_check": checks["deciding_check"] if checks else None,
         "saturated_fraction": saturated,
-        "clipped_peak_fraction": _mean(sig.clipped_peak[win, i, j]),
-        "clipped_line_fraction": _mean(sig.clipped_line[win, i, j]),
+        "clipped_peak_fraction": _mean(clipped_peak),
+        "clipped_line_fraction": _mean(clipped_line),
         "peak_speed_rad_s": _peak(speed), "p99_speed_rad_s": _p(speed),
         "no_load_speed_rad_s": motor.no_load_speed_rad_s,
         "speed_ok": bool(_peak(speed) <= motor.no_load_speed_rad_s),
@@ -649,21 +652,32 @@ def answer(s: dict, params: Params) -> str:
                     if s["verdict"] != "marginal" else
                     f"MARGINAL: {s['step_check']['why']} (step check at half the plant step)")
     static = m["static_trot_Nm"]
-    return (f"{head} the motors need {m['demand_p99_Nm']:.2f} N·m ({PERCENTILE:g}th percentile "
-            f"of the demand over {s['cycles_in_window']} "
-            f"{'cycles' if s['periodic'] else 'maneuver'}, worst motor {leg} {name}). "
+    over = f"over {s['cycles_in_window']} {'cycles' if s['periodic'] else 'maneuver'}"
+    limited = next((c[k] for k in CHECK_ORDER if "at_limit_fraction" in c[k]), None)
+    figure = m["p99_torque_Nm"] if limited else m["demand_p99_Nm"]
+    if limited:
+        need = (f"the motors worked at their limit (worst motor {leg} {name}, "
+                f"{limited['at_limit_fraction']:.1%} of the time, {over}): they gave "
+                f"{m['p99_torque_Nm']:.2f} N·m ({PERCENTILE:g}th percentile of the delivered "
+                f"torque); the controller asked {m['demand_p99_Nm']:.2f} N·m, which the motion, "
+                "achieved without it, did not need")
+    else:
+        need = (f"the motors need {m['demand_p99_Nm']:.2f} N·m ({PERCENTILE:g}th percentile "
+                f"of the demand {over}, worst motor {leg} {name})")
+    return (f"{head} {need}. "
             f"Verdict {verdict_text}. Checks: {checks}. On the same poses with the same load schedule "
             f"(the robot's weight shared by the feet in stance) the static torque is "
-            f"{static:.2f} N·m: the dynamics add {m['demand_p99_Nm'] / static - 1:+.0%}. {seed}")
+            f"{static:.2f} N·m: the dynamics add {figure / static - 1:+.0%}. {seed}")
 
 
 def check_text(name: str, c: dict) -> str:
+    limit = f" ({c['why']})" if "at_limit_fraction" in c else ""
     if name == "torque":
-        return f"torque: safety factor {c['sf']:.2f}, {c['verdict']}"
+        return f"torque: safety factor {c['sf']:.2f}, {c['verdict']}{limit}"
     if name == "speed":
         least = "none driving" if c["least_margin"] is None else f"{c['least_margin']:.2f}"
         return (f"speed: least margin {least}, {c['outside_fraction']:.1%} of the time beyond "
-                f"the envelope, {c['verdict']}")
+                f"the envelope, {c['verdict']}{limit}")
     if c["margin"] is None:
         return f"thermal: {c.get('why', 'no model')}"
     return (f"thermal: continuous / RMS current {c['margin']:.2f}, {c['verdict']}")
@@ -751,7 +765,9 @@ def markdown(s: dict, params: Params) -> str:
     lines += ["", f"Units N·m unless stated. Motor limit {params.motor.peak_torque_Nm:g} N·m at "
               f"the output, torque-speed line to {params.motor.no_load_speed_rad_s:.2f} rad/s. "
               "Demand = the controller's command before saturation; SF = motor limit / demand "
-              f"p99. Seed static: the seed's G(q) with {params.robot.weight_share_kg:.3f} kg at "
+              f"p99, or / applied p99 where the motor sat at its torque limit more than "
+              f"{100 - PERCENTILE:g} % of the time (clipped; its demand p99 was not met, and is "
+              f"not a need). Seed static: the seed's G(q) with {params.robot.weight_share_kg:.3f} kg at "
               "the foot. Per-cycle spreads are in summary.json."]
     return "\n".join(lines) + "\n"
 

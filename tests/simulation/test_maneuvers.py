@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 from fivebar_drake.cli import main
+from fivebar_drake.core.checks import CHECK_ORDER
 from fivebar_drake.core.footpath import PATHS, evaluate
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.mechanisms.fivebar import forward, static_torques
@@ -164,6 +165,40 @@ def test_crawl_torques_match_the_closed_form_statics(runs):
     assert mid.sum() > 500
     error = np.sqrt(np.mean((measured - predicted) ** 2))
     assert error < 0.1 * np.sqrt(np.mean(measured ** 2))
+
+
+def test_saturation_is_not_called_a_need(runs):
+    """The bound drives its front motors into their limits: where a motor's commands were
+    clipped (counted from the recorded clip flags) more than 1 % of the window, its demand p99
+    was not met, so the torque check takes what the motor delivered (SF = driving peak / p99 of
+    the applied torque) and fails naming the limit, and the answer does not call the demand a
+    need; below 1 % the SF is the driving peak over the demand p99."""
+    record, sig, s = runs["bound"]
+    start, end = s["window_s"]
+    win = (sig.t > start) & (sig.t <= end)
+    peak = record.params.motor.peak_torque_Nm
+    limited = 0
+    for i, (leg, ms) in enumerate(s["legs"].items()):
+        for j, (name, m) in enumerate(ms.items()):
+            torque = float(np.mean(sig.clipped_peak[win, i, j]))
+            share = torque + float(np.mean(sig.clipped_line[win, i, j]))
+            demand = np.percentile(np.abs(sig.command[win, i, j]), 99)
+            if share <= 0.01:
+                assert m["safety_factor"] == pytest.approx(peak / demand, rel=1e-9)
+                assert all("at_limit_fraction" not in m["checks"][c] for c in CHECK_ORDER)
+                continue
+            limited += 1
+            check = m["checks"]["torque" if torque >= share - torque else "speed"]
+            assert check["verdict"] == "fail"
+            assert check["at_limit_fraction"] == pytest.approx(share, rel=1e-9)
+            if torque >= share - torque:
+                applied = np.percentile(np.abs(sig.applied[win, i, j]), 99)
+                assert m["safety_factor"] == pytest.approx(peak / applied, rel=1e-9)
+                assert check["demand_sf"] == pytest.approx(peak / demand, rel=1e-9)
+    assert limited                          # the bound does clip: the test can fail
+    worst = s["legs"][s["worst_motor"].split()[0]][s["worst_motor"].split()[1]]
+    if any("at_limit_fraction" in worst["checks"][c] for c in CHECK_ORDER):
+        assert "the motors need" not in s["answer"] and "worked at their limit" in s["answer"]
 
 
 def test_motors_too_weak_to_jump_get_not_achieved(tmp_path, capsys):

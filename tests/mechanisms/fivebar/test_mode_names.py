@@ -16,9 +16,12 @@ FOOT = np.array([0.01, -0.19])     # m, a foot point below the hips every spacin
 SPACINGS_MM = np.linspace(85.0, 0.0, 171)
 
 
+BASE_LEG = load_params().leg
+
+
 def _leg(spacing_m):
-    leg = load_params().leg        # its geometry alone: the mechanical limits would cut modes
-    return dataclasses.replace(leg, motor_a_m=(-spacing_m / 2, 0.0), motor_b_m=(spacing_m / 2, 0.0),
+    """The seed's leg at this hip spacing (m), its geometry alone: the limits would cut modes."""
+    return dataclasses.replace(BASE_LEG, motor_a_m=(-spacing_m / 2, 0.0), motor_b_m=(spacing_m / 2, 0.0),
                                limits=LegLimits())
 
 
