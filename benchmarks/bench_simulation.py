@@ -41,7 +41,7 @@ from fivebar_drake.robots.quadruped.plant import add_robot, set_standing_pose
 from fivebar_drake.simulation import systems
 from fivebar_drake.simulation.recording import write_recording
 from fivebar_drake.simulation.scenario import load_scenario
-from fivebar_drake.simulation.summary import signals
+from fivebar_drake.simulation.signals import signals
 
 MEMORY_RUN = """
 import resource, sys

@@ -32,7 +32,8 @@ from fivebar_drake.simulation.plots import CAPABILITY_FILE, SIM_PLOT_FILES, writ
 from fivebar_drake.simulation.recording import RECORDING_FILE, write_recording
 from fivebar_drake.simulation.runner import SimulationRecord, simulate
 from fivebar_drake.simulation.scenario import Scenario
-from fivebar_drake.simulation.summary import (SUMMARY_FILES, apply_step_check, signals, summarize,
+from fivebar_drake.simulation.signals import signals
+from fivebar_drake.simulation.summary import (SUMMARY_FILES, apply_step_check, summarize,
                                               write_summary)
 
 

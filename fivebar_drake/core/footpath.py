@@ -89,7 +89,7 @@ class FootPath(Variant):
     title: ClassVar[str] = ""          # the path in a few words, e.g. "trot foot path"
     periodic: ClassVar[bool] = True    # False: a one-shot maneuver (Maneuver)
     pattern: ClassVar[str] = "trot"    # the legs' phases (the robot's legs.GAIT_PHASES_RAD)
-    goal: ClassVar[str] = "speed"      # what "achieved" means (simulation/summary.py GOALS)
+    goal: ClassVar[str] = "speed"      # what "achieved" means (simulation/summary.achievement)
     gait_defaults: ClassVar[dict] = {}  # gait fields (m, Hz) this path takes unless the scenario
     #                                     sets them (scenario.gait_*)
 

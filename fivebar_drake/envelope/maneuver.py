@@ -15,7 +15,8 @@ import numpy as np
 from fivebar_drake.envelope.spec import Maneuver
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.pipeline import run_simulation, write_simulation
-from fivebar_drake.simulation.summary import signals, window_rows
+from fivebar_drake.simulation.signals import signals
+from fivebar_drake.simulation.summary import window_rows
 
 OPERATING_POINTS = 2000      # (speed, torque) samples per motor and maneuver for the picture
 EXTREMES = 50                # of them, the largest |torque| and the largest |speed| samples

@@ -20,7 +20,9 @@ import numpy as np
 
 from fivebar_drake.core.files import save_figure
 from fivebar_drake.robots.quadruped.params import Params
-from fivebar_drake.simulation.summary import MOTORS, Signals, capability_along
+from fivebar_drake.mechanisms.fivebar import MOTORS
+from fivebar_drake.simulation.maneuver_figures import capability_along
+from fivebar_drake.simulation.signals import Signals
 
 PLOT_POINTS = 1500       # points per curve at most (~ the plot's width in pixels)
 BAND_FILL = 0.86         # the share of its band a strip's range takes (the rest: a gap)
@@ -199,7 +201,7 @@ def capability_figure(sig: Signals, legs, params: Params, summary: dict) -> plt.
     """Along the push-off and the landing (a panel each), per leg against its foot's height
     in the leg plane (the stroke): the measured ground force and the force the motors hold
     along it, within the torque box and within the envelope at the joint speeds
-    (summary.capability_along)."""
+    (maneuver_figures.capability_along)."""
     phases = {}
     if summary.get("jump"):
         j = summary["jump"]

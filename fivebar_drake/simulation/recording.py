@@ -31,13 +31,13 @@ import rerun.blueprint as rrb
 
 from fivebar_drake.core.rerun_files import TIMELINE, pose_frames, recording_file, scalars
 from fivebar_drake.core.rotation import body_rotations
-from fivebar_drake.mechanisms.fivebar import forward_points
+from fivebar_drake.mechanisms.fivebar import MOTORS, forward_points
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.plant import RobotLayout
 from fivebar_drake.robots.quadruped.legs import plane_to_body
 from fivebar_drake.simulation.events import FLIGHT_KINDS, FOOT_KINDS, detect_events
 from fivebar_drake.simulation.runner import SimulationRecord
-from fivebar_drake.simulation.summary import MOTORS, Signals
+from fivebar_drake.simulation.signals import Signals
 
 
 RECORDING_FILE = "run.rrd"
@@ -141,7 +141,7 @@ def run_events(sig: Signals, legs):
 def write_recording(path: Path, sig: Signals, record: SimulationRecord, summary: dict,
                     name: str = "") -> Path:
     """Write the run's .rrd file atomically (complete with its footer, then renamed into place)
-    from its signals (summary.signals), its record (the 3-D poses come from the recorded plant
+    from its signals (signals.signals), its record (the 3-D poses come from the recorded plant
     states) and its summary (statistics window, per-cycle peaks). name: the run's name in its
     recording id (e.g. an envelope's maneuver), beside the gait and the closure."""
     scenario = record.scenario

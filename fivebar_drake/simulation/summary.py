@@ -1,48 +1,35 @@
-"""What a simulated trot needed, against the static estimates: signals, whole-cycle statistics,
-summary.json and summary.md.
+"""What a simulated run needed, against the static estimates: whole-cycle statistics per leg
+and motor from its signals (simulation/signals.py), the checks and the verdict, the answer in one
+sentence, summary.json and summary.md.
 
-Every series is a mean over one log interval of plant steps (systems.StepRecorder), so a contact
-spike counts for the time it lasts. Per leg and motor, over the poses the robot went through:
-- applied: the torque the motor delivered (the command after saturation); demand: the command;
-- static_seed: the seed's G(q) with m_leg g at the foot; static_trot: the full model's static
-  torque with the scheduled stance load (the weight shared by the feet in stance);
-- static_contact: -J_P(q)^T F, F the measured ground force and J_P the Jacobian of the contact
-  point (the bottom of the foot sphere on flat ground);
-- the applied torque split into contact, links (M q'' + c + G of the links), rotor (N^2 J q'')
-  and friction.
-Statistics cover the whole gait cycles after the ramp; a run with fewer than MIN_CYCLES of them,
-or one that stopped early, gets the verdict "insufficient". The leg's limits (limits.py) are
-checked over the whole run: which leg reached which limit, when first, for how long, how far.
+Statistics cover the whole gait cycles after the ramp (a one-shot maneuver: its span after
+standing); a run with fewer than MIN_CYCLES of them, or one that stopped early, gets the verdict
+"insufficient". The leg's limits (limits.py) are checked over the whole run: which leg reached
+which limit, when first, for how long, how far. A maneuver's own figures (jump, landing, force
+capability) come from simulation/maneuver_figures.py.
 """
 
 from __future__ import annotations
 
-import dataclasses
 import json
 import math
-from dataclasses import dataclass
 from pathlib import Path
 import numpy as np
 
 from fivebar_drake.core.checks import CHECK_ORDER, SEVERITY, at_limit, motor_checks
 from fivebar_drake.core.files import json_ready, write_atomic
-from fivebar_drake.core.footpath import evaluate, stance_loads
-from fivebar_drake.core.rotation import body_rotations, tilt_deg
-from fivebar_drake.mechanisms.fivebar import (MOTORS, LimitTest, forward, held_force, inverse,
-                                              limit_tests, link_coms, link_jacobians,
-                                              static_torques, torques)
-from fivebar_drake.robots.quadruped.leg_loads import full_model, seed_model
+from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.robots.quadruped.params import Params
-from fivebar_drake.robots.quadruped.plant import RobotLayout, standing_height
-from fivebar_drake.robots.quadruped.legs import plane_rotation
+from fivebar_drake.robots.quadruped.plant import standing_height
+from fivebar_drake.simulation.maneuver_figures import maneuver_figures
 from fivebar_drake.simulation.runner import SimulationRecord
 from fivebar_drake.simulation.scenario import Scenario
+from fivebar_drake.simulation.signals import Signals
 
 
 SUMMARY_FILES = ("summary.md", "summary.json")   # summary.json last: its presence means complete
 MIN_CYCLES = 3            # fewer whole cycles than this give no verdict
 PERCENTILE = 99.0
-SWING_CONTACT_N = 1.0     # a swing foot pressing harder than this (~1.5 % of the weight) drags
 
 # Mid-swing, where a foot on the ground drags: after lift-off and before the descent to an early
 # touchdown (the trot path lifts a foot 1.4 mm by 10 % of its swing, 18 mm by 70 %).
@@ -52,112 +39,6 @@ MID_SWING = (0.1, 0.7)
 # (the motor ranges and the least knee angle, sdf.py) stop a joint at its bound, so a stopped
 # joint lies at it, not past it.
 LIMIT_REACHED = {"deg": 0.1, "m": 1e-4}
-
-
-@dataclass(frozen=True)
-class Signals:
-    """Per log interval (rows): t (s, interval end); body position (rows, 3) m, quaternion
-    (rows, 4), velocity (rows, 3) m/s (world), tilt (rows,) deg; per leg and motor (rows, legs,
-    2): q (rad), qd (rad/s, interval mean), command, applied, static_seed, static_trot,
-    static_contact, links, rotor, friction (N*m), clipped_peak, clipped_line (fractions);
-    foot_force_plane (rows, legs, 2) N (leg plane), foot_force_world (rows, legs, 3); gap (rows, legs) m (worst per interval);
-    stance (rows, legs) scheduled stance; swing_fraction (rows, legs) how far through its
-    scheduled swing a foot is (0 .. 1; nan in stance); swing_contact (rows, legs) foot pressing
-    the ground with more than SWING_CONTACT_N in scheduled swing; limits: the leg's limit tests
-    (limits.py) over the poses (rows, legs); the whole robot's centre of mass com_p (rows, 3) m
-    and its velocity com_v (rows, 3) m/s at each interval's end (from the state alone,
-    com_motion); ground_force (rows, 3) N, the interval mean of the total contact force on the
-    robot (world; the floating body's rows of the generalized contact forces)."""
-
-    t: np.ndarray
-    body_p: np.ndarray
-    body_quat: np.ndarray
-    body_v: np.ndarray
-    tilt_deg: np.ndarray
-    q: np.ndarray
-    qd: np.ndarray
-    command: np.ndarray
-    applied: np.ndarray
-    static_seed: np.ndarray
-    static_trot: np.ndarray
-    static_contact: np.ndarray
-    links: np.ndarray
-    rotor: np.ndarray
-    friction: np.ndarray
-    clipped_peak: np.ndarray
-    clipped_line: np.ndarray
-    foot_force_plane: np.ndarray
-    foot_force_world: np.ndarray
-    gap: np.ndarray
-    stance: np.ndarray
-    swing_fraction: np.ndarray
-    swing_contact: np.ndarray
-    limits: list[LimitTest]
-    com_p: np.ndarray
-    com_v: np.ndarray
-    ground_force: np.ndarray
-
-
-def signals(record: SimulationRecord) -> Signals:
-    """The run's signals (Signals) from its record alone: the recorder's table, the layout's
-    indices, the parameters and the scenario's gait schedule."""
-    table, lay = record.table, record.layout
-    params, scenario = record.params, record.scenario
-    st, t = table["state"], table["t"]
-    per_leg = lambda x: x[:, lay.state.actuators]  # noqa: E731  (rows, 8) -> (rows, legs, 2)
-    qd = per_leg(table["speed"])
-    period = np.median(np.diff(t)) if len(t) > 1 else scenario.log_period_s
-    q = st[:, lay.state.q_index] - qd * period / 2        # pose at the middle of each interval
-    # the mean acceleration over each interval is exactly its change of speed over its length
-    # (the run starts at rest), consistent with the impulse-averaged contact forces
-    qd_end = st[:, lay.state.v_index + lay.state.nq]
-    qdd = np.diff(qd_end, axis=0, prepend=0.0 * qd_end[:1]) / np.diff(t, prepend=0.0)[:, None, None]
-    pose = forward(params.leg, q)
-    lj = link_jacobians(params.leg, params.links, pose)
-    quat = st[:, lay.state.body_q:lay.state.body_q + 4]
-    r_world_plane = body_rotations(np.ascontiguousarray(quat)) @ plane_rotation()
-    # contact point: the bottom of the foot sphere, (0, 0, -r) from its centre in the world
-    down = -params.body.foot_radius_m * r_world_plane[:, 2, :2]          # leg plane (x, y)
-    force = foot_forces(table["contact_generalized"], lay, params, pose, down)
-    force_world = np.einsum("sij,slj->sli", r_world_plane[..., :2], force)
-    jw_de = lj.jw[..., 3, :]                                            # (rows, legs, 2)
-    j_contact = lj.jf.copy()
-    j_contact[..., 0, :] -= down[:, None, 1:2] * jw_de
-    j_contact[..., 1, :] += down[:, None, 0:1] * jw_de
-    static_contact = -np.einsum("slji,slj->sli", j_contact, force)
-    path = scenario.gait
-    tau_gait = t - path.start_s(scenario.stand_s)
-    gaiting = tau_gait[:, None] >= 0
-    stance = np.stack([evaluate(params.gait, path, tau_gait, ph).stance
-                       for ph in scenario.phases_rad], 1) & gaiting
-    u = np.stack([path.phase(params.gait, tau_gait, ph) for ph in scenario.phases_rad], 1)
-    swing = gaiting & ~stance & path.periodic
-    swing_fraction = np.where(swing, u / np.where(swing, path.stance_start(params.gait), 1.0),
-                              np.nan)
-    weight = lay.mass_kg * params.robot.gravity_m_s2
-    loads = np.where(gaiting, stance_loads(params.gait, scenario.gait, tau_gait,
-                                           scenario.phases_rad, weight).T, weight / len(lay.legs))
-    full = full_model(params)
-    trot_static = static_torques(params.leg, params.links,
-                                 dataclasses.replace(full, foot_load_N=loads), pose, lj)
-    links = torques(params.leg, params.links, dataclasses.replace(full, foot_load_N=0.0), pose, qd,
-                    qdd, lj).total
-    rotor = params.motor.reflected_inertia_kg_m2 * qdd
-    return Signals(
-        t=t, body_p=st[:, lay.state.body_q + 4:lay.state.body_q + 7], body_quat=quat,
-        body_v=st[:, lay.state.nq + lay.state.body_v + 3:lay.state.nq + lay.state.body_v + 6], tilt_deg=tilt_deg(quat),
-        q=q, qd=qd, command=per_leg(table["command"]), applied=per_leg(table["motor_torque"]),
-        static_seed=static_torques(params.leg, params.links, seed_model(params), pose, lj),
-        static_trot=trot_static, static_contact=static_contact, links=links, rotor=rotor,
-        friction=per_leg(table["motor_torque"] - table["applied"]),
-        clipped_peak=per_leg(table["clipped_peak"]),
-        clipped_line=per_leg(table["clipped_line"]), foot_force_plane=force,
-        foot_force_world=force_world, gap=table["gap"],
-        stance=stance, swing_fraction=swing_fraction,
-        swing_contact=(~stance) & gaiting & (force_world[..., 2] > SWING_CONTACT_N),
-        limits=limit_tests(params.leg, pose),
-        **dict(zip(("com_p", "com_v"), com_motion(record))),
-        ground_force=table["contact_generalized"][:, lay.state.body_v + 3:lay.state.body_v + 6])
 
 
 def limit_report(sig: Signals, params: Params, legs) -> dict:
@@ -192,46 +73,6 @@ def limits_text(report: dict) -> str:
         f"{h['leg']} {h['limit']} first at t = {h['first_t_s']:.3f} s, {h['share_of_time']:.1%} "
         f"of the time, worst {h['worst_value']:.4g} {h['unit']} (bound {h['bound']:.4g} "
         f"{h['unit']}, {h['field']})" for h in report["hits"])
-
-
-def com_motion(record: SimulationRecord) -> tuple[np.ndarray, np.ndarray]:
-    """The robot's centre of mass (rows, 3) m and its velocity (rows, 3) m/s in the world at
-    each recorded interval's end, from the state: the layout's COM (body frame, standing pose)
-    moved by the links' COMs away from their standing places, and the body's velocity plus the
-    links' relative motion (J_v q_dot per link, leg plane) weighted by their masses."""
-    params, lay, st = record.params, record.layout, record.table["state"]
-    leg, links = params.leg, params.links
-    masses = np.array([links[n].mass_kg for n in ("AC", "BD", "CE", "DE")])
-    q = st[:, lay.state.q_index]                                       # (rows, legs, 2)
-    qd = st[:, lay.state.nq + lay.state.v_index]
-    pose = forward(leg, q)
-    standing = link_coms(leg, links, inverse(leg, np.array([params.gait.x_center_m,
-                                                            params.gait.y_home_m])))
-    shift = np.einsum("k,slkj->sj", masses, link_coms(leg, links, pose) - standing)
-    rate = np.einsum("k,slkij,slj->si", masses, link_jacobians(leg, links, pose).jv, qd)
-    plane = plane_rotation()[:, :2]
-    r_b = lay.com_m + (shift @ plane.T) / lay.mass_kg                  # (rows, 3) body frame
-    quat = st[:, lay.state.body_q:lay.state.body_q + 4]
-    r_wb = body_rotations(quat)
-    r_w = np.einsum("sij,sj->si", r_wb, r_b)
-    w0 = lay.state.nq + lay.state.body_v
-    omega, v_body = st[:, w0:w0 + 3], st[:, w0 + 3:w0 + 6]
-    p_body = st[:, lay.state.body_q + 4:lay.state.body_q + 7]
-    v_rel = np.einsum("sij,sj->si", r_wb, (rate @ plane.T) / lay.mass_kg)
-    return p_body + r_w, v_body + np.cross(omega, r_w) + v_rel
-
-
-def foot_forces(generalized, layout: RobotLayout, params: Params, pose, down) -> np.ndarray:
-    """Mean ground force on each foot (rows, legs, 2) in N, leg plane, from the interval means
-    of the generalized contact forces (rows, nv): the contact point P (foot centre + down, leg
-    plane) on link DE gives tau[theta_B] = (P - B)_perp . F and tau[phi_D] = (P - D)_perp . F
-    (perp: turned +90 deg about the hinge); the A side of the loop is not touched."""
-    perp = lambda v: np.stack([-v[..., 1], v[..., 0]], -1)  # noqa: E731
-    p = pose.f + down[:, None, :]
-    jac_t = np.stack([perp(p - params.leg.b), perp(p - pose.d)], -2)      # rows of J_P^T
-    tau = np.stack([generalized[:, [layout.indices[leg].v[k] for leg in layout.legs]]
-                    for k in (1, 3)], -1)
-    return np.linalg.solve(jac_t, tau[..., None])[..., 0]
 
 
 def cycle_window(scenario: Scenario, params: Params, t_end: float) -> tuple[float, float, int]:
@@ -426,138 +267,6 @@ def summarize(sig: Signals, record: SimulationRecord, seed_analysis: dict) -> di
     }
     summary["answer"] = answer(summary, params)
     return summary
-
-
-AIRBORNE_N = 1.0   # a total ground force below this over a recorded interval: every foot is off
-
-
-def maneuver_figures(sig: Signals, record: SimulationRecord, start: float) -> dict:
-    """A maneuver's figures from the recorded intervals (start: the maneuver's start, s):
-    - jump (a plan with a takeoff): takeoff = the end of the last interval with ground contact
-      before the first one without (total ground force < AIRBORNE_N) after the push-off's onset;
-      takeoff speed = the centre of mass's vertical speed there; height_m = the body's apex above
-      its standing height; time_to_apex_s from the onset; agility_m_s = height / that time
-      (Haldane et al. 2016); the push-off's motor work (delivered torque x joint speed,
-      summed over the eight motors) and the centre of mass's rise it bounds (W / (m g));
-    - landing (a jump's or a drop's): from the first interval with ground contact after the
-      flight to the first whose end has the centre of mass at rest or rising: touchdown speed,
-      the ground's impulse and peak force, the motors' peak applied torque, the body's drop
-      (landing_compression_m);
-    - force_capability along the push-off and the landing (capability_along).
-    None where the event did not happen (why_grounded says why no foot left)."""
-    scenario, params, lay = record.scenario, record.params, record.layout
-    events = {k: start + v for k, v in scenario.gait.events(params.gait).items()}
-    mass, g = lay.mass_kg, params.robot.gravity_m_s2
-    fz, t = sig.ground_force[:, 2], sig.t
-    dt = np.diff(t, prepend=t[0] - scenario.log_period_s)
-    out = {"jump": None, "landing": None, "force_capability": None, "why_grounded": ""}
-    phases = {}
-    after = t > events.get("onset", events.get("touchdown", start))
-    k_to = None
-    if "takeoff" in events:
-        onset = events["onset"]
-        air = np.flatnonzero((t > onset) & (fz < AIRBORNE_N))
-        if not air.size:
-            push = (t > onset) & (t <= events["takeoff"])
-            out["why_grounded"] = why_grounded(sig, record, push)
-        else:
-            k_to = int(air[0]) - 1
-            back = np.flatnonzero((np.arange(len(t)) > k_to) & (fz >= AIRBORNE_N))
-            k_td = int(back[0]) if back.size else len(t) - 1
-            k_apex = k_to + int(np.argmax(sig.body_p[k_to:k_td + 1, 2]))
-            k_on = int(np.searchsorted(t, onset))
-            push = slice(k_on, k_to + 1)
-            work = float(np.sum(sig.applied[push] * sig.qd[push] * dt[push, None, None]))
-            height = float(sig.body_p[k_apex, 2]) - standing_height(params)
-            rise = float(sig.com_p[k_apex:k_td + 1, 2].max() - sig.com_p[k_on, 2])
-            out["jump"] = {
-                "height_m": height, "takeoff_speed_m_s": float(sig.com_v[k_to, 2]),
-                "takeoff_s": float(t[k_to]), "apex_s": float(t[k_apex]), "onset_s": onset,
-                "time_to_apex_s": float(t[k_apex] - onset),
-                "agility_m_s": height / float(t[k_apex] - onset),
-                "com_rise_after_takeoff_m": float(sig.com_p[k_apex:k_td + 1, 2].max()
-                                                  - sig.com_p[k_to, 2]),
-                "com_rise_m": rise, "push_work_J": work,
-                "energy_bound_rise_m": work / (mass * g)}
-            phases["push-off"] = np.zeros(len(t), dtype=bool)
-            phases["push-off"][push] = True
-            after = np.arange(len(t)) > k_to
-    if "touchdown" in events and (k_to is not None or "takeoff" not in events):
-        contact = np.flatnonzero(after & (fz >= AIRBORNE_N))
-        if contact.size:
-            k_td = int(contact[0])
-            rest = np.flatnonzero((np.arange(len(t)) > k_td) & (sig.com_v[:, 2] >= 0.0))
-            k_end = int(rest[0]) if rest.size else len(t) - 1
-            land = slice(k_td, k_end + 1)
-            v_td = float(sig.com_v[k_td - 1, 2])
-            landing = {
-                "touchdown_s": float(t[k_td - 1]), "end_s": float(t[k_end]),
-                "touchdown_speed_m_s": -v_td, "duration_s": float(t[k_end] - t[k_td - 1]),
-                "impulse_N_s": float(np.sum(fz[land] * dt[land])),
-                "momentum_change_N_s": float(mass * (sig.com_v[k_end, 2] - v_td)),
-                "peak_force_N": float(fz[land].max()),
-                "peak_torque_Nm": float(np.abs(sig.applied[land]).max()),
-                "compression_m": float(sig.body_p[k_td - 1, 2] - sig.body_p[land, 2].min())}
-            out["landing"] = landing
-            phases["landing"] = np.zeros(len(t), dtype=bool)
-            phases["landing"][land] = True
-            if out["jump"] is not None:
-                out["jump"]["landing_peak_torque_Nm"] = landing["peak_torque_Nm"]
-                out["jump"]["landing_compression_m"] = landing["compression_m"]
-    if phases:
-        out["force_capability"] = capability_along(sig, params, phases, lay.legs)
-    return out
-
-
-def why_grounded(sig: Signals, record: SimulationRecord, push) -> str:
-    """Why no foot left the ground: the largest ground force of the push-off against the
-    weight, and what the legs' torque box holds vertically at the crouch (the figure that
-    stops the jump)."""
-    params, lay = record.params, record.layout
-    weight = lay.mass_kg * params.robot.gravity_m_s2
-    if not push.any():
-        return "the run ended before the push-off"
-    k = int(np.flatnonzero(push)[0])
-    jf = link_jacobians(params.leg, params.links, forward(params.leg, sig.q[k])).jf
-    held = held_force(jf, params.motor.peak_torque_Nm, -params.motor.peak_torque_Nm,
-                      np.array([0.0, 1.0])).sum()
-    return (f"the push-off's largest ground force was {sig.ground_force[push, 2].max():.0f} N "
-            f"against the weight {weight:.0f} N; at the crouch the legs hold at most {held:.0f} N "
-            f"vertically with their {params.motor.peak_torque_Nm:.2f} N·m motors")
-
-
-def capability_along(sig: Signals, params: Params, phases: dict, legs) -> dict:
-    """The measured ground force on each foot against the force the motors can hold along it,
-    over the rows of each phase (a name -> row mask) where the foot carries more than a tenth of
-    its share of the weight: the torque box |tau| <= peak and the envelope at the joint speeds
-    (Motor.limits) through J_F^T (held_force). Arrays per phase (rows; foot height y in the leg
-    plane, required and available N, per leg) and the least ratio available / required."""
-    motor = params.motor
-    pose = forward(params.leg, sig.q)
-    jf = link_jacobians(params.leg, params.links, pose).jf
-    force = sig.foot_force_plane
-    size = np.linalg.norm(force, axis=-1)
-    unit = force / np.maximum(size, 1e-12)[..., None]
-    box = held_force(jf, motor.peak_torque_Nm, -motor.peak_torque_Nm, unit)
-    upper, lower = motor.limits(sig.qd)
-    envelope = held_force(jf, upper, lower, unit)
-    floor = 0.1 * params.robot.total_mass_kg * params.robot.gravity_m_s2 / force.shape[1]
-    out, least = {"phases": {}}, {"box": (math.inf, None), "envelope": (math.inf, None)}
-    for name, rows in phases.items():
-        loaded = rows[:, None] & (size > floor)
-        out["phases"][name] = {"t": sig.t[rows], "foot_y_m": pose.f[rows, :, 1],
-                               "required_N": np.where(loaded, size, np.nan)[rows],
-                               "box_N": box[rows], "envelope_N": envelope[rows]}
-        for key, held in (("box", box), ("envelope", envelope)):
-            ratio = np.where(loaded, held / np.maximum(size, 1e-12), np.inf)
-            k = np.unravel_index(np.argmin(ratio), ratio.shape)
-            if ratio[k] < least[key][0]:
-                least[key] = (float(ratio[k]), (name, float(sig.t[k[0]]), int(k[1])))
-    for key, (ratio, where) in least.items():
-        out[f"least_ratio_{key}"] = ratio if where else None
-        out[f"least_{key}_at"] = {"phase": where[0], "t_s": where[1], "leg": legs[where[2]]} \
-            if where else None
-    return out
 
 
 def seed_analysis_load(params: Params) -> str:

@@ -22,7 +22,7 @@ from fivebar_drake.robots.quadruped.leg_loads import full_model
 from fivebar_drake.robots.quadruped.plant import standing_height
 from fivebar_drake.simulation.runner import load_run
 from fivebar_drake.simulation.scenario import load_scenario
-from fivebar_drake.simulation.summary import signals
+from fivebar_drake.simulation.signals import signals
 
 # each maneuver's scenario, as short as its verdict allows (3 whole cycles after the ramp for a
 # gait, the maneuver's span after standing for a one-shot one)

@@ -19,7 +19,7 @@ from fivebar_drake.simulation.events import CONTACT_N, detect_events, phases
 from fivebar_drake.simulation.plots import Band, StripChart, band_of, extremes
 from fivebar_drake.simulation.recording import EYE_OFFSET_M, read_series
 from fivebar_drake.simulation.scenario import load_scenario
-from fivebar_drake.simulation.summary import signals
+from fivebar_drake.simulation.signals import signals
 
 LEGS = ("FL", "FR", "RL", "RR")
 G = 9.81

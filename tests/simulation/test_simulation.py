@@ -19,7 +19,7 @@ from fivebar_drake.simulation.recording import read_series
 from fivebar_drake.simulation.scenario import load_scenario
 from fivebar_drake.robots.quadruped.plant import set_standing_pose
 from fivebar_drake.simulation.builder import build_diagram, check_run
-from fivebar_drake.simulation.summary import signals
+from fivebar_drake.simulation.signals import signals
 
 TEST_DURATION_S = 4.5   # 0.5 s standing, 1 s ramp, 3 whole trot cycles
 

@@ -14,7 +14,8 @@ from fivebar_drake.cli import main
 from fivebar_drake.core.checks import Checks, speed_check, thermal_check, worst_check
 from fivebar_drake.pipeline import run_simulation, run_step_check, summarize_run
 from fivebar_drake.simulation.scenario import load_scenario
-from fivebar_drake.simulation.summary import apply_step_check, cycle_window, signals
+from fivebar_drake.simulation.signals import signals
+from fivebar_drake.simulation.summary import apply_step_check, cycle_window
 
 DURATION_S = 4.5
 CHECKS = Checks(sf_pass=2.0, sf_warn=1.5)
