@@ -179,6 +179,13 @@ def _fmt(x, pattern: str = "{:.2f}") -> str:
         pattern.format(x)
 
 
+def _at_limit(check: dict) -> str:
+    """', at its limit X% of the time' for a check that failed at the motor's limit
+    (core/checks.at_limit): its demand was not met, and is not a need."""
+    share = check.get("at_limit_fraction")
+    return "" if share is None else f", at its limit {share:.1%} of the time"
+
+
 def markdown(report: dict) -> str:
     lines = ["# Duty envelope of the hip motors", "", report["answer"], ""]
     if not report["complete"]:
@@ -189,7 +196,10 @@ def markdown(report: dict) -> str:
               f"({m['braking_peak_torque_Nm']:.2f} braking), no-load speed "
               f"{m['no_load_speed_rad_s']:.2f} rad/s, continuous "
               f"{_fmt(m['continuous_torque_Nm'])} N·m. Each check is from the leg where it is "
-              "worst; the verdict is the worst check (not achieved where the motion was not).",
+              "worst; the verdict is the worst check (not achieved where the motion was not). "
+              "\"At its limit\": the motor's commands were clipped more than 1 % of the time, so "
+              "the SF is on the torque it delivered: the controller's demand beyond it was not "
+              "met and is not a need.",
               ""]
     for motor in MOTORS:
         lines += [f"## Motor {motor}", "",
@@ -205,9 +215,10 @@ def markdown(report: dict) -> str:
             c = row["checks"]
             lines.append(
                 f"| {name} | {row['verdict'].upper()} | {row['deciding_check'] or '—'} | "
-                f"{_fmt(c['torque']['sf'])} ({c['torque']['leg']}) | "
+                f"{_fmt(c['torque']['sf'])} ({c['torque']['leg']}){_at_limit(c['torque'])} | "
                 f"{_fmt(c['speed']['least_margin'])}, {c['speed']['outside_fraction']:.1%} "
-                f"({c['speed']['leg']}) | {_fmt(c['thermal'].get('margin'))}, "
+                f"({c['speed']['leg']}){_at_limit(c['speed'])} | "
+                f"{_fmt(c['thermal'].get('margin'))}, "
                 f"{_fmt(c['thermal'].get('rms_current_A'), '{:.3f}')} ({c['thermal']['leg']}) | "
                 f"{c['achieved']['verdict']} ({c['achieved']['leg']}) |")
         s = report["sized_by"][motor]
