@@ -128,29 +128,28 @@ def motor_checks(motor: Motor, checks: Checks, demand_Nm, speed_rad_s, torque_fi
     return checks_of(motor, checks, torque_figure_Nm, margins, outside, rms)
 
 
-def at_limit(out: dict, peak_Nm: float, delivered_Nm: float, torque_share: float,
-             voltage_share: float, allowed_share: float) -> dict:
+def at_limit(out: dict, checks: Checks, peak_Nm: float, delivered_Nm: float,
+             torque_share: float, voltage_share: float, allowed_share: float) -> dict:
     """A motor's checks (motor_checks) when its commands were clipped more often than
     allowed_share of the time (the share above the percentile the torque figure takes): the
-    demand's figure is then an ask the motor did not meet, not a need. The check of the limit
-    it sat at most often fails: torque (the peak current; its sf becomes the driving peak over
-    delivered_Nm, what the motor gave at that percentile) or speed (the voltage at speed), with
-    at_limit_fraction, why, and demand_sf (the sf on the demand) where the sf changes. Returns
-    out, changed; unchanged below allowed_share."""
+    demand's figure is then an ask the motor did not meet, not a need. The torque check takes
+    what the motor gave instead (sf = the driving peak over delivered_Nm, that percentile of the
+    delivered torque; demand_sf keeps the sf on the demand), and the check of the limit it sat at
+    most often fails, with at_limit_fraction and why: torque (the peak current) or speed (the
+    voltage at speed). Returns out, changed; unchanged below allowed_share."""
     share = torque_share + voltage_share
     if not share > allowed_share:
         return out
+    sf = peak_Nm / delivered_Nm if delivered_Nm > 0 else math.inf
+    out = {**out, "torque": dict(out["torque"], demand_sf=out["torque"]["sf"], sf=_finite(sf),
+                                 verdict=verdict(checks, sf))}
     name = "torque" if torque_share >= voltage_share else "speed"
     what = ("its torque limit (the peak current)" if name == "torque" else
             "its voltage limit at speed (the back-EMF)")
-    check = dict(out[name], verdict="fail", at_limit_fraction=share,
-                 why=f"at {what} {share:.1%} of the time (more than {allowed_share:.0%}): it "
-                     "gave all it had, and the demand beyond it is the controller's ask, not "
-                     "a need")
-    if name == "torque":
-        check["demand_sf"] = check["sf"]
-        check["sf"] = _finite(peak_Nm / delivered_Nm if delivered_Nm > 0 else math.inf)
-    out = {**out, name: check}
+    out[name] = dict(out[name], verdict="fail", at_limit_fraction=share,
+                     why=f"at {what} {share:.1%} of the time (more than {allowed_share:.0%}): it "
+                         "gave all it had, and the demand beyond it is the controller's ask, "
+                         "not a need")
     out["verdict"], out["deciding_check"] = worst_check(out)
     return out
 

@@ -135,10 +135,10 @@ def motor_summary(sig: Signals, params: Params, win, cycle, cycles: int, i: int,
     static_seed, static_trot = _peak(sig.static_seed[win, i, j]), _peak(sig.static_trot[win, i, j])
     clipped_peak, clipped_line = sig.clipped_peak[win, i, j], sig.clipped_line[win, i, j]
     checks = at_limit(motor_checks(motor, params.checks, demand, speed, demand_p99, applied),
-                      motor.peak_torque_Nm, _p(applied), _mean(clipped_peak),
+                      params.checks, motor.peak_torque_Nm, _p(applied), _mean(clipped_peak),
                       _mean(clipped_line), 1.0 - PERCENTILE / 100) if demand.size else None
-    at_torque_limit = bool(checks) and "demand_sf" in checks["torque"]
-    sf = _ratio(motor.peak_torque_Nm, _p(applied) if at_torque_limit else demand_p99)
+    unmet = bool(checks) and "demand_sf" in checks["torque"]      # at_limit: the demand unmet
+    sf = _ratio(motor.peak_torque_Nm, _p(applied) if unmet else demand_p99)
     clipped = clipped_peak + clipped_line
     saturated, unsaturated = _mean(clipped), demand[clipped == 0]
     return {
