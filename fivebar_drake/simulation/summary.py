@@ -365,11 +365,12 @@ def answer(s: dict, params: Params) -> str:
     limited = next((c[k] for k in CHECK_ORDER if "at_limit_fraction" in c[k]), None)
     figure = m["p99_torque_Nm"] if limited else m["demand_p99_Nm"]
     if limited:
-        need = (f"the motors worked at their limit (worst motor {leg} {name}, "
-                f"{limited['at_limit_fraction']:.1%} of the time, {over}): they gave "
-                f"{m['p99_torque_Nm']:.2f} N·m ({PERCENTILE:g}th percentile of the delivered "
-                f"torque); the controller asked {m['demand_p99_Nm']:.2f} N·m, which the motion, "
-                "achieved without it, did not need")
+        need = (f"the motors worked at their limit (worst motor {leg} {name}, at it "
+                f"{limited['at_limit_fraction']:.1%} of the time, {over}): they delivered "
+                f"{m['p99_torque_Nm']:.2f} N·m ({PERCENTILE:g}th percentile), and what the "
+                "controller asked beyond the limit was not needed: the motion was achieved "
+                f"without it (the demand's {PERCENTILE:g}th percentile: "
+                f"{m['demand_p99_Nm']:.2f} N·m)")
     else:
         need = (f"the motors need {m['demand_p99_Nm']:.2f} N·m ({PERCENTILE:g}th percentile "
                 f"of the demand {over}, worst motor {leg} {name})")
