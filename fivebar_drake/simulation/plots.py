@@ -26,7 +26,8 @@ from fivebar_drake.simulation.signals import Signals
 
 PLOT_POINTS = 1500       # points per curve at most (~ the plot's width in pixels)
 BAND_FILL = 0.86         # the share of its band a strip's range takes (the rest: a gap)
-STYLE = {"font.size": 8}
+# hinting off: glyphs drawn as outlined (a sixth less drawing time, no visible change at 90 dpi)
+STYLE = {"font.size": 8, "text.hinting": "none"}
 # per torque series: the signal, its label, line style; the motor's colour (A blue, B orange)
 # in its shade: applied full, demand light, the static estimates dark
 TORQUE_LINES = (("command", "demand (command)", dict(lw=0.8, alpha=0.45)),
@@ -130,29 +131,28 @@ def torque_figure(sig: Signals, legs, params: Params, window) -> plt.Figure:
     """Per leg, both motors' demand, applied torque and static estimates over time, the motor
     limit and the statistics window (shaded)."""
     limit = params.motor.peak_torque_Nm
-    with plt.rc_context(STYLE):
-        fig = plt.figure(figsize=(12, 1.9 * len(legs) + 0.9))
-        chart = StripChart(fig, _span(sig), [Band(f"{leg} torque (N·m)", -1.1 * limit,
-                                                  1.1 * limit) for leg in legs])
-        chart.ax.axvspan(*window, color="0.94", zorder=0)
-        for i, leg in enumerate(legs):
-            for j, motor in enumerate(MOTORS):
-                full, dark = MOTOR_COLORS[motor]
-                for name, label, style in TORQUE_LINES:
-                    style = dict(style)
-                    color = dark if style.pop("color_dark", False) else full
-                    chart.plot(i, sig.t, getattr(sig, name)[:, i, j], color=color, **style)
-            for sign in (1, -1):
-                chart.hline(i, sign * limit, color="r", lw=1.0)
-        chart.finish()
-        fig.text(0.07, 1 - 0.06 / fig.get_figheight(),
-                 f"motor A blue, motor B orange; red: the motor's limit ±{limit:g} N·m; "
-                 "shaded: the statistics window\n" + "; ".join(
-                     f"{what}: {label}" for what, (_, label, _) in zip(
-                         ("light", "bold", "dotted, dark", "dashed, dark"), TORQUE_LINES)),
-                 va="top")
-        fig.subplots_adjust(left=0.07, right=0.99, bottom=0.45 / fig.get_figheight(),
-                            top=1 - 0.45 / fig.get_figheight())
+    fig = plt.figure(figsize=(12, 1.9 * len(legs) + 0.9))
+    chart = StripChart(fig, _span(sig), [Band(f"{leg} torque (N·m)", -1.1 * limit,
+                                              1.1 * limit) for leg in legs])
+    chart.ax.axvspan(*window, color="0.94", zorder=0)
+    for i, leg in enumerate(legs):
+        for j, motor in enumerate(MOTORS):
+            full, dark = MOTOR_COLORS[motor]
+            for name, label, style in TORQUE_LINES:
+                style = dict(style)
+                color = dark if style.pop("color_dark", False) else full
+                chart.plot(i, sig.t, getattr(sig, name)[:, i, j], color=color, **style)
+        for sign in (1, -1):
+            chart.hline(i, sign * limit, color="r", lw=1.0)
+    chart.finish()
+    fig.text(0.07, 1 - 0.06 / fig.get_figheight(),
+             f"motor A blue, motor B orange; red: the motor's limit ±{limit:g} N·m; "
+             "shaded: the statistics window\n" + "; ".join(
+                 f"{what}: {label}" for what, (_, label, _) in zip(
+                     ("light", "bold", "dotted, dark", "dashed, dark"), TORQUE_LINES)),
+             va="top")
+    fig.subplots_adjust(left=0.07, right=0.99, bottom=0.45 / fig.get_figheight(),
+                        top=1 - 0.45 / fig.get_figheight())
     return fig
 
 
@@ -160,22 +160,21 @@ def motion_figure(sig: Signals, legs, gait_speed: float) -> plt.Figure:
     """Loop gap per leg (µm, worst per interval), body height (mm), tilt (deg) and forward
     speed (m/s) against the gait's: one unit per band."""
     gap, height = sig.gap * 1e6, sig.body_p[:, 2] * 1e3
-    with plt.rc_context(STYLE):
-        fig = plt.figure(figsize=(10, 7.5))
-        chart = StripChart(fig, _span(sig), [
-            band_of("loop gap (µm)", gap), band_of("body height (mm)", height),
-            band_of("tilt (deg)", sig.tilt_deg),
-            band_of("forward speed (m/s)", sig.body_v[:, 0], [gait_speed])])
-        for i, leg in enumerate(legs):
-            chart.plot(0, sig.t, gap[:, i], lw=0.8, color=LEG_COLORS[i])
-        chart.plot(1, sig.t, height, color="C0")
-        chart.plot(2, sig.t, sig.tilt_deg, color="C0")
-        chart.plot(3, sig.t, sig.body_v[:, 0], color="C0")
-        chart.hline(3, gait_speed, color="k", ls="--", lw=1)
-        chart.finish()
-        fig.text(0.98, 0.985, "loop gap: " + ", ".join(f"{leg} {name}" for leg, name in zip(
-            legs, LEG_COLOR_NAMES)) + "; dashed: the gait's speed", ha="right", va="top")
-        fig.subplots_adjust(left=0.09, right=0.98, bottom=0.06, top=0.96)
+    fig = plt.figure(figsize=(10, 7.5))
+    chart = StripChart(fig, _span(sig), [
+        band_of("loop gap (µm)", gap), band_of("body height (mm)", height),
+        band_of("tilt (deg)", sig.tilt_deg),
+        band_of("forward speed (m/s)", sig.body_v[:, 0], [gait_speed])])
+    for i, leg in enumerate(legs):
+        chart.plot(0, sig.t, gap[:, i], lw=0.8, color=LEG_COLORS[i])
+    chart.plot(1, sig.t, height, color="C0")
+    chart.plot(2, sig.t, sig.tilt_deg, color="C0")
+    chart.plot(3, sig.t, sig.body_v[:, 0], color="C0")
+    chart.hline(3, gait_speed, color="k", ls="--", lw=1)
+    chart.finish()
+    fig.text(0.98, 0.985, "loop gap: " + ", ".join(f"{leg} {name}" for leg, name in zip(
+        legs, LEG_COLOR_NAMES)) + "; dashed: the gait's speed", ha="right", va="top")
+    fig.subplots_adjust(left=0.09, right=0.98, bottom=0.06, top=0.96)
     return fig
 
 
@@ -187,13 +186,14 @@ def write_sim_plots(sig: Signals, legs, params: Params, summary: dict,
                     out_dir: Path) -> list[Path]:
     """Write SIM_PLOT_FILES into out_dir (atomically), and CAPABILITY_FILE for a maneuver with
     a push-off or a landing; returns their paths."""
-    figures = (torque_figure(sig, legs, params, summary["window_s"]),
-               motion_figure(sig, legs, summary["gait_speed_m_s"]))
-    written = [save_figure(fig, out_dir / name, dpi=90, compress_level=1)
-               for name, fig in zip(SIM_PLOT_FILES, figures)]
-    if summary.get("force_capability"):
-        written.append(save_figure(capability_figure(sig, legs, params, summary),
-                                   out_dir / CAPABILITY_FILE, dpi=90, compress_level=1))
+    with plt.rc_context(STYLE):               # drawn when saved: the style covers both
+        figures = (torque_figure(sig, legs, params, summary["window_s"]),
+                   motion_figure(sig, legs, summary["gait_speed_m_s"]))
+        written = [save_figure(fig, out_dir / name, dpi=90, compress_level=1)
+                   for name, fig in zip(SIM_PLOT_FILES, figures)]
+        if summary.get("force_capability"):
+            written.append(save_figure(capability_figure(sig, legs, params, summary),
+                                       out_dir / CAPABILITY_FILE, dpi=90, compress_level=1))
     return written
 
 

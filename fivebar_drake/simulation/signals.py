@@ -93,7 +93,8 @@ def signals(record: SimulationRecord) -> Signals:
     pose = forward(params.leg, q)
     lj = link_jacobians(params.leg, params.links, pose)
     quat = st[:, lay.state.body_q:lay.state.body_q + 4]
-    r_world_plane = body_rotations(np.ascontiguousarray(quat)) @ plane_rotation()
+    r_wb = body_rotations(np.ascontiguousarray(quat))                   # body -> world
+    r_world_plane = r_wb @ plane_rotation()
     # contact point: the bottom of the foot sphere, (0, 0, -r) from its centre in the world
     down = -params.body.foot_radius_m * r_world_plane[:, 2, :2]          # leg plane (x, y)
     force = foot_forces(table["contact_generalized"], lay, params, pose, down)
@@ -134,15 +135,16 @@ def signals(record: SimulationRecord) -> Signals:
         stance=stance, swing_fraction=swing_fraction,
         swing_contact=(~stance) & gaiting & (force_world[..., 2] > SWING_CONTACT_N),
         limits=limit_tests(params.leg, pose),
-        **dict(zip(("com_p", "com_v"), com_motion(record))),
+        **dict(zip(("com_p", "com_v"), com_motion(record, r_wb))),
         ground_force=table["contact_generalized"][:, lay.state.body_v + 3:lay.state.body_v + 6])
 
 
-def com_motion(record: SimulationRecord) -> tuple[np.ndarray, np.ndarray]:
+def com_motion(record: SimulationRecord, r_wb) -> tuple[np.ndarray, np.ndarray]:
     """The robot's centre of mass (rows, 3) m and its velocity (rows, 3) m/s in the world at
     each recorded interval's end, from the state: the layout's COM (body frame, standing pose)
     moved by the links' COMs away from their standing places, and the body's velocity plus the
-    links' relative motion (J_v q_dot per link, leg plane) weighted by their masses."""
+    links' relative motion (J_v q_dot per link, leg plane) weighted by their masses. r_wb: the
+    body's rotation to the world per row (rows, 3, 3)."""
     params, lay, st = record.params, record.layout, record.table["state"]
     leg, links = params.leg, params.links
     masses = np.array([links[n].mass_kg for n in ("AC", "BD", "CE", "DE")])
@@ -152,11 +154,10 @@ def com_motion(record: SimulationRecord) -> tuple[np.ndarray, np.ndarray]:
     standing = link_coms(leg, links, inverse(leg, np.array([params.gait.x_center_m,
                                                             params.gait.y_home_m])))
     shift = np.einsum("k,slkj->sj", masses, link_coms(leg, links, pose) - standing)
-    rate = np.einsum("k,slkij,slj->si", masses, link_jacobians(leg, links, pose).jv, qd)
+    rate = np.einsum("k,slkij,slj->si", masses, link_jacobians(leg, links, pose).jv, qd,
+                     optimize=True)
     plane = plane_rotation()[:, :2]
     r_b = lay.com_m + (shift @ plane.T) / lay.mass_kg                  # (rows, 3) body frame
-    quat = st[:, lay.state.body_q:lay.state.body_q + 4]
-    r_wb = body_rotations(quat)
     r_w = np.einsum("sij,sj->si", r_wb, r_b)
     w0 = lay.state.nq + lay.state.body_v
     omega, v_body = st[:, w0:w0 + 3], st[:, w0 + 3:w0 + 6]
