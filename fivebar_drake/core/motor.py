@@ -161,6 +161,13 @@ def speed_margins(law, torque, speed):
     return margin, outside
 
 
+def _flat(values: np.ndarray) -> np.ndarray:
+    """values as a flat, C-contiguous, writable float array: the one array type the compiled
+    laws are called with (a read-only view, e.g. np.broadcast_to's, would load a second
+    compiled variant)."""
+    return np.require(np.ravel(values), dtype=float, requirements=["C", "W"])
+
+
 class Motor:
     """What every actuator gives (output side, SI): peak_torque_Nm (driving, at stall),
     no_load_speed_rad_s, reflected_inertia_kg_m2, the envelope (torque_limit, limits), currents
@@ -212,7 +219,7 @@ class Motor:
     def limits(self, speed_rad_s) -> tuple[np.ndarray, np.ndarray]:
         """(upper, lower) output torque (N*m) at output speeds (rad/s, any shape)."""
         speed = np.asarray(speed_rad_s, dtype=float)
-        up, lo = limits_array(self.law, np.ascontiguousarray(speed.ravel()))
+        up, lo = limits_array(self.law, _flat(speed))
         return up.reshape(speed.shape), lo.reshape(speed.shape)
 
     def torque_limit(self, speed_rad_s) -> np.ndarray:
@@ -231,16 +238,14 @@ class Motor:
         output speeds (arrays of one shape)."""
         torque = np.asarray(torque_Nm, dtype=float)
         speed = np.broadcast_to(np.asarray(speed_rad_s, dtype=float), torque.shape)
-        return currents_array(self.law, np.ascontiguousarray(torque.ravel()),
-                              np.ascontiguousarray(speed.ravel())).reshape(torque.shape)
+        return currents_array(self.law, _flat(torque), _flat(speed)).reshape(torque.shape)
 
     def speed_margins(self, torque_Nm, speed_rad_s) -> tuple[np.ndarray, np.ndarray]:
         """(speed margin, outside the envelope on its speed side) per operating point (arrays
         of one shape): speed_margins."""
         torque = np.asarray(torque_Nm, dtype=float)
         speed = np.broadcast_to(np.asarray(speed_rad_s, dtype=float), torque.shape)
-        m, out = speed_margins(self.law, np.ascontiguousarray(torque.ravel()),
-                               np.ascontiguousarray(speed.ravel()))
+        m, out = speed_margins(self.law, _flat(torque), _flat(speed))
         return m.reshape(torque.shape), out.reshape(torque.shape)
 
     def _check_fields(self) -> None:
