@@ -5,10 +5,15 @@ aliases expand to gigabytes), and a bounded nesting depth; errors name the file 
 from __future__ import annotations
 
 import re
+from pathlib import Path
+from typing import Callable, TypeVar
 
 import yaml
 
+from fivebar_drake.core.files import read_input_text
 from fivebar_drake.core.validation import ParameterError
+
+T = TypeVar("T")
 
 MAX_DEPTH = 20          # a scenario or a spec nests 3 levels; deeper is not one of ours
 MAX_MESSAGE = 300       # characters of a YAML problem quoted in an error
@@ -63,3 +68,13 @@ def load_yaml(text: str, source: str, hint: str = ""):
         raise ParameterError(f"not valid YAML{at}: {problem}{hint}", source=source) from None
     except RecursionError:
         raise ParameterError(f"not valid YAML: nested too deeply{hint}", source=source) from None
+
+
+def load_spec_file(path: Path, what: str, from_dict: Callable[[object, Path, str], T]) -> T:
+    """A spec file (what: its kind in errors, e.g. "sweep spec") read as untrusted YAML and
+    made by from_dict(data, its folder, its path); every ParameterError names the file."""
+    data = load_yaml(read_input_text(path, what), str(path))
+    try:
+        return from_dict(data, path.parent, str(path))
+    except ParameterError as err:
+        raise err.located(str(path)) from None

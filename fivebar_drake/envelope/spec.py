@@ -24,9 +24,8 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from fivebar_drake.core.files import read_input_text
 from fivebar_drake.core.validation import ParameterError, check_number, require
-from fivebar_drake.core.yaml_files import load_yaml
+from fivebar_drake.core.yaml_files import load_spec_file
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.simulation.builder import check_run
 from fivebar_drake.simulation.scenario import Scenario, field_names, load_scenario
@@ -73,11 +72,7 @@ def load_envelope_spec(path: str | Path | None = None) -> EnvelopeSpec:
     """Read and check SPEC.yaml (None: the packaged default); ParameterError naming the file,
     the field (`maneuvers[i]...`, `duty_cycle[i]...`), the value and what is allowed."""
     path = Path(path) if path is not None else DEFAULT_SPEC
-    data = load_yaml(read_input_text(path, "envelope spec"), str(path))
-    try:
-        return spec_from_dict(data, path.parent, str(path))
-    except ParameterError as err:
-        raise err.located(str(path)) from None
+    return load_spec_file(path, "envelope spec", spec_from_dict)
 
 
 def spec_from_dict(data, folder: Path, source: str = "") -> EnvelopeSpec:

@@ -38,8 +38,8 @@ import numpy as np
 from fivebar_drake.analysis.design_points import MODELS
 from fivebar_drake.core.footpath import PATHS
 from fivebar_drake.core.files import read_input_text
-from fivebar_drake.core.validation import ParameterError, check_number, require
-from fivebar_drake.core.yaml_files import load_yaml
+from fivebar_drake.core.validation import check_number, require
+from fivebar_drake.core.yaml_files import load_spec_file
 
 FIDELITIES = ("analysis", "simulation")
 SAMPLINGS = ("grid", "random", "latin_hypercube")
@@ -136,11 +136,7 @@ KEYS = {"fidelity", "sampling", "vary", "samples", "seed", "config", "scenario",
 def load_spec(path: str | Path) -> SweepSpec:
     """Read and validate SPEC.yaml (ParameterError naming the file and the field)."""
     path = Path(path)
-    data = load_yaml(read_input_text(path, "sweep spec"), str(path))
-    try:
-        return spec_from_dict(data, path.parent, str(path))
-    except ParameterError as err:
-        raise err.located(str(path)) from None
+    return load_spec_file(path, "sweep spec", spec_from_dict)
 
 
 def spec_from_dict(data, folder: Path, source: str = "") -> SweepSpec:
