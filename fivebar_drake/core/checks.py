@@ -140,9 +140,8 @@ def at_limit(out: dict, checks: Checks, peak_Nm: float, delivered_Nm: float,
     share = torque_share + voltage_share
     if not share > allowed_share:
         return out
-    sf = peak_Nm / delivered_Nm if delivered_Nm > 0 else math.inf
-    out = {**out, "torque": dict(out["torque"], demand_sf=out["torque"]["sf"], sf=_finite(sf),
-                                 verdict=verdict(checks, sf))}
+    out = {**out, "torque": {**out["torque"], **torque_check(checks, peak_Nm, delivered_Nm),
+                             "demand_sf": out["torque"]["sf"]}}
     name = "torque" if torque_share >= voltage_share else "speed"
     what = ("its torque limit (the peak current)" if name == "torque" else
             "its voltage limit at speed (the back-EMF)")
@@ -152,6 +151,11 @@ def at_limit(out: dict, checks: Checks, peak_Nm: float, delivered_Nm: float,
                          "not a need")
     out["verdict"], out["deciding_check"] = worst_check(out)
     return out
+
+
+def demand_unmet(out: dict) -> dict | None:
+    """The check that failed at the motor's limit (at_limit), None if the demand was met."""
+    return next((out[k] for k in CHECK_ORDER if "at_limit_fraction" in out[k]), None)
 
 
 def checks_of(motor: Motor, checks: Checks, torque_figure_Nm: float, margins, outside,

@@ -720,11 +720,17 @@ def cycle_times(gait: Gait) -> np.ndarray:
     return np.arange(gait.samples) * (gait.period_s / gait.samples)
 
 
+def shared_loads(stance, weight_N: float, axis: int = 0) -> np.ndarray:
+    """Ground load (N) on each foot: the weight shared equally by the feet in stance (stance
+    flags, the legs along `axis`; none in a flight phase)."""
+    return stance * weight_N / np.maximum(np.sum(stance, axis=axis, keepdims=True), 1)
+
+
 def stance_loads(gait: Gait, path: FootPath | str, t, phases_rad, weight_N: float) -> np.ndarray:
     """Scheduled ground load (N) on each foot at times t: the weight shared equally by the feet
-    the schedule has in stance (none in a flight phase). Shape (legs, *t.shape)."""
-    stance = np.stack([evaluate(gait, path, t, ph).stance for ph in phases_rad])
-    return stance * weight_N / np.maximum(stance.sum(0), 1)
+    the schedule has in stance (shared_loads). Shape (legs, *t.shape)."""
+    return shared_loads(np.stack([evaluate(gait, path, t, ph).stance for ph in phases_rad]),
+                        weight_N)
 
 
 @jit_uncached

@@ -15,7 +15,7 @@ import numpy as np
 from fivebar_drake.envelope.spec import Maneuver
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.pipeline import run_simulation, write_simulation
-from fivebar_drake.simulation.signals import signals
+from fivebar_drake.simulation.signals import per_motor
 from fivebar_drake.simulation.summary import window_rows
 
 OPERATING_POINTS = 2000      # (speed, torque) samples per motor and maneuver for the picture
@@ -56,16 +56,17 @@ def run_maneuver(maneuver: Maneuver, points: int = OPERATING_POINTS) -> Maneuver
     with tempfile.TemporaryDirectory(prefix="fivebar-envelope-") as tmp:
         summary, written = write_simulation(record, tmp, name=maneuver.name)
         files = tuple((p.name, Path(p).read_bytes()) for p in written)
-    sig = signals(record)
-    rows = window_rows(sig.t, summary["window_s"])
+    t = record.table["t"]
+    rows = window_rows(t, summary["window_s"])
     which = "window"
     if not rows.any():
-        rows, which = np.ones(len(sig.t), dtype=bool), "whole run"
-    speed, demand = sig.qd[rows], sig.command[rows]                 # (rows, legs, 2)
+        rows, which = np.ones(len(t), dtype=bool), "whole run"
+    speed = per_motor(record, "speed")[rows]                           # (rows, legs, 2)
+    demand = per_motor(record, "command")[rows]
     keep = [decimate(speed[..., j].ravel(), demand[..., j].ravel(), points)
             for j in range(len(MOTORS))]
-    current = record.params.motor.currents(sig.applied[rows], speed)
-    dt = float(np.median(np.diff(sig.t))) if len(sig.t) > 1 else record.scenario.log_period_s
+    current = record.params.motor.currents(per_motor(record, "motor_torque")[rows], speed)
+    dt = float(np.median(np.diff(t))) if len(t) > 1 else record.scenario.log_period_s
     return ManeuverResult(
         name=maneuver.name, summary=summary, files=files,
         speed=np.stack([speed[..., j].ravel()[k] for j, k in enumerate(keep)]),

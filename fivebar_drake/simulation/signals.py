@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fivebar_drake.core.footpath import evaluate, stance_loads
+from fivebar_drake.core.footpath import evaluate, shared_loads
 from fivebar_drake.core.rotation import body_rotations, tilt_deg
 from fivebar_drake.mechanisms.fivebar import (LimitTest, forward, inverse, limit_tests, link_coms,
                                               link_jacobians, static_torques, torques)
@@ -76,14 +76,18 @@ class Signals:
     ground_force: np.ndarray
 
 
+def per_motor(record: SimulationRecord, column: str) -> np.ndarray:
+    """A recorder column in actuation order (rows, 8) per leg and motor (rows, legs, 2)."""
+    return record.table[column][:, record.layout.state.actuators]
+
+
 def signals(record: SimulationRecord) -> Signals:
     """The run's signals (Signals) from its record alone: the recorder's table, the layout's
     indices, the parameters and the scenario's gait schedule."""
     table, lay = record.table, record.layout
     params, scenario = record.params, record.scenario
     st, t = table["state"], table["t"]
-    per_leg = lambda x: x[:, lay.state.actuators]  # noqa: E731  (rows, 8) -> (rows, legs, 2)
-    qd = per_leg(table["speed"])
+    qd = per_motor(record, "speed")
     period = np.median(np.diff(t)) if len(t) > 1 else scenario.log_period_s
     q = st[:, lay.state.q_index] - qd * period / 2        # pose at the middle of each interval
     # the mean acceleration over each interval is exactly its change of speed over its length
@@ -114,8 +118,7 @@ def signals(record: SimulationRecord) -> Signals:
     swing_fraction = np.where(swing, u / np.where(swing, path.stance_start(params.gait), 1.0),
                               np.nan)
     weight = lay.mass_kg * params.robot.gravity_m_s2
-    loads = np.where(gaiting, stance_loads(params.gait, scenario.gait, tau_gait,
-                                           scenario.phases_rad, weight).T, weight / len(lay.legs))
+    loads = np.where(gaiting, shared_loads(stance, weight, axis=1), weight / len(lay.legs))
     full = full_model(params)
     trot_static = static_torques(params.leg, params.links,
                                  dataclasses.replace(full, foot_load_N=loads), pose, lj)
@@ -125,12 +128,13 @@ def signals(record: SimulationRecord) -> Signals:
     return Signals(
         t=t, body_p=st[:, lay.state.body_q + 4:lay.state.body_q + 7], body_quat=quat,
         body_v=st[:, lay.state.nq + lay.state.body_v + 3:lay.state.nq + lay.state.body_v + 6], tilt_deg=tilt_deg(quat),
-        q=q, qd=qd, command=per_leg(table["command"]), applied=per_leg(table["motor_torque"]),
+        q=q, qd=qd, command=per_motor(record, "command"),
+        applied=per_motor(record, "motor_torque"),
         static_seed=static_torques(params.leg, params.links, seed_model(params), pose, lj),
         static_trot=trot_static, static_contact=static_contact, links=links, rotor=rotor,
-        friction=per_leg(table["motor_torque"] - table["applied"]),
-        clipped_peak=per_leg(table["clipped_peak"]),
-        clipped_line=per_leg(table["clipped_line"]), foot_force_plane=force,
+        friction=per_motor(record, "motor_torque") - per_motor(record, "applied"),
+        clipped_peak=per_motor(record, "clipped_peak"),
+        clipped_line=per_motor(record, "clipped_line"), foot_force_plane=force,
         foot_force_world=force_world, gap=table["gap"],
         stance=stance, swing_fraction=swing_fraction,
         swing_contact=(~stance) & gaiting & (force_world[..., 2] > SWING_CONTACT_N),

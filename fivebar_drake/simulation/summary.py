@@ -16,7 +16,8 @@ import math
 from pathlib import Path
 import numpy as np
 
-from fivebar_drake.core.checks import CHECK_ORDER, SEVERITY, at_limit, motor_checks
+from fivebar_drake.core.checks import (CHECK_ORDER, SEVERITY, at_limit, demand_unmet,
+                                       motor_checks)
 from fivebar_drake.core.files import json_ready, write_atomic
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.robots.quadruped.params import Params
@@ -131,19 +132,19 @@ def motor_summary(sig: Signals, params: Params, win, cycle, cycles: int, i: int,
     k = int(np.argmax(np.abs(applied))) if applied.size else 0
     residual = applied - sum(v[win, i, j] for v in parts.values())
     per_cycle = [(applied[cycle == c], demand[cycle == c]) for c in range(cycles)]
-    demand_p99 = _p(demand)
+    demand_p99, applied_p99 = _p(demand), _p(applied)
     static_seed, static_trot = _peak(sig.static_seed[win, i, j]), _peak(sig.static_trot[win, i, j])
     clipped_peak, clipped_line = sig.clipped_peak[win, i, j], sig.clipped_line[win, i, j]
     checks = at_limit(motor_checks(motor, params.checks, demand, speed, demand_p99, applied),
-                      params.checks, motor.peak_torque_Nm, _p(applied), _mean(clipped_peak),
+                      params.checks, motor.peak_torque_Nm, applied_p99, _mean(clipped_peak),
                       _mean(clipped_line), 1.0 - PERCENTILE / 100) if demand.size else None
-    unmet = bool(checks) and "demand_sf" in checks["torque"]      # at_limit: the demand unmet
-    sf = _ratio(motor.peak_torque_Nm, _p(applied) if unmet else demand_p99)
+    sf = _ratio(motor.peak_torque_Nm,
+                applied_p99 if checks and demand_unmet(checks) else demand_p99)
     clipped = clipped_peak + clipped_line
     saturated, unsaturated = _mean(clipped), demand[clipped == 0]
     return {
         "checks": checks, "unsaturated_demand_p99_Nm": _p(unsaturated),
-        "peak_torque_Nm": _peak(applied), "p99_torque_Nm": _p(applied),
+        "peak_torque_Nm": _peak(applied), "p99_torque_Nm": applied_p99,
         "rms_torque_Nm": _rms(applied),
         "demand_peak_Nm": _peak(demand), "demand_p99_Nm": demand_p99,
         "static_seed_Nm": static_seed, "static_trot_Nm": static_trot,
@@ -362,7 +363,7 @@ def answer(s: dict, params: Params) -> str:
                     f"MARGINAL: {s['step_check']['why']} (step check at half the plant step)")
     static = m["static_trot_Nm"]
     over = f"over {s['cycles_in_window']} {'cycles' if s['periodic'] else 'maneuver'}"
-    limited = next((c[k] for k in CHECK_ORDER if "at_limit_fraction" in c[k]), None)
+    limited = demand_unmet(c)
     figure = m["p99_torque_Nm"] if limited else m["demand_p99_Nm"]
     if limited:
         need = (f"the motors worked at their limit (worst motor {leg} {name}, at it "

@@ -229,6 +229,21 @@ def test_paths_derivatives_by_central_differences(params, kind):
     np.testing.assert_allclose(((pp.vel - pm.vel) / (2 * h))[smooth], p0.acc[smooth], atol=5e-3)
 
 
+@pytest.mark.parametrize("kind", ["jump", "drop", "stand_up"])
+def test_the_path_check_covers_the_whole_maneuver(monkeypatch, kind):
+    """check_path samples a one-shot maneuver from its start to its end (its span, longer
+    than the gait's period), not over one gait period."""
+    from fivebar_drake.robots.quadruped import config
+
+    scenario, params = load_run(None, gait=kind)
+    span = scenario.gait.span_s(params.gait)
+    assert span > params.gait.period_s
+    seen = []
+    monkeypatch.setattr(config, "path_poses", lambda leg, gait, path, t: seen.append(t))
+    config.check_path(params, scenario.gait)
+    assert seen[0][0] == 0.0 and seen[0][-1] == pytest.approx(span, rel=1e-12)
+
+
 def test_a_crawl_keeps_three_feet_down():
     with pytest.raises(ParameterError, match="scenario.gait.duty_factor = 0.7"):
         load_scenario(gait={"kind": "walk", "duty_factor": 0.7})

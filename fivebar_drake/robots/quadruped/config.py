@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from fivebar_drake.core.checks import Checks
-from fivebar_drake.core.footpath import PATHS, FootPath, Gait
+from fivebar_drake.core.footpath import PATHS, FootPath, Gait, foot_path
 from fivebar_drake.core.motor import build_motor
 from fivebar_drake.core.parameter_files import build_section, load_parameter_file, packaged
 from fivebar_drake.core.validation import MAX_SAMPLES, ParameterError, require
@@ -79,11 +79,13 @@ def check_gait_reachable(params: Params) -> None:
 
 def check_path(params: Params, path: FootPath | str) -> None:
     """Raise ParameterError if a sample of the foot path (a FootPath or its kind), sampled
-    PATH_CHECK_SAMPLES times over a cycle, lies outside the workspace or past a limit, naming
-    the sample (index, time, foot target), the limit and the fields that place the path."""
+    PATH_CHECK_SAMPLES times over its span (a cycle, or a maneuver from start to end), lies
+    outside the workspace or past a limit, naming the sample (index, time, foot target), the
+    limit and the fields that place the path."""
     g = params.gait
     try:
-        path_poses(params.leg, g, path, np.linspace(0.0, g.period_s, PATH_CHECK_SAMPLES))
+        path_poses(params.leg, g, path,
+                   np.linspace(0.0, foot_path(path).span_s(g), PATH_CHECK_SAMPLES))
     except UnreachableError as err:
         where = (f"the path spans x = gait.x_center_m +- gait.a_m = {g.x_center_m:g} +- "
                  f"{g.a_m:g} m and y = gait.y_home_m .. + gait.b_m = {g.y_home_m:g} .. "

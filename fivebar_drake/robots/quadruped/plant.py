@@ -3,7 +3,7 @@ plain-data layout the controller needs, ground and standing pose."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import NamedTuple
 import numpy as np
 from pydrake.geometry import AddContactMaterial, Box, ProximityProperties
@@ -203,4 +203,4 @@ class RobotLayout:
     com_m: np.ndarray
     mass_kg: float
     inertia_kg_m2: np.ndarray
-    gravity_m_s2: np.ndarray = field(default_factory=lambda: np.array([0.0, 0.0, -9.81]))
+    gravity_m_s2: np.ndarray
