@@ -694,6 +694,13 @@ def stance_weight(gait: Gait, path: FootPath | str, t, phase_rad, transfer_s: fl
 
 
 @jit
+def smoothstep(x):
+    """0 at x <= 0, 1 at x >= 1, 3 x^2 - 2 x^3 in between (zero slope at both ends)."""
+    x = min(max(x, 0.0), 1.0)
+    return x * x * (3.0 - 2.0 * x)
+
+
+@jit
 def stance_weight_at(u, u0, period, transfer_s):
     """stance_weight at cycle phase u for a stance from u0 to 1 (period s; u0 = 0: always in
     stance, no touchdown or lift-off)."""
@@ -702,8 +709,7 @@ def stance_weight_at(u, u0, period, transfer_s):
     if u < u0:
         return 0.0
     edge = min(u - u0, 1.0 - u) * period           # s from the nearer stance end
-    x = min(max(edge / transfer_s, 0.0), 1.0) if transfer_s > 0 else 1.0
-    return x * x * (3.0 - 2.0 * x)
+    return smoothstep(edge / transfer_s) if transfer_s > 0 else 1.0
 
 
 @jit

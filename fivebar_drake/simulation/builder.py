@@ -145,15 +145,28 @@ def check_start_pose(scenario: Scenario, params: Params) -> None:
             "reads the legs with: start lower or further out")
 
 
+def add_contact_integral(builder: DiagramBuilder, plant, instance, layout: RobotLayout,
+                         time_step: float) -> DiscreteTimeIntegrator:
+    """Add the integral of the plant's generalized contact forces over every plant step (C++):
+    what the recorders average per interval and the controller per tick."""
+    integrator = builder.AddNamedSystem("contact_integral",
+                                        DiscreteTimeIntegrator(layout.nv, time_step))
+    builder.Connect(plant.get_generalized_contact_forces_output_port(instance),
+                    integrator.get_input_port())
+    return integrator
+
+
 def add_controller(builder: DiagramBuilder, scenario: Scenario, params: Params, plant,
-                   instance, layout: RobotLayout) -> tuple[LeafSystem, MotorModel]:
+                   instance, layout: RobotLayout,
+                   contact: DiscreteTimeIntegrator) -> tuple[LeafSystem, MotorModel]:
     """Add gait source -> leg controller -> motor model -> the plant's actuation (each variant
     adds its own block: FootPath.add_to, Controller.add_to), the controller and the motor model
-    sampling the plant state; returns (controller, motor model)."""
+    sampling the plant state, the controller the contact integral if it has that input;
+    returns (controller, motor model)."""
     gait = scenario.gait.add_to(builder, params.gait, scenario.phases_rad, scenario.stand_s,
                                 scenario.ramp_s, scenario.load_transfer_s,
                                 scenario.controller.control_period_s)
-    controller = scenario.controller.add_to(builder, params, layout)
+    controller = scenario.controller.add_to(builder, params, layout, scenario.load_transfer_s)
     speed_index = np.zeros(layout.state.actuators.size, dtype=int)    # joint speed of each actuator
     speed_index[layout.state.actuators.ravel()] = layout.state.v_index.ravel() + layout.state.nq
     motor = builder.AddNamedSystem("motor_model", MotorModel(
@@ -162,6 +175,8 @@ def add_controller(builder: DiagramBuilder, scenario: Scenario, params: Params, 
     builder.Connect(gait.GetOutputPort("foot_references"),
                     controller.GetInputPort("foot_references"))
     builder.Connect(state, controller.GetInputPort("plant_state"))
+    if controller.HasInputPort("contact_impulse"):
+        builder.Connect(contact.get_output_port(), controller.GetInputPort("contact_impulse"))
     builder.Connect(controller.GetOutputPort("torque_command"),
                     motor.GetInputPort("torque_command"))
     builder.Connect(state, motor.GetInputPort("plant_state"))
@@ -170,21 +185,17 @@ def add_controller(builder: DiagramBuilder, scenario: Scenario, params: Params, 
 
 
 def add_recorders(builder: DiagramBuilder, scenario: Scenario, plant, instance,
-                  layout: RobotLayout, motor: MotorModel, time_step: float):
-    """Add the measurements, all in C++: the integral of the contact forces over every plant
-    step; one row per log interval (the plant state and that integral at its end); the motor's
-    held values once per motor sample (constant in between). Returns (recorder, motor log,
-    motor samples per row)."""
-    integrator = builder.AddNamedSystem("contact_integral",
-                                        DiscreteTimeIntegrator(layout.nv, time_step))
+                  layout: RobotLayout, motor: MotorModel, time_step: float,
+                  integrator: DiscreteTimeIntegrator):
+    """Add the measurements, all in C++: one row per log interval (the plant state and the
+    contact integral at its end); the motor's held values once per motor sample (constant in
+    between). Returns (recorder, motor log, motor samples per row)."""
     rows = builder.AddNamedSystem("rows", Multiplexer([layout.nx, layout.nv]))
     log_period, per_row = recorded_periods(scenario, time_step)
     recorder = builder.AddNamedSystem("recorder", VectorLogSink(
         layout.nx + layout.nv, PERIODIC, log_period))
     motor_log = builder.AddNamedSystem("motor_log", VectorLogSink(
         3 * layout.state.actuators.size, PERIODIC, scenario.motor_period_s))
-    builder.Connect(plant.get_generalized_contact_forces_output_port(instance),
-                    integrator.get_input_port())
     builder.Connect(motor.GetOutputPort("motor_record"), motor_log.get_input_port())
     builder.Connect(plant.get_state_output_port(instance), rows.get_input_port(0))
     builder.Connect(integrator.get_output_port(), rows.get_input_port(1))
@@ -203,9 +214,11 @@ def build_diagram(scenario: Scenario, params: Params, design: ClosureDesign,
                                         Modifiers(scenario.payload_kg,
                                                   tuple(scenario.payload_offset_m),
                                                   math.radians(scenario.slope_deg)))
-    controller, motor = add_controller(builder, scenario, params, plant, instance, layout)
+    contact = add_contact_integral(builder, plant, instance, layout, design.time_step_s)
+    controller, motor = add_controller(builder, scenario, params, plant, instance, layout,
+                                       contact)
     recorder, motor_log, per_row = add_recorders(builder, scenario, plant, instance, layout,
-                                                 motor, design.time_step_s)
+                                                 motor, design.time_step_s, contact)
     actuation_log = None
     if log_actuation:
         actuation_log = builder.AddNamedSystem("actuation_log", VectorLogSink(

@@ -17,7 +17,9 @@ from pydrake.systems.framework import LeafSystem
 from fivebar_drake.core.validation import check_number
 from fivebar_drake.core.variants import Variant, documented, registrar
 from fivebar_drake.mechanisms.fivebar import (LINK_NAMES, com_fractions, physical_izz)
-from fivebar_drake.robots.quadruped.control_law import ControlGains, LawConstants, leg_command
+from fivebar_drake.robots.quadruped.control_law import (CONTACT_LOAD_SHARE, FOREVER_S,
+                                                        SUPPORT_FIELDS, ControlGains,
+                                                        LawConstants, foot_loads, leg_command)
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.plant import RobotLayout
 from fivebar_drake.robots.quadruped.legs import plane_rotation
@@ -44,16 +46,20 @@ class Controller(Variant):
     """A leg controller (register with register_controller): a block with the input ports
     "foot_references" (GaitSource) and "plant_state" (nx) and the output port "torque_command"
     (8, N*m, actuation order), updated every control_period_s (s; the gait source samples at the
-    same period), and the attribute `gains` (a NamedTuple, summary.json's controller_gains). Its
-    fields are also scenario fields (the scenario's flat names)."""
+    same period), optionally the input port "contact_impulse" (nv, the integral of the plant's
+    generalized contact forces: connected when the block has it), and the attribute `gains` (a
+    NamedTuple, summary.json's controller_gains). Its fields are also scenario fields (the
+    scenario's flat names)."""
 
     control_period_s: float = documented(0.002, "update period of the leg controller")
 
     def check(self, field: str) -> None:
         check_number(f"{field}.control_period_s", self.control_period_s, MIN_TIME_STEP_S)
 
-    def add_to(self, builder, params: Params, layout: RobotLayout) -> LeafSystem:
-        """Add the controller's block (named "leg_controller") to the DiagramBuilder."""
+    def add_to(self, builder, params: Params, layout: RobotLayout,
+               transfer_s: float) -> LeafSystem:
+        """Add the controller's block (named "leg_controller") to the DiagramBuilder; transfer_s
+        (s): the scenario's load_transfer_s, over which a foot takes up its load."""
         raise NotImplementedError
 
 
@@ -77,7 +83,9 @@ class FootLegController(LeafSystem):
     Input ports: "foot_references" (GaitSource), "plant_state" (nx). Output port:
     "torque_command" (8) N*m in actuation order. Every knobs.control_period_s the controller
     samples its inputs and computes a command that it releases knobs.control_delay_periods ticks
-    later (0: at once), held in between.
+    later (0: at once), held in between. Input port "contact_impulse" (nv): the integral of the
+    plant's generalized contact forces over every plant step; its change over a controller
+    period is the feet's mean ground force in that period (what a foot-force sensor measures).
 
     - Swing (weight 1 - w per leg): joint PD to the closed-form IK of the target (knees out) with
       the full model's inverse dynamics (M q'' + c + G of the links, reflected rotor inertia) of
@@ -92,15 +100,23 @@ class FootLegController(LeafSystem):
       horizontal ones inside the friction cone. That split already gives each foot its share
       (none at w = 0), so each motor pair adds -J_F(q)^T F in full, not blended by w: the feet
       deliver the whole wrench while a foot takes up or gives off its load.
-    - Swing legs catch the body (catch_gain > 0): under a hip that the tilt lowers, the swing
-      foot's target reaches down (control_law.catch_offset); with touchdown_detection a
-      descending swing foot that meets the ground early joins the support
-      (control_law.early_touchdown). The legs
-      are planar and cannot step sideways: with a diagonal pair alone on the ground nothing
-      else stops the body tipping about the diagonal.
+    - A foot takes load only once it is measured on the ground, its weight rising from
+      contact over load_transfer_s (control_law.support_weights); with touchdown_detection a
+      swing foot that has been in the air and lands early joins the support the same way and
+      stays where it landed; its swing path never guides the body. A foot due on the ground
+      and not there reaches further down at SEARCH_SPEED_M_S until it is.
+    - Feet land on the ground as it is: while some foot guides the body, every foot target is
+      moved by the difference between its planned height above the ground and its height
+      above z = 0 with the body where it is (tilt and height), so a swing ends on the ground
+      at its planned speed whatever the body does.
+    - Swing legs catch the body (catch_gain > 0): under a hip that the body's rotation sinks,
+      the swing foot reaches a little further down (control_law.catch_offset). The legs are
+      planar and cannot step sideways: with a diagonal pair alone on the ground nothing else
+      stops the body tipping about the diagonal.
     - The links' weight is compensated on every leg."""
 
-    def __init__(self, params: Params, layout: RobotLayout, gains: ControlGains, knobs: FootLeg):
+    def __init__(self, params: Params, layout: RobotLayout, gains: ControlGains, knobs: FootLeg,
+                 transfer_s: float):
         super().__init__()
         self._mechanism, self._layout = params.fivebar_leg, layout
         self.constants = LawConstants(
@@ -116,14 +132,23 @@ class FootLegController(LeafSystem):
             stand_offset_m=float(body_height(params, 0.0)), mu=params.body.foot_friction,
             catch_gain=float(knobs.catch_gain), catch_rate_s=float(knobs.catch_rate_s),
             catch_limit_m=params.gait.b_m, touchdown=bool(knobs.touchdown_detection),
-            support=-np.asarray(layout.gravity_m_s2, dtype=float))
+            support=-np.asarray(layout.gravity_m_s2, dtype=float),
+            contact_N=float(CONTACT_LOAD_SHARE * layout.mass_kg
+                            * np.linalg.norm(layout.gravity_m_s2) / len(layout.legs)),
+            transfer_s=float(transfer_s))
         n = layout.state.q_index.size
+        self._period = knobs.control_period_s
         self._references = self.DeclareVectorInputPort("foot_references", 7 * n // 2)
         self._state = self.DeclareVectorInputPort("plant_state", layout.nx)
+        self._impulse = self.DeclareVectorInputPort("contact_impulse", layout.nv)
         # the released command (the output) and the delay_periods commands after it, oldest first
         self._released = self.DeclareDiscreteState(n)
         self._queue = self.DeclareDiscreteState(knobs.control_delay_periods * n)
         self._delayed = knobs.control_delay_periods > 0
+        # the feet's support (control_law.support_weights), every foot standing before the run;
+        # the contact impulse at the last tick
+        self._support = self.DeclareDiscreteState(self.standing_support().ravel())
+        self._last_impulse = self.DeclareDiscreteState(layout.nv)
         self.DeclarePeriodicDiscreteUpdateEvent(knobs.control_period_s, 0.0, self._update)
         self.DeclareStateOutputPort("torque_command", self._released)
 
@@ -131,19 +156,48 @@ class FootLegController(LeafSystem):
     def gains(self) -> ControlGains:
         return self.constants.gains
 
-    def command(self, references, state) -> np.ndarray:
-        """Torque command (8) in actuation order from the foot references (GaitSource) and the
-        plant state vector (nx,) (control_law.leg_command). Raises UnreachableError naming the
-        target or pose where the legs cannot close."""
+    def standing_support(self) -> np.ndarray:
+        """The support memory (legs, SUPPORT_FIELDS) of feet that stood on the ground before
+        the run began (the start of every run: a foot scheduled in swing leaves it)."""
+        memory = np.zeros((self._layout.state.q_index.shape[0], SUPPORT_FIELDS))
+        memory[:, 0], memory[:, 2], memory[:, 3] = 1.0, -FOREVER_S, 0.0
+        return memory
+
+    def command(self, references, state, loads_N=None, support=None,
+                t: float = 0.0) -> np.ndarray:
+        """Torque command (8) in actuation order at time t (s) from the foot references
+        (GaitSource), the plant state vector (nx,), the feet's measured normal forces (legs,)
+        in N (default: every foot on the ground) and their support memory (legs,
+        SUPPORT_FIELDS; default: standing_support; updated in place)
+        (control_law.leg_command). Raises UnreachableError naming the target or pose where the
+        legs cannot close."""
+        memory = self.standing_support() if support is None else support
+        n = memory.shape[0]
+        loads = np.full(n, np.inf) if loads_N is None else np.asarray(loads_N, dtype=float)
         out, goal, finite = leg_command(self.constants, np.asarray(references, dtype=float),
-                                        np.asarray(state, dtype=float))
+                                        np.asarray(state, dtype=float), loads, memory, float(t))
         if not finite:                        # name the reason, if it is a reach
             self._mechanism.inverse(goal)
             self._mechanism.forward(state[self._layout.state.q_index])
         return out
 
+    def tick_inputs(self, context) -> tuple:
+        """What a tick at the context's time computes from (the arguments of command): the
+        foot references, the plant state, the feet's measured normal forces over the last
+        period (N) and a copy of the support memory."""
+        state = self._state.Eval(context)
+        impulse = self._impulse.Eval(context)
+        last = context.get_discrete_state(self._last_impulse).get_value()
+        memory = context.get_discrete_state(self._support).get_value()
+        return (self._references.Eval(context), state,
+                foot_loads(self.constants, state, (impulse - last) / self._period),
+                memory.reshape(-1, SUPPORT_FIELDS).copy(), context.get_time())
+
     def _update(self, context, discrete_state):
-        new = self.command(self._references.Eval(context), self._state.Eval(context))
+        references, state, loads, memory, t = self.tick_inputs(context)
+        new = self.command(references, state, loads, memory, t)
+        discrete_state.set_value(self._support, memory.ravel())
+        discrete_state.set_value(self._last_impulse, self._impulse.Eval(context))
         if self._delayed:
             queue = np.concatenate([context.get_discrete_state(self._queue).get_value(), new])
             new = queue[:new.size]
@@ -165,11 +219,13 @@ class FootLeg(Controller):
     body_bandwidth_hz: float = documented(3.0, "stance legs' body (height, speed, attitude) "
                                                "bandwidth")
     damping_ratio: float = documented(0.7, "damping ratio of both loops")
-    catch_gain: float = documented(1.0, "swing legs' catch reflex, m of reach per m of hip drop "
-                                        "(0 = off)")
-    catch_rate_s: float = documented(0.1, "catch reflex: lead on the hip's sinking speed")
-    touchdown_detection: bool = documented(True, "a descending swing foot meeting the ground "
-                                                 "early joins the support")
+    catch_gain: float = documented(1.0, "swing legs' catch reflex: gain on the reach ahead of "
+                                        "a sinking hip (0 = off)")
+    catch_rate_s: float = documented(0.05, "catch reflex: a swing foot reaches catch_gain x "
+                                           "this x the hip's sinking speed further down")
+    touchdown_detection: bool = documented(True, "a swing foot in the air that is measured on "
+                                                 "the ground early (on its way down) joins the "
+                                                 "support")
 
     def check(self, field: str) -> None:
         number = check_number
@@ -202,6 +258,7 @@ class FootLeg(Controller):
         return derive_gains(layout.mass_kg, layout.inertia_kg_m2, leg_inertia,
                             self.swing_bandwidth_hz, self.body_bandwidth_hz, self.damping_ratio)
 
-    def add_to(self, builder, params: Params, layout: RobotLayout) -> FootLegController:
+    def add_to(self, builder, params: Params, layout: RobotLayout,
+               transfer_s: float) -> FootLegController:
         return builder.AddNamedSystem("leg_controller", FootLegController(
-            params, layout, self.gains(params, layout), self))
+            params, layout, self.gains(params, layout), self, transfer_s))

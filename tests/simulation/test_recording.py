@@ -224,8 +224,10 @@ def test_recorded_units_and_motor_hues(short_run):
 def test_real_trot_events_follow_its_gait_schedule(short_run):
     """Once the foot path has its full size (after standing and the ramp) each foot lifts off
     within 20 ms of a scheduled lift-off (the gait's schedule, sig.stance) and touches down
-    after it, at most 40 ms after the scheduled touchdown (earlier when the ground comes sooner:
-    the controller's early touchdown); at an event's row the foot's ground force is above
+    after it, at most 50 ms after the scheduled touchdown (earlier when the ground comes sooner:
+    the controller's early touchdown; later when the swing ends above the ground, by 2-4 mm of
+    tracking lag measured, and the foot reaches down at control_law.SEARCH_SPEED_M_S, then takes
+    load over a few ms: measured up to 42 ms); at an event's row the foot's ground force is above
     CONTACT_N after a touchdown, below it after a lift-off; a trot never flies; the text log
     holds every event."""
     record, sig, summary, out, _ = short_run
@@ -251,7 +253,7 @@ def test_real_trot_events_follow_its_gait_schedule(short_run):
                     assert np.min(np.abs(lifts - x)) <= 0.02, (leg, x, lifts)
                 else:
                     lifted = lifts[lifts < x].max()
-                    assert x <= downs[downs > lifted].min() + 0.04, (leg, x, lifted, downs)
+                    assert x <= downs[downs > lifted].min() + 0.05, (leg, x, lifted, downs)
     assert checked >= 4 and len(texts) == found
     assert not any(text.startswith("flight") for text in texts)
 

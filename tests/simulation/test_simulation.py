@@ -165,6 +165,25 @@ def test_measured_ground_forces_carry_the_robot(run):
 
 
 @pytest.mark.slow
+def test_touchdowns_keep_the_body_carried(run):
+    """Feet take load on measured contact (issue 28): over the statistics window the delivered
+    vertical force (every plant step's contact forces, interval means) stays within 0.9 .. 1.33
+    of the weight (a foot given load before it touched made it dip to 0.75 and overshoot to
+    1.57), and each leg's quasi-static torque -J_P^T F of the measured ground force peaks within
+    0.75 .. 1.33 of its applied torque's peak (a touchdown impact it did not apply made it 1.45)."""
+    scenario, params, record, sig, summary = run
+    start, end = summary["window_s"]
+    inside = (sig.t > start) & (sig.t <= end)
+    weight = params.robot.total_mass_kg * params.robot.gravity_m_s2
+    share = sig.ground_force[inside, 2] / weight
+    assert 0.9 <= share.min() and share.max() <= 1.33, (share.min(), share.max())
+    for leg in range(sig.applied.shape[1]):
+        ratio = (np.abs(sig.static_contact[inside, leg]).max()
+                 / np.abs(sig.applied[inside, leg]).max())
+        assert 0.75 <= ratio <= 1.33, (leg, ratio)
+
+
+@pytest.mark.slow
 def test_summary_text_follows_the_parameters(runs):
     """summary.md and the answer take their figures from the parameters used, none written in."""
     from fivebar_drake.simulation.summary import answer, markdown
@@ -226,8 +245,9 @@ def test_controller_acts_on_the_state_sampled_at_its_tick(delay):
     state_next = setup.plant.GetPositionsAndVelocities(plant_context).copy()
     assert not np.allclose(state_k, state_next)
     references = gait.references(tick)
-    expect = controller.command(references, state_k)
-    later = controller.command(references, state_next)
+    _, _, loads, memory, _ = controller.tick_inputs(controller.GetMyContextFromRoot(context))
+    expect = controller.command(references, state_k, loads, memory.copy(), tick)
+    later = controller.command(references, state_next, loads, memory.copy(), tick)
     held = controller.GetMyContextFromRoot(context).get_discrete_state()   # released, queue
     newest = np.concatenate([held.get_vector(0).value(), held.get_vector(1).value()])[-8:]
     assert np.allclose(newest, expect, rtol=1e-9, atol=1e-9)

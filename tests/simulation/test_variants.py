@@ -1,8 +1,9 @@
-"""Gaits, controllers and closures as typed variants: the registered ones give what the code
+"""Gaits, controllers and closures as typed variants: the registered gaits give what the code
 before them gave (tests/data/before_variants.npz, saved from it: the default trot's and the seed
-ellipse's foot references at 301 times over 4.5 s, the default controller's commands at those
-references and perturbed standing states), a scenario names them by kind or as a mapping, and a
-gait registered in a test alone runs through the pipeline."""
+ellipse's foot references at 301 times over 4.5 s; the controller's commands of before are gone
+with the law they came from, changed on purpose by issue 28: support on measured contact), a
+scenario names them by kind or as a mapping, and a gait registered in a test alone runs through
+the pipeline."""
 
 from dataclasses import dataclass
 from pathlib import Path
@@ -17,13 +18,18 @@ from fivebar_drake.core.footpath import PATHS, FootPath, SeedEllipse, Trot, regi
 from fivebar_drake.core.rotation import tilt_deg
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.pipeline import run_simulation
-from fivebar_drake.robots.quadruped.plant import add_robot, standing_height
-from fivebar_drake.simulation.builder import check_run
+from fivebar_drake.robots.quadruped.plant import standing_height
 from fivebar_drake.robots.quadruped.closure import Ball
 from fivebar_drake.simulation.scenario import load_scenario
 from fivebar_drake.simulation.systems import FootLeg
 
 BEFORE = np.load(Path(__file__).parent.parent / "data" / "before_variants.npz")
+
+# The saved arrays come from another machine: the compiled laws may be built there with fused
+# multiply-adds or other vector widths, which move the last bits (measured: at most 1.3e-14 on
+# values of order 1, AMD EPYC with AVX-512 against the machine that saved them). A change of a
+# formula moves them by far more than 1e-9 (m, m/s, N·m), so that is the tolerance.
+ACROSS_MACHINES = dict(rtol=1e-10, atol=1e-9)
 
 
 def gait_source(scenario, params):
@@ -35,21 +41,11 @@ def gait_source(scenario, params):
 
 @pytest.mark.parametrize("gait", ["trot", "seed_ellipse"])
 def test_registered_gaits_give_the_references_of_before(params, gait):
-    """Bit for bit: targets, velocities, accelerations and stance weights of all legs, standing,
-    ramping and walking."""
+    """Targets, velocities, accelerations and stance weights of all legs, standing, ramping and
+    walking, to the last bits a CPU may change (ACROSS_MACHINES)."""
     source = gait_source(load_scenario(gait=gait), params)
     now = np.array([source.references(t) for t in BEFORE["t"]])
-    np.testing.assert_array_equal(now, BEFORE[f"references_{gait}"])
-
-
-def test_the_default_controller_gives_the_commands_of_before(params):
-    scenario = load_scenario()
-    _, _, layout = add_robot(DiagramBuilder(), params, check_run(scenario, params),
-                             scenario.plant_config)
-    controller = scenario.controller.add_to(DiagramBuilder(), params, layout)
-    now = np.array([controller.command(r, x) for r, x in zip(BEFORE["references_trot"],
-                                                             BEFORE["states"])])
-    np.testing.assert_array_equal(now, BEFORE["commands"])
+    np.testing.assert_allclose(now, BEFORE[f"references_{gait}"], **ACROSS_MACHINES)
 
 
 def test_a_gait_by_kind_or_as_a_mapping(tmp_path):

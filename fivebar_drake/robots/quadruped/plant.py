@@ -90,6 +90,7 @@ def robot_layout(plant, instance, legs, params: Params) -> RobotLayout:
         legs=tuple(legs), indices=indices, state=StateIndices(
             q_index=np.array([indices[leg].q[:2] for leg in legs]),
             v_index=np.array([indices[leg].v[:2] for leg in legs]),
+            contact_v_index=np.array([indices[leg].v[[1, 3]] for leg in legs]),
             actuators=np.array([indices[leg].actuators for leg in legs]),
             body_q=body.floating_positions_start(), body_v=body.floating_velocities_start_in_v(),
             nq=plant.num_positions()),
@@ -174,12 +175,15 @@ def set_standing_pose(plant, context, instance, legs, params: Params, foot=None,
 class StateIndices(NamedTuple):
     """Where the controller finds the motors and the body in the plant's state and actuation
     (a NamedTuple: the compiled control law takes it as it is): per leg (legs, 2) the plant q
-    and v indices of motors A and B and their actuation indices; the body's first position
-    index (quaternion w, x, y, z, then position) and velocity index (angular then linear, world
-    frame); nq (the state is [q, v])."""
+    and v indices of motors A and B and their actuation indices; the v indices of the joints B
+    and D (contact_v_index, the chain from the hip to the foot on link DE, where the ground's
+    generalized forces are read); the body's first position index (quaternion w, x, y, z, then
+    position) and velocity index (angular then linear, world frame); nq (the state is
+    [q, v])."""
 
     q_index: np.ndarray
     v_index: np.ndarray
+    contact_v_index: np.ndarray
     actuators: np.ndarray
     body_q: int
     body_v: int
