@@ -32,7 +32,7 @@ from fivebar_drake.simulation.plots import CAPABILITY_FILE, SIM_PLOT_FILES, writ
 from fivebar_drake.simulation.recording import RECORDING_FILE, write_recording
 from fivebar_drake.simulation.runner import SimulationRecord, simulate
 from fivebar_drake.simulation.scenario import Scenario
-from fivebar_drake.simulation.signals import signals
+from fivebar_drake.simulation.signals import signals, step_signals
 from fivebar_drake.simulation.summary import (SUMMARY_FILES, apply_step_check, summarize,
                                               write_summary)
 
@@ -138,7 +138,8 @@ def write_simulation(record: SimulationRecord, out_dir: str | Path,
     start = time.perf_counter()
     out = prepare_output_dir(out_dir, "out_dir", SIMULATION_FILES)
     sig, summary = _review(record, half)
-    written = write_sim_plots(sig, record.layout.legs, record.params, summary, out)
+    steps = step_signals(record) if record.steps is not None else None
+    written = write_sim_plots(sig, record.layout.legs, record.params, summary, out, steps)
     written.append(write_recording(out / RECORDING_FILE, sig, record, summary, name))
     outputs = time.perf_counter() - start
     simulated = record.wall_s + (half.wall_s if half is not None else 0.0)

@@ -28,6 +28,8 @@ MAX_PLANT_STEPS = 20_000_000   # duration / time step: at ~0.3 ms of wall time p
 #                                (measured, 2 cores) about two hours
 MIN_LOG_INTERVALS_PER_CYCLE = 100   # the statistics take peaks and percentiles of the recorded
 #                                     interval means: coarser intervals smear a cycle's peaks
+MAX_EVENT_STEPS = 500_000   # a one-shot maneuver keeps every plant step's state and contact
+#                             forces for its event figures (~0.5 kB a step): 500 s at 1 ms
 
 
 @dataclass
@@ -45,6 +47,7 @@ class Setup:
     motor_samples_per_row: int
     controller: LeafSystem
     actuation_log: VectorLogSink | None = None
+    step_log: VectorLogSink | None = None
 
 
 def closure_design(scenario: Scenario, params: Params) -> ClosureDesign:
@@ -105,6 +108,11 @@ def check_run(scenario: Scenario, params: Params) -> ClosureDesign:
     check_number(field, step, low=scenario.duration_s / MAX_PLANT_STEPS,
                  why=f"scenario.duration_s = {scenario.duration_s:g} s may take at most "
                      f"{MAX_PLANT_STEPS:g} plant steps (about two hours){derived}")
+    if not scenario.gait.periodic:
+        check_number(field, step, low=scenario.duration_s / MAX_EVENT_STEPS,
+                     why=f"a one-shot maneuver keeps every plant step for its event figures: "
+                         f"scenario.duration_s = {scenario.duration_s:g} s may take at most "
+                         f"{MAX_EVENT_STEPS:g} of them{derived}")
     period = scenario.gait.span_s(params.gait)
     check_number("scenario.log_period_s", scenario.log_period_s, step,
                  period / MIN_LOG_INTERVALS_PER_CYCLE,
@@ -189,7 +197,8 @@ def add_recorders(builder: DiagramBuilder, scenario: Scenario, plant, instance,
                   integrator: DiscreteTimeIntegrator):
     """Add the measurements, all in C++: one row per log interval (the plant state and the
     contact integral at its end); the motor's held values once per motor sample (constant in
-    between). Returns (recorder, motor log, motor samples per row)."""
+    between); for a one-shot maneuver the same row at every plant step (its event figures).
+    Returns (recorder, motor log, motor samples per row, step log or None)."""
     rows = builder.AddNamedSystem("rows", Multiplexer([layout.nx, layout.nv]))
     log_period, per_row = recorded_periods(scenario, time_step)
     recorder = builder.AddNamedSystem("recorder", VectorLogSink(
@@ -200,7 +209,12 @@ def add_recorders(builder: DiagramBuilder, scenario: Scenario, plant, instance,
     builder.Connect(plant.get_state_output_port(instance), rows.get_input_port(0))
     builder.Connect(integrator.get_output_port(), rows.get_input_port(1))
     builder.Connect(rows.get_output_port(), recorder.get_input_port())
-    return recorder, motor_log, per_row
+    step_log = None
+    if not scenario.gait.periodic:
+        step_log = builder.AddNamedSystem("step_log", VectorLogSink(
+            layout.nx + layout.nv, PERIODIC, time_step))
+        builder.Connect(rows.get_output_port(), step_log.get_input_port())
+    return recorder, motor_log, per_row, step_log
 
 
 def build_diagram(scenario: Scenario, params: Params, design: ClosureDesign,
@@ -217,8 +231,8 @@ def build_diagram(scenario: Scenario, params: Params, design: ClosureDesign,
     contact = add_contact_integral(builder, plant, instance, layout, design.time_step_s)
     controller, motor = add_controller(builder, scenario, params, plant, instance, layout,
                                        contact)
-    recorder, motor_log, per_row = add_recorders(builder, scenario, plant, instance, layout,
-                                                 motor, design.time_step_s, contact)
+    recorder, motor_log, per_row, step_log = add_recorders(
+        builder, scenario, plant, instance, layout, motor, design.time_step_s, contact)
     actuation_log = None
     if log_actuation:
         actuation_log = builder.AddNamedSystem("actuation_log", VectorLogSink(
@@ -227,5 +241,5 @@ def build_diagram(scenario: Scenario, params: Params, design: ClosureDesign,
     setup = Setup(plant=plant, instance=instance, layout=layout, design=design,
                   gains=controller.gains, recorder=recorder, motor_log=motor_log,
                   motor_samples_per_row=per_row, controller=controller,
-                  actuation_log=actuation_log)
+                  actuation_log=actuation_log, step_log=step_log)
     return builder.Build(), setup

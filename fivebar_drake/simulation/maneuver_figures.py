@@ -1,7 +1,9 @@
-"""The figures of a one-shot maneuver from its signals: the jump (takeoff, apex, height,
-agility, the push-off's work and the rise it bounds), the landing (touchdown speed, impulse, peak
-force and torque, compression) and the force the motors hold along both against the force the
-ground asked (maneuver_figures, capability_along); why a jump did not leave the ground."""
+"""The figures of a one-shot maneuver from its plant steps (signals.StepSignals: every step's
+contact forces and state, the motor's every sample), so that they do not depend on the log
+interval: the jump (takeoff, apex, height, agility, the push-off's work and the rise it bounds),
+the landing (touchdown speed, impulse, peak force and torque, compression) and the force the
+motors hold along both against the force the ground asked (maneuver_figures, capability_along);
+why a jump did not leave the ground."""
 
 from __future__ import annotations
 
@@ -13,111 +15,132 @@ from fivebar_drake.mechanisms.fivebar import forward, held_force, link_jacobians
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.plant import standing_height
 from fivebar_drake.simulation.runner import SimulationRecord
-from fivebar_drake.simulation.signals import Signals
+from fivebar_drake.simulation.signals import StepSignals, step_signals
 
-AIRBORNE_N = 1.0   # a total ground force below this over a recorded interval: every foot is off
+AIRBORNE_N = 1.0     # a total ground force below this at a plant step: every foot is off
+MIN_FLIGHT_S = 0.01  # a flight lasts at least this long: shorter gaps are the contact chattering
 
 
-def maneuver_figures(sig: Signals, record: SimulationRecord, start: float) -> dict:
-    """A maneuver's figures from the recorded intervals (start: the maneuver's start, s):
-    - jump (a plan with a takeoff): takeoff = the end of the last interval with ground contact
-      before the first one without (total ground force < AIRBORNE_N) after the push-off's onset;
-      takeoff speed = the centre of mass's vertical speed there; height_m = the body's apex above
-      its standing height; time_to_apex_s from the onset; agility_m_s = height / that time
-      (Haldane et al. 2016); the push-off's motor work (delivered torque x joint speed,
-      summed over the eight motors) and the centre of mass's rise it bounds (W / (m g));
-    - landing (a jump's or a drop's): from the first interval with ground contact after the
-      flight to the first whose end has the centre of mass at rest or rising: touchdown speed,
-      the ground's impulse and peak force, the motors' peak applied torque, the body's drop
-      (landing_compression_m);
+def flight(t, fz, after: float) -> tuple[int, int] | None:
+    """The first flight after time after (s): (the last step with ground contact before it, -1
+    if the run starts in the air; the first step with contact after it, len(t) if none) for
+    the first run of steps with the total ground force fz below AIRBORNE_N lasting at least
+    MIN_FLIGHT_S (or to the run's end); None if there is none."""
+    air = (fz < AIRBORNE_N) & (t > after)
+    k = 0
+    while k < len(t):
+        if not air[k]:
+            k += 1
+            continue
+        end = k
+        while end < len(t) and air[end]:
+            end += 1
+        since = t[k - 1] if k > 0 else t[0] - (t[1] - t[0] if len(t) > 1 else 0.0)
+        if end == len(t) or t[end - 1] - since >= MIN_FLIGHT_S:
+            return k - 1, end
+        k = end
+    return None
+
+
+def maneuver_figures(record: SimulationRecord, start: float) -> dict:
+    """A maneuver's figures from its plant steps (start: the maneuver's start, s):
+    - jump (a plan with a takeoff): takeoff = the last step with ground contact before the first
+      flight (flight) after the push-off's onset; takeoff speed = the centre of mass's vertical
+      speed there; height_m = the body's apex above its standing height; time_to_apex_s from the
+      onset; agility_m_s = height / that time (Haldane et al. 2016); the push-off's motor work
+      (delivered torque at each motor sample x joint speed, every step, summed over the eight
+      motors) and the centre of mass's rise it bounds (W / (m g));
+    - landing (a jump's or a drop's): from the first step with ground contact after the flight
+      to the first whose end has the centre of mass at rest or rising: touchdown speed, the
+      ground's impulse and peak force (every step), the motors' peak delivered torque (every
+      motor sample), the body's drop (landing_compression_m);
     - force_capability along the push-off and the landing (capability_along).
     None where the event did not happen (why_grounded says why no foot left)."""
     scenario, params, lay = record.scenario, record.params, record.layout
+    steps = step_signals(record)
     events = {k: start + v for k, v in scenario.gait.events(params.gait).items()}
     mass, g = lay.mass_kg, params.robot.gravity_m_s2
-    fz, t = sig.ground_force[:, 2], sig.t
-    dt = np.diff(t, prepend=t[0] - scenario.log_period_s)
+    fz, t = steps.ground_force[:, 2], steps.t
+    dt = np.diff(t, prepend=t[0] - record.design.time_step_s)
     out = {"jump": None, "landing": None, "force_capability": None, "why_grounded": ""}
     phases = {}
-    after = t > events.get("onset", events.get("touchdown", start))
-    k_to = None
+    fly = None
     if "takeoff" in events:
         onset = events["onset"]
-        air = np.flatnonzero((t > onset) & (fz < AIRBORNE_N))
-        if not air.size:
-            push = (t > onset) & (t <= events["takeoff"])
-            out["why_grounded"] = why_grounded(sig, record, push)
+        fly = flight(t, fz, onset)
+        if fly is None:
+            out["why_grounded"] = why_grounded(steps, record, (t > onset)
+                                               & (t <= events["takeoff"]))
         else:
-            k_to = int(air[0]) - 1
-            back = np.flatnonzero((np.arange(len(t)) > k_to) & (fz >= AIRBORNE_N))
-            k_td = int(back[0]) if back.size else len(t) - 1
-            k_apex = k_to + int(np.argmax(sig.body_p[k_to:k_td + 1, 2]))
+            k_to, k_td = fly
+            k_apex = k_to + int(np.argmax(steps.body_p[k_to:k_td, 2]))
+            push = (t > onset) & (t <= t[k_to])
+            held = np.searchsorted(steps.motor_t, t - dt, side="right") - 1
+            torque = steps.motor_torque[np.maximum(held, 0)]
+            work = float(np.sum((torque * steps.qd * dt[:, None, None])[push]))
+            height = float(steps.body_p[k_apex, 2]) - standing_height(params)
             k_on = int(np.searchsorted(t, onset))
-            push = slice(k_on, k_to + 1)
-            work = float(np.sum(sig.applied[push] * sig.qd[push] * dt[push, None, None]))
-            height = float(sig.body_p[k_apex, 2]) - standing_height(params)
-            rise = float(sig.com_p[k_apex:k_td + 1, 2].max() - sig.com_p[k_on, 2])
             out["jump"] = {
-                "height_m": height, "takeoff_speed_m_s": float(sig.com_v[k_to, 2]),
+                "height_m": height, "takeoff_speed_m_s": float(steps.com_v[k_to, 2]),
                 "takeoff_s": float(t[k_to]), "apex_s": float(t[k_apex]), "onset_s": onset,
                 "time_to_apex_s": float(t[k_apex] - onset),
                 "agility_m_s": height / float(t[k_apex] - onset),
-                "com_rise_after_takeoff_m": float(sig.com_p[k_apex:k_td + 1, 2].max()
-                                                  - sig.com_p[k_to, 2]),
-                "com_rise_m": rise, "push_work_J": work,
-                "energy_bound_rise_m": work / (mass * g)}
-            phases["push-off"] = np.zeros(len(t), dtype=bool)
-            phases["push-off"][push] = True
-            after = np.arange(len(t)) > k_to
-    if "touchdown" in events and (k_to is not None or "takeoff" not in events):
-        contact = np.flatnonzero(after & (fz >= AIRBORNE_N))
-        if contact.size:
-            k_td = int(contact[0])
-            rest = np.flatnonzero((np.arange(len(t)) > k_td) & (sig.com_v[:, 2] >= 0.0))
-            k_end = int(rest[0]) if rest.size else len(t) - 1
-            land = slice(k_td, k_end + 1)
-            v_td = float(sig.com_v[k_td - 1, 2])
-            landing = {
-                "touchdown_s": float(t[k_td - 1]), "end_s": float(t[k_end]),
-                "touchdown_speed_m_s": -v_td, "duration_s": float(t[k_end] - t[k_td - 1]),
-                "impulse_N_s": float(np.sum(fz[land] * dt[land])),
-                "momentum_change_N_s": float(mass * (sig.com_v[k_end, 2] - v_td)),
-                "peak_force_N": float(fz[land].max()),
-                "peak_torque_Nm": float(np.abs(sig.applied[land]).max()),
-                "compression_m": float(sig.body_p[k_td - 1, 2] - sig.body_p[land, 2].min())}
-            out["landing"] = landing
-            phases["landing"] = np.zeros(len(t), dtype=bool)
-            phases["landing"][land] = True
-            if out["jump"] is not None:
-                out["jump"]["landing_peak_torque_Nm"] = landing["peak_torque_Nm"]
-                out["jump"]["landing_compression_m"] = landing["compression_m"]
+                "com_rise_after_takeoff_m": float(steps.com_p[k_apex:k_td, 2].max()
+                                                  - steps.com_p[k_to, 2]),
+                "com_rise_m": float(steps.com_p[k_apex:k_td, 2].max() - steps.com_p[k_on, 2]),
+                "push_work_J": work, "energy_bound_rise_m": work / (mass * g)}
+            phases["push-off"] = push
+    elif "touchdown" in events:
+        fly = flight(t, fz, t[0] - 1.0)
+    if fly is not None and fly[1] < len(t):
+        k_td = fly[1]
+        rest = np.flatnonzero((np.arange(len(t)) > k_td) & (steps.com_v[:, 2] >= 0.0))
+        k_end = int(rest[0]) if rest.size else len(t) - 1
+        land = slice(k_td, k_end + 1)
+        v_td = float(steps.com_v[k_td - 1, 2])
+        t_td, t_end = float(t[k_td - 1]), float(t[k_end])
+        samples = (steps.motor_t >= t_td) & (steps.motor_t < t_end)
+        landing = {
+            "touchdown_s": t_td, "end_s": t_end,
+            "touchdown_speed_m_s": -v_td, "duration_s": t_end - t_td,
+            "impulse_N_s": float(np.sum(fz[land] * dt[land])),
+            "momentum_change_N_s": float(mass * (steps.com_v[k_end, 2] - v_td)),
+            "peak_force_N": float(fz[land].max()),
+            "peak_torque_Nm": float(np.abs(steps.motor_torque[samples]).max()),
+            "compression_m": float(steps.body_p[k_td - 1, 2] - steps.body_p[land, 2].min())}
+        out["landing"] = landing
+        phases["landing"] = np.zeros(len(t), dtype=bool)
+        phases["landing"][land] = True
+        if out["jump"] is not None:
+            out["jump"]["landing_peak_torque_Nm"] = landing["peak_torque_Nm"]
+            out["jump"]["landing_compression_m"] = landing["compression_m"]
     if phases:
-        out["force_capability"] = capability_along(sig, params, phases, lay.legs)
+        out["force_capability"] = capability_along(steps, params, phases, lay.legs)
     return out
 
 
-def why_grounded(sig: Signals, record: SimulationRecord, push) -> str:
-    """Why no foot left the ground: the largest ground force of the push-off against the
-    weight, and what the legs' torque box holds vertically at the crouch (the figure that
+def why_grounded(steps: StepSignals, record: SimulationRecord, push) -> str:
+    """Why no foot left the ground: the largest ground force of the push-off (steps) against
+    the weight, and what the legs' torque box holds vertically at the crouch (the figure that
     stops the jump)."""
     params, lay = record.params, record.layout
     weight = lay.mass_kg * params.robot.gravity_m_s2
     if not push.any():
         return "the run ended before the push-off"
     k = int(np.flatnonzero(push)[0])
-    jf = link_jacobians(params.leg, params.links, forward(params.leg, sig.q[k])).jf
+    jf = link_jacobians(params.leg, params.links, forward(params.leg, steps.q[k])).jf
     held = held_force(jf, params.motor.peak_torque_Nm, -params.motor.peak_torque_Nm,
                       np.array([0.0, 1.0])).sum()
-    return (f"the push-off's largest ground force was {sig.ground_force[push, 2].max():.0f} N "
+    return (f"the push-off's largest ground force was {steps.ground_force[push, 2].max():.0f} N "
             f"against the weight {weight:.0f} N; at the crouch the legs hold at most {held:.0f} N "
             f"vertically with their {params.motor.peak_torque_Nm:.2f} N·m motors")
 
 
-def capability_along(sig: Signals, params: Params, phases: dict, legs) -> dict:
+def capability_along(sig: StepSignals, params: Params, phases: dict, legs) -> dict:
     """The measured ground force on each foot against the force the motors can hold along it,
-    over the rows of each phase (a name -> row mask) where the foot carries more than a tenth of
-    its share of the weight: the torque box |tau| <= peak and the envelope at the joint speeds
-    (Motor.limits) through J_F^T (held_force). Arrays per phase (rows; foot height y in the leg
+    over the steps of each phase (a name -> step mask) where the foot carries more than a tenth
+    of its share of the weight: the torque box |tau| <= peak and the envelope at the joint speeds
+    (Motor.limits) through J_F^T (held_force). Arrays per phase (steps; foot height y in the leg
     plane, required and available N, per leg) and the least ratio available / required."""
     motor = params.motor
     pose = forward(params.leg, sig.q)

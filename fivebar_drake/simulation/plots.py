@@ -22,7 +22,7 @@ from fivebar_drake.core.files import save_figure
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.simulation.maneuver_figures import capability_along
-from fivebar_drake.simulation.signals import Signals
+from fivebar_drake.simulation.signals import Signals, StepSignals
 
 PLOT_POINTS = 1500       # points per curve at most (~ the plot's width in pixels)
 BAND_FILL = 0.86         # the share of its band a strip's range takes (the rest: a gap)
@@ -183,25 +183,25 @@ CAPABILITY_FILE = "force_capability.png"    # jump and drop only
 
 
 def write_sim_plots(sig: Signals, legs, params: Params, summary: dict,
-                    out_dir: Path) -> list[Path]:
+                    out_dir: Path, steps: StepSignals | None = None) -> list[Path]:
     """Write SIM_PLOT_FILES into out_dir (atomically), and CAPABILITY_FILE for a maneuver with
-    a push-off or a landing; returns their paths."""
+    a push-off or a landing (from its plant steps); returns their paths."""
     with plt.rc_context(STYLE):               # drawn when saved: the style covers both
         figures = (torque_figure(sig, legs, params, summary["window_s"]),
                    motion_figure(sig, legs, summary["gait_speed_m_s"]))
         written = [save_figure(fig, out_dir / name, dpi=90, compress_level=1)
                    for name, fig in zip(SIM_PLOT_FILES, figures)]
         if summary.get("force_capability"):
-            written.append(save_figure(capability_figure(sig, legs, params, summary),
+            written.append(save_figure(capability_figure(steps, legs, params, summary),
                                        out_dir / CAPABILITY_FILE, dpi=90, compress_level=1))
     return written
 
 
-def capability_figure(sig: Signals, legs, params: Params, summary: dict) -> plt.Figure:
+def capability_figure(sig: StepSignals, legs, params: Params, summary: dict) -> plt.Figure:
     """Along the push-off and the landing (a panel each), per leg against its foot's height
     in the leg plane (the stroke): the measured ground force and the force the motors hold
-    along it, within the torque box and within the envelope at the joint speeds
-    (maneuver_figures.capability_along)."""
+    along it, within the torque box and within the envelope at the joint speeds, at every
+    plant step (maneuver_figures.capability_along)."""
     phases = {}
     if summary.get("jump"):
         j = summary["jump"]

@@ -80,6 +80,23 @@ def interval_table(setup: Setup, params: Params, context) -> dict:
             "clipped_line": at_line.mean(1)}
 
 
+def step_table(setup: Setup, context) -> dict | None:
+    """A one-shot maneuver's plant steps (None without the step log): t (steps,) s, the state
+    (steps, nx) at each step's end and the step's generalized contact forces (steps, nv; the
+    contact integral's change over the step / its length); the motor's samples: motor_t
+    (samples,) s and the torque it delivered (samples, n) N*m, held until the next sample."""
+    if setup.step_log is None:
+        return None
+    log = setup.step_log.FindLog(context)
+    times, data = log.sample_times().copy(), log.data().T.copy()
+    nx = setup.layout.nx
+    motor = setup.motor_log.FindLog(context)
+    n = setup.layout.state.actuators.size
+    return {"t": times[1:], "state": data[1:, :nx],
+            "contact_generalized": np.diff(data[:, nx:], axis=0) / np.diff(times)[:, None],
+            "motor_t": motor.sample_times().copy(), "motor_torque": motor.data().T[:, n:2 * n].copy()}
+
+
 @dataclass(frozen=True)
 class SimulationRecord:
     """A simulated run as plain data (numpy arrays and dataclasses, no Drake object), all that
@@ -89,7 +106,8 @@ class SimulationRecord:
     recorder's table (interval_table: one row per log interval, SI); the wall time of the
     stepping (s); the error text if the run stopped early ("" if not), the signal that stopped
     it ("SIGINT", "SIGTERM"; "" if none); with log_actuation the times (steps,) s and joint
-    torques (steps, n) N*m in actuation order the plant received at every step, else None."""
+    torques (steps, n) N*m in actuation order the plant received at every step, else None;
+    for a one-shot maneuver its plant steps (step_table), else None."""
 
     scenario: Scenario
     params: Params
@@ -101,6 +119,7 @@ class SimulationRecord:
     error: str = ""
     interrupted: str = ""
     actuation: tuple[np.ndarray, np.ndarray] | None = None
+    steps: dict[str, np.ndarray] | None = None
 
     @property
     def completed(self) -> bool:
@@ -168,7 +187,8 @@ def simulate(scenario: Scenario, params: Params, progress=True, log_actuation=Fa
     return SimulationRecord(scenario=scenario, params=params, layout=setup.layout,
                             design=setup.design, gains=setup.gains,
                             table=interval_table(setup, params, context), wall_s=wall,
-                            error=error, interrupted=interrupted, actuation=actuation)
+                            error=error, interrupted=interrupted, actuation=actuation,
+                            steps=step_table(setup, context))
 
 
 def divergence(message: str, t: float, scenario: Scenario, params: Params, layout: RobotLayout,

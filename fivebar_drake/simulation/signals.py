@@ -139,17 +139,16 @@ def signals(record: SimulationRecord) -> Signals:
         stance=stance, swing_fraction=swing_fraction,
         swing_contact=(~stance) & gaiting & (force_world[..., 2] > SWING_CONTACT_N),
         limits=limit_tests(params.leg, pose),
-        **dict(zip(("com_p", "com_v"), com_motion(record, r_wb))),
+        **dict(zip(("com_p", "com_v"), com_motion(params, lay, st, r_wb))),
         ground_force=table["contact_generalized"][:, lay.state.body_v + 3:lay.state.body_v + 6])
 
 
-def com_motion(record: SimulationRecord, r_wb) -> tuple[np.ndarray, np.ndarray]:
-    """The robot's centre of mass (rows, 3) m and its velocity (rows, 3) m/s in the world at
-    each recorded interval's end, from the state: the layout's COM (body frame, standing pose)
-    moved by the links' COMs away from their standing places, and the body's velocity plus the
-    links' relative motion (J_v q_dot per link, leg plane) weighted by their masses. r_wb: the
-    body's rotation to the world per row (rows, 3, 3)."""
-    params, lay, st = record.params, record.layout, record.table["state"]
+def com_motion(params: Params, lay: RobotLayout, st, r_wb) -> tuple[np.ndarray, np.ndarray]:
+    """The robot's centre of mass (rows, 3) m and its velocity (rows, 3) m/s in the world from
+    the plant states st (rows, nx) alone: the layout's COM (body frame, standing pose) moved by
+    the links' COMs away from their standing places, and the body's velocity plus the links'
+    relative motion (J_v q_dot per link, leg plane) weighted by their masses. r_wb: the body's
+    rotation to the world per row (rows, 3, 3)."""
     leg, links = params.leg, params.links
     masses = np.array([links[n].mass_kg for n in ("AC", "BD", "CE", "DE")])
     q = st[:, lay.state.q_index]                                       # (rows, legs, 2)
@@ -168,6 +167,45 @@ def com_motion(record: SimulationRecord, r_wb) -> tuple[np.ndarray, np.ndarray]:
     p_body = st[:, lay.state.body_q + 4:lay.state.body_q + 7]
     v_rel = np.einsum("sij,sj->si", r_wb, (rate @ plane.T) / lay.mass_kg)
     return p_body + r_w, v_body + np.cross(omega, r_w) + v_rel
+
+
+@dataclass(frozen=True)
+class StepSignals:
+    """A one-shot maneuver's plant steps (record.steps): t (steps,) s at each step's end; body
+    position (steps, 3) m, the centre of mass com_p and its velocity com_v (steps, 3) m, m/s at
+    each step's end (com_motion); per leg and motor q (rad) and qd (rad/s, at the step's end);
+    the step's foot forces foot_force_plane (steps, legs, 2) N (leg plane) and the total ground
+    force ground_force (steps, 3) N (world); the motor's samples motor_t (samples,) s and the
+    torque it delivered motor_torque (samples, legs, 2) N*m, held until the next sample."""
+
+    t: np.ndarray
+    body_p: np.ndarray
+    com_p: np.ndarray
+    com_v: np.ndarray
+    q: np.ndarray
+    qd: np.ndarray
+    foot_force_plane: np.ndarray
+    ground_force: np.ndarray
+    motor_t: np.ndarray
+    motor_torque: np.ndarray
+
+
+def step_signals(record: SimulationRecord) -> StepSignals:
+    """The StepSignals of a record with plant steps (record.steps, a one-shot maneuver's)."""
+    steps, lay, params = record.steps, record.layout, record.params
+    st = steps["state"]
+    q = st[:, lay.state.q_index]
+    pose = forward(params.leg, q)
+    r_wb = body_rotations(np.ascontiguousarray(st[:, lay.state.body_q:lay.state.body_q + 4]))
+    down = -params.body.foot_radius_m * (r_wb @ plane_rotation())[:, 2, :2]
+    generalized = steps["contact_generalized"]
+    com_p, com_v = com_motion(params, lay, st, r_wb)
+    return StepSignals(
+        t=steps["t"], body_p=st[:, lay.state.body_q + 4:lay.state.body_q + 7], com_p=com_p,
+        com_v=com_v, q=q, qd=st[:, lay.state.nq + lay.state.v_index],
+        foot_force_plane=foot_forces(generalized, lay, params, pose, down),
+        ground_force=generalized[:, lay.state.body_v + 3:lay.state.body_v + 6],
+        motor_t=steps["motor_t"], motor_torque=steps["motor_torque"][:, lay.state.actuators])
 
 
 def foot_forces(generalized, layout: RobotLayout, params: Params, pose, down) -> np.ndarray:

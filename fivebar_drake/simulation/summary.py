@@ -201,7 +201,7 @@ def summarize(sig: Signals, record: SimulationRecord, seed_analysis: dict) -> di
     speed = float((p[-1, 0] - p[0, 0]) / (tw[-1] - tw[0])) if len(tw) > 1 else math.nan
     gait_speed = scenario.gait.stance_speed(params.gait)
     max_tilt = float(np.max(sig.tilt_deg)) if len(sig.t) else math.nan
-    maneuver = maneuver_figures(sig, record, start) if not scenario.gait.periodic else None
+    maneuver = maneuver_figures(record, start) if not scenario.gait.periodic else None
     run_why = achievement(params, speed, gait_speed, max_tilt, scenario.gait.goal,
                           float(sig.body_p[win][-1, 2]) if win.any() else math.nan,
                           standing_height(params), maneuver)
