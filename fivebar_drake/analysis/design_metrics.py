@@ -132,7 +132,9 @@ def design_metrics(params: Params, samples: GaitSamples, models: dict[str, Dynam
                 "least_margin_moving": _least(np.where(needed > 0, s.moving / needed, np.inf),
                                               samples)}
         rms = np.sqrt(np.mean(tb.total**2, axis=0))
-        current = rms_current(params.motor, tb.total, samples.qd)
+        # the current of the torque the motor delivers: the joint's and the output friction
+        current = rms_current(params.motor, params.motor.delivered_torque(tb.total, samples.qd),
+                              samples.qd)
         thermal[name] = thermal_margin(params.motor, current)
         results["thermal"]["models"][name] = _thermal_results(params, thermal[name], rms, current)
         loads[name] = joint_loads(params.leg, params.links, model, samples.pose, samples.qd,

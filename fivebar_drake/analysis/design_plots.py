@@ -119,28 +119,40 @@ def force_margin(an: Analysis) -> plt.Figure:
 
 
 def torque_speed(an: Analysis) -> plt.Figure:
+    """The motors' operating points (the torque each delivers: joint torque + output friction,
+    Motor.delivered_torque) over the envelope of both quadrants, folded onto positive speeds:
+    torque in the direction of the motion (driving > 0, braking < 0) against |joint speed|."""
     m = an.params.motor
-    fig, axes = plt.subplots(1, 2, figsize=(12, 4.8), sharey=True)
-    w = np.linspace(0.0, m.no_load_speed_rad_s, 200)
-    line = m.torque_limit(w)
+    fig, axes = plt.subplots(1, 2, figsize=(12, 5.6), sharey=True)
+    fastest = max(float(np.max(np.abs(an.samples.qd))), m.no_load_speed_rad_s)
+    w = np.linspace(0.0, 1.1 * fastest, 300)
+    up, lo = m.limits(w)
+    bottom = min(float(lo.min()), float(up.min()))
     for j, (ax, motor) in enumerate(zip(axes, MOTORS)):
-        ax.plot(w, line, "r-", lw=1.5, label="actuator envelope (current, then voltage)")
-        ax.plot(w, np.minimum(line, m.continuous_torque_Nm), "r--", lw=1,
-                label=f"continuous rating {m.continuous_torque_Nm:.2f} N·m")
+        ax.plot(w, up, "r-", lw=1.5, label="envelope, driving side (beyond the no-load speed "
+                "the back-EMF\nforces braking)")
+        ax.plot(w, lo, "r-.", lw=1.2, label=f"envelope, braking side ({m.braking_peak_torque_Nm:.2f}"
+                " N·m)")
+        if m.continuous_torque_Nm is not None:
+            ax.plot(w, np.clip(up, None, m.continuous_torque_Nm), "r--", lw=1,
+                    label=f"continuous rating {m.continuous_torque_Nm:.2f} N·m")
+        ax.axhline(0.0, color="grey", lw=0.6)
         for name in PHYSICAL:
-            tau, speed = np.abs(an.torques[name].total[:, j]), np.abs(an.samples.qd[:, j])
-            dots = ax.plot(speed, tau, "o" if name == "full" else "x", ms=4, label=name)[0]
+            speed = an.samples.qd[:, j]
+            demand = m.delivered_torque(an.torques[name].total[:, j], speed)
+            along = np.where(speed >= 0.0, demand, -demand)
+            dots = ax.plot(np.abs(speed), along, "o" if name == "full" else "x", ms=4,
+                           label=f"{name} (joint torque + friction)")[0]
             r = an.results["results"][name][motor]
             k = r["torque_speed_margin_at"]["sample"]
-            ax.plot(speed[k], tau[k], "s", mfc="none", ms=10, color=dots.get_color(),
+            ax.plot(abs(speed[k]), along[k], "s", mfc="none", ms=10, color=dots.get_color(),
                     label=f"{name}: least margin {r['torque_speed_margin']:.2f}x")
-            ax.axhline(r["rms_torque_Nm"], color=dots.get_color(), lw=0.8, ls=":",
-                       label=f"{name}: RMS {r['rms_torque_Nm']:.2f} N·m")
-        ax.set(title=f"motor {motor}", xlabel="|joint speed| (rad/s)", ylabel="|torque| (N·m)",
-               xlim=(0, m.no_load_speed_rad_s * 1.02), ylim=(0, m.peak_torque_Nm * 1.05))
+        ax.set(title=f"motor {motor}", xlabel="|joint speed| (rad/s)",
+               ylabel="torque along the motion (N·m): driving > 0, braking < 0",
+               xlim=(0, w[-1]), ylim=(1.05 * bottom, 1.05 * m.peak_torque_Nm))
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=7)
-    fig.suptitle("Operating points over the gait on the torque-speed plane")
+        ax.legend(fontsize=6.5, loc="lower right", bbox_to_anchor=(1.0, 0.08))
+    fig.suptitle("Operating points over the gait on the torque-speed plane, both quadrants")
     fig.tight_layout()
     return fig
 

@@ -13,7 +13,7 @@ from __future__ import annotations
 import dataclasses
 import numpy as np
 
-from fivebar_drake.core.checks import Checks, checks_of, verdict
+from fivebar_drake.core.checks import Checks, checks_of, torque_check, verdict
 from fivebar_drake.core.footpath import cycle_phase, foot_path, path_arrays, stance_loads
 from fivebar_drake.core.motor import Motor
 from fivebar_drake.core.thermal import thermal_margin
@@ -26,20 +26,24 @@ from fivebar_drake.robots.quadruped.params import Params
 
 MODELS = ("full_trot", "full")   # leg_loads.trot_model, leg_loads.full_model
 def motor_figures(motor: Motor, checks: Checks, torque, speed) -> dict:
-    """Per-motor figures of torques (N*m) at motor speeds (rad/s) sampled over one cycle
-    (N, motors), time first: peak |torque|, RMS torque, safety factor peak_torque / peak, peak
-    |speed|, the least ratio of the envelope's torque to the demand, the RMS current, and the
-    motor's checks (core/checks.motor_checks: the margins and currents of both motors in one
-    call each)."""
+    """Per-motor figures of joint torques (N*m) at joint speeds (rad/s) sampled over one cycle
+    (N, motors), time first: peak |torque|, RMS torque, the seed's safety factor peak_torque /
+    peak, peak |speed|, and on the motor's operating points (Motor.delivered_torque: the joint
+    torque plus the output friction) the least ratio of the envelope's torque to the demand in
+    its quadrant (Motor.torque_margins), the RMS current and the motor's checks
+    (core/checks.motor_checks: each sample against its own quadrant's limit; the margins and
+    currents of both motors in one call each)."""
     total = np.abs(torque)
     peak = total.max(0)
-    margins, outside = motor.speed_margins(torque, speed)
-    current = np.sqrt(np.mean(np.square(motor.currents(torque, speed)), 0))
+    demand = motor.delivered_torque(torque, speed)
+    margins, outside = motor.speed_margins(demand, speed)
+    current = np.sqrt(np.mean(np.square(motor.currents(demand, speed)), 0))
     out = {"peak_torque_Nm": peak, "rms_torque_Nm": np.sqrt(np.mean(torque**2, 0)),
            "safety_factor": motor.peak_torque_Nm / peak, "peak_speed_rad_s": np.abs(speed).max(0),
-           "torque_speed_margin": np.min(motor.torque_limit(speed) / np.maximum(total, 1e-12), 0),
+           "torque_speed_margin": np.min(motor.torque_margins(demand, speed), 0),
            "rms_current_A": current}
-    per_motor = [checks_of(motor, checks, peak[j], margins[:, j], outside[:, j], current[j])
+    per_motor = [checks_of(motor, checks, torque_check(checks, motor, demand[:, j], speed[:, j]),
+                           margins[:, j], outside[:, j], current[j])
                  for j in range(torque.shape[1])]
     out["speed_margin"] = np.array([c["speed"]["least_margin"] if c["speed"]["least_margin"]
                                     is not None else np.inf for c in per_motor])

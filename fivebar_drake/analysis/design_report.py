@@ -25,16 +25,18 @@ def design_assumptions(params: Params) -> list[str]:
         "Force capability: the foot forces the motor torques |tau_i| <= peak hold through "
         "J_F^-T (link weights aside); 'while moving' takes off the torques the motion and the "
         "link weights already need (full models).",
-        f"Thermal: copper loss 1.5 R i_rms^2, the current i of each sample's torque (k_t = "
+        f"Thermal: copper loss 1.5 R i_rms^2, the current i of the torque the motor delivers "
+        f"at each sample (the joint's and the output friction; k_t = "
         f"{m.torque_constant_Nm_per_A:.4g} N m/A, motor side, through the gearbox at "
         f"{m.gear_efficiency:g}), R = {m.winding_resistance_ohm:g} ohm constant, one first-order lag "
         f"(R_th = {m.thermal_resistance_K_W:g} K/W, tau = {m.thermal_time_constant_s:g} s) from "
-        f"{m.ambient_C:g} C; friction and iron losses left out; these motor values are "
+        f"{m.ambient_C:g} C; iron losses left out; these motor values are "
         "assumptions (parameter file).",
         "Hinge loads: Newton-Euler of the four rigid links under the full models' loads, with the "
         "analysis' joint rates and accelerations; frictionless hinges.",
-        "Gear-ratio trade: lossless gearbox; the rotor's reflected inertia N^2 J_r q'' is added "
-        "to each joint's torque (the rest of the analysis leaves it out).",
+        "Gear-ratio trade: the gearbox's efficiency kept at every ratio; the rotor's reflected "
+        "inertia N^2 J_r q'' and the output friction are added to each joint's torque (the rest "
+        "of the analysis leaves the rotor out).",
     ]
 
 
@@ -67,10 +69,14 @@ def design_lines(results: dict, params: Params) -> list[str]:
                      f"{_least(g['least_margin_moving'])} |")
     r = results["results"]
     lines += ["", "## Torque-speed envelope", "",
-              f"Operating points (|tau|, |omega|) against the actuator's envelope (peak "
-              f"{m.peak_torque_Nm:g} N m up to the corner speed, zero at the no-load speed "
-              f"{m.no_load_speed_rad_s:.2f} rad/s) and the continuous rating "
-              f"{m.continuous_torque_Nm:.3g} N m:", "",
+              f"Operating points (the torque the motor delivers, joint torque + output friction, "
+              f"at the joint speed) against the actuator's envelope in their own quadrant "
+              f"(driving: {m.peak_torque_Nm:g} N m up to the corner speed, zero at the no-load "
+              f"speed {m.no_load_speed_rad_s:.2f} rad/s, beyond which the back-EMF forces "
+              f"braking; braking: {m.braking_peak_torque_Nm:.3g} N m) and the continuous rating "
+              f"{m.continuous_torque_Nm:.3g} N m. Margin: the envelope's torque at the sample's "
+              "speed in the direction of its torque over that torque (below 1 exactly outside the "
+              "envelope):", "",
               "| motor | model | least margin to the envelope | where |", "|---|---|---|---|"]
     for motor in MOTORS:
         for name in PHYSICAL:
@@ -108,8 +114,9 @@ def design_lines(results: dict, params: Params) -> list[str]:
               f"The same motor (motor side {side['peak_torque_Nm']:.4g} N m, "
               f"{side['no_load_speed_rad_s']:.2f} rad/s, rotor {side['rotor_inertia_kg_m2']:.3g} "
               f"kg m^2) behind ratios {gr['search_range'][0]:g}..{gr['search_range'][1]:g}, on "
-              f"the `{GEAR_MODEL}` model, safety factor = least ratio of the torque-speed line to "
-              "the torque needed including the reflected rotor inertia:", "",
+              f"the `{GEAR_MODEL}` model, safety factor = least ratio of the envelope's torque in "
+              "the direction of the torque the motor delivers (each sample's quadrant) to that "
+              "torque: the joint's, the reflected rotor inertia's and the output friction:", "",
               f"- current {gr['current']:g}:1: safety factor {gr['safety_factor_at_current']:.2f}",
               f"- best {gr['best']:.2f}:1: safety factor {gr['safety_factor_at_best']:.2f}"]
     return lines

@@ -1,8 +1,10 @@
 """Gear-ratio trade for one motor (Stanford Doggo's method): keep the motor (its motor-side data:
 core/motor.with_gear) and change the gear ratio N. At the output the envelope's torque scales by
-N (times the gearbox efficiency), its speeds by 1 / N, and the rotor adds N^2 J_r q'' to each
-joint's torque. The safety factor at N is the least ratio, over the cycle and the motors, of the
-torque the envelope gives at the joint speed (driving) to the torque needed."""
+N (times the gearbox efficiency driving, over it braking), its speeds by 1 / N, and the rotor adds
+N^2 J_r q'' to each joint's torque. The safety factor at N is the least ratio, over the cycle and
+the motors, of the torque the envelope gives at the joint speed in the direction of the torque
+the motor must deliver (the joint's torque, the rotor's and the output friction:
+Motor.delivered_torque) to that torque (Motor.torque_margins: each sample in its own quadrant)."""
 
 from __future__ import annotations
 
@@ -24,16 +26,21 @@ def safety_factors(motor: Motor, load_Nm, qd, qdd, ratios, speed_line: bool = Tr
                    rotor: bool = True) -> np.ndarray:
     """Safety factor (r, m) of each motor m at gear ratios (r,), for the joint torques load_Nm
     (n, m) N*m of the linkage at joint rates qd (rad/s) and accelerations qdd (rad/s^2), (n, m):
-    min over samples of the available torque (the torque-speed line at |qd| if speed_line,
-    else the peak) over |load + N^2 J_r qdd| (the rotor term if rotor)."""
-    n = np.asarray(ratios, dtype=float)[:, None, None]
-    geared = [with_gear(motor, r) for r in n.ravel()]
-    available = np.array([m.torque_limit(qd) if speed_line else np.full(np.shape(qd),
-                                                                          m.peak_torque_Nm)
-                          for m in geared])
-    need = np.abs(np.asarray(load_Nm) + (n**2 * motor.rotor_inertia_kg_m2 * np.asarray(qdd)
-                                          if rotor else 0.0))
-    return np.min(available / np.maximum(need, 1e-12), axis=1)
+    the least over the samples of the envelope's torque at qd in the direction of the torque
+    the motor delivers (load + N^2 J_r qdd if rotor, + friction) over it (Motor.torque_margins)
+    if speed_line, else the peak-current torque of each sample's quadrant over it (1 / the
+    largest of Motor.quadrant_loads)."""
+    qd, qdd = np.asarray(qd, dtype=float), np.asarray(qdd, dtype=float)
+    out = []
+    for r in np.asarray(ratios, dtype=float).ravel():
+        m = with_gear(motor, r)
+        need = m.delivered_torque(np.asarray(load_Nm) + (r**2 * motor.rotor_inertia_kg_m2 * qdd
+                                                         if rotor else 0.0), qd)
+        if speed_line:
+            out.append(np.min(m.torque_margins(need, qd), axis=0))
+        else:
+            out.append(1.0 / np.maximum(np.max(m.quadrant_loads(need, qd)[0], axis=0), 1e-300))
+    return np.array(out)
 
 
 @dataclass(frozen=True)

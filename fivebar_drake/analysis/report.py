@@ -10,6 +10,7 @@ from fivebar_drake.analysis.design_report import design_assumptions, design_line
 from fivebar_drake.analysis.torques import Analysis
 from fivebar_drake.core.files import json_ready, write_atomic
 from fivebar_drake.core.footpath import foot_path
+from fivebar_drake.core.motor import FRICTION_SMOOTHING_RAD_S
 from fivebar_drake.mechanisms.fivebar import LINK_NAMES, MOTORS, physical_izz
 from fivebar_drake.robots.quadruped.config import sampling_error
 
@@ -34,13 +35,18 @@ def assumptions(analysis: Analysis) -> list[str]:
         f"Izz values are about each link's COM, axis along the hinges. The seed's '~0' for AC is "
         f"0 in the `seed` model and the thin-rod estimate m L^2/12 = {izz['AC']:.3g} kg m^2 in "
         "the `full` models.",
-        f"The {p.motor.peak_torque_Nm:g} N m motor torque is taken at the gearbox output "
-        f"(gear {p.motor.gear_ratio:g}:1); {p.motor.no_load_speed_rad_s:.2f} rad/s "
-        f"({p.motor.no_load_speed_rad_s * 60 / (2 * math.pi):.0f} RPM) is taken as the no-load "
-        "output speed of a linear torque-speed line.",
+        motor_assumption(p.motor),
+        f"The motor's operating points are the joint's torque plus the output friction it "
+        f"overcomes (Coulomb {p.motor.coulomb_friction_Nm:g} N m, regularised over "
+        f"{FRICTION_SMOOTHING_RAD_S:g} rad/s, and viscous {p.motor.viscous_friction_Nm_s:g} N m "
+        "s/rad: the law the simulation's motor model applies) at the joint speed; the checks "
+        "take each against the envelope of its own quadrant (driving: torque and speed of one "
+        "sign; braking: opposite signs). The seed's Tables 3-5 keep the joint torque alone.",
         "Joint rates and accelerations are periodic central differences over the N samples "
         "(seed 000 section 5); the IK mode follows seed 000 appendix B from the knees-out mode.",
-        "Safety factor = motor torque / peak dynamic torque; verdict: SF >= "
+        f"Safety factor (Table 5, the seed's) = {p.motor.peak_torque_Nm:g} N m / the peak "
+        "|dynamic torque|; the torque check's = 1 / the largest |operating torque| over the "
+        "peak-current torque of its quadrant; verdict: SF >= "
         f"{p.checks.sf_pass:g} pass, {p.checks.sf_warn:g} <= SF < {p.checks.sf_pass:g} warn, "
         "else fail.",
         "The leg's limits ([limits] of the parameter file): " + (
@@ -49,6 +55,34 @@ def assumptions(analysis: Analysis) -> list[str]:
             "pose past one counts as out of reach)" if p.limits.given else "none set"),
         *design_assumptions(p),
     ]
+
+
+def motor_assumption(motor) -> str:
+    """The actuator model in one sentence, with its output figures."""
+    if motor.model != "bldc":
+        return (f"The {motor.peak_torque_Nm:g} N m motor torque is taken at the gearbox output "
+                f"(gear {motor.gear_ratio:g}:1, model = \"{motor.model}\"): a linear "
+                f"torque-speed line from it to the no-load speed {motor.no_load_speed_rad_s:.2f} "
+                f"rad/s ({motor.no_load_speed_rad_s * 60 / (2 * math.pi):.0f} RPM), braking held "
+                f"at {motor.braking_peak_torque_Nm:.3g} N m up to it; beyond it the line goes on "
+                "into braking (as a DC motor's).")
+    law = motor.law
+    corner = (law.phase_voltage - law.resistance * law.peak_current) / (law.back_emf * law.gear)
+    return (f"The actuator is a brushless motor behind a {motor.gear_ratio:g}:1 gearbox "
+            f"(efficiency {motor.gear_efficiency:g}), from motor-side data ([motor]: k_t = "
+            f"{motor.torque_constant_Nm_per_A:.4g} N m per A of q-axis current, R = "
+            f"{motor.winding_resistance_ohm:g} ohm, V_bus = {motor.bus_voltage_V:g} V, I_peak = "
+            f"{motor.peak_current_A:.4g} A), the winding's inductance neglected: |i| <= I_peak "
+            "and the voltage equation R i + (k_t / 1.5) N w within +-V_bus / sqrt(3) (the phase "
+            "amplitude of space-vector modulation), output torque N eta k_t i driving and "
+            f"N k_t i / eta braking. Driving: flat at {motor.peak_torque_Nm:.3g} N m up to the "
+            f"corner {corner:.2f} rad/s, then falling to zero at the no-load speed "
+            f"{motor.no_load_speed_rad_s:.2f} rad/s "
+            f"({motor.no_load_speed_rad_s * 60 / (2 * math.pi):.0f} RPM); braking "
+            f"{motor.braking_peak_torque_Nm:.3g} N m; beyond the no-load speed the back-EMF "
+            "exceeds the phase voltage and forces regenerative braking ((k_t / 1.5) N w - "
+            "V_bus / sqrt(3)) / R amperes at least: the motor cannot coast there (README \"The "
+            "actuator\").")
 
 
 def _where(at: dict) -> str:
@@ -95,6 +129,9 @@ def markdown(analysis: Analysis, sampled: dict | None = None) -> str:
                          f"{m['peak_torque_Nm']:.3f} | {m['dynamic_to_static_ratio']:.4f}x | "
                          f"{_where(m['static_peak_at'])} |")
     lines += ["", f"## Table 5: safety factor against {p.motor.peak_torque_Nm:g} N m", "",
+              f"The seed's: {p.motor.peak_torque_Nm:g} N m over the peak |joint torque|, whatever "
+              "its quadrant (the torque check below takes each sample against its own "
+              "quadrant's limit).", "",
               "| motor | model | peak torque (N m) | safety factor | verdict |",
               "|---|---|---|---|---|"]
     for motor in MOTORS:
@@ -102,18 +139,30 @@ def markdown(analysis: Analysis, sampled: dict | None = None) -> str:
             m = r[model][motor]
             lines.append(f"| {motor} | {model} | {m['peak_torque_Nm']:.3f} | "
                          f"{m['safety_factor']:.2f}x | {m['verdict'].upper()} |")
-    lines += ["", f"## Speed check (limit {p.motor.no_load_speed_rad_s:.2f} rad/s)", "",
-              "| motor | peak speed (rad/s) | where | within limit | peak accel (rad/s^2) "
-              "| torque-speed margin (seed / full) |", "|---|---|---|---|---|---|"]
+    lines += ["", f"## Speed check (no-load speed {p.motor.no_load_speed_rad_s:.2f} rad/s)", "",
+              "| motor | model | peak speed (rad/s) | where | beyond the no-load speed | peak accel "
+              "(rad/s^2) | least speed margin | beyond the envelope | torque-speed margin | "
+              "speed check |", "|---|---|---|---|---|---|---|---|---|---|"]
     for motor in MOTORS:
-        m = r["full"][motor]
-        lines.append(f"| {motor} | {m['peak_speed_rad_s']:.3f} | {_where(m['peak_speed_at'])} | "
-                     f"{'yes' if m['speed_ok'] else 'NO'} | {m['peak_acceleration_rad_s2']:.2f} | "
-                     f"{r['seed'][motor]['torque_speed_margin']:.2f}x / "
-                     f"{m['torque_speed_margin']:.2f}x |")
-    lines += ["", "Torque-speed margin: the least ratio, over the cycle, of the torque the motor "
-              "can give at that sample's speed (the actuator's envelope, driving) to the torque "
-              "needed.",
+        for model in SIDE_BY_SIDE + ("full_trot",):
+            m = r[model][motor]
+            c = m["checks"]["speed"]
+            lines.append(f"| {motor} | {model} | {m['peak_speed_rad_s']:.3f} | "
+                         f"{_where(m['peak_speed_at'])} | {'no' if m['speed_ok'] else 'YES'} | "
+                         f"{m['peak_acceleration_rad_s2']:.2f} | "
+                         f"{_maybe(c['least_margin'], '.3f')} | {c['outside_fraction']:.1%} | "
+                         f"{m['torque_speed_margin']:.2f}x | {c['verdict'].upper()} |")
+    lines += ["", "Operating points: the torque the motor delivers (joint torque + output "
+              "friction) at the joint speed, each in its own quadrant. Least speed margin: the "
+              "largest speed at which the envelope still gives a sample's torque in its quadrant "
+              "over its speed (driving: the back-EMF may reach the phase voltage less R i; "
+              "braking: exceed it by R i at most, beyond which it forces more braking than "
+              "asked). Beyond the envelope: the share of the cycle's samples outside it (the "
+              f"check fails above {p.checks.speed_outside_fail:.0%}, warns for any or a margin "
+              f"below {p.checks.speed_margin_warn:g}). Torque-speed margin: the least ratio of "
+              "the torque the envelope gives at a sample's speed in the direction of its torque "
+              "to that torque (below 1 exactly outside). A joint beyond the no-load speed lies "
+              "within the envelope only while it brakes at least as much as the back-EMF forces.",
               "", "## Trot loading (the other reading of the weight share)", "",
               "| motor | peak torque (N m) | static (N m) | safety factor | verdict |",
               "|---|---|---|---|---|"]
@@ -127,18 +176,21 @@ def markdown(analysis: Analysis, sampled: dict | None = None) -> str:
               f"{mo['braking_peak_torque_Nm']:.3g} braking), no-load "
               f"{mo['no_load_speed_rad_s']:.2f} rad/s, continuous "
               f"{_maybe(mo['continuous_torque_Nm'], '.3g')} N m at the output "
-              "(report.json: motor.envelope). Torque: safety factor on the peak demand; speed: "
-              "the least ratio of the speed at which the envelope still gives a sample's torque "
-              "to its speed, and the share of the cycle beyond the envelope; thermal: continuous "
-              "/ RMS current. The worst check decides.", "",
-              "| motor | model | verdict | decided by | SF | speed margin | beyond envelope | "
-              "current margin |", "|---|---|---|---|---|---|---|---|"]
+              "(report.json: motor.envelope). Operating points: the joint torque plus the output "
+              "friction, at the joint speed. Torque: the safety factor, 1 / the largest ratio of "
+              "a sample's torque to the peak-current torque of its own quadrant (driving: torque "
+              "and speed of one sign; braking: opposite signs), with the quadrant of that sample; "
+              "speed: the least ratio of the speed at which the envelope still gives a sample's "
+              "torque to its speed, and the share of the cycle beyond the envelope; thermal: "
+              "continuous / RMS current. The worst check decides.", "",
+              "| motor | model | verdict | decided by | SF | quadrant | speed margin | "
+              "beyond envelope | current margin |", "|---|---|---|---|---|---|---|---|---|"]
     for motor in MOTORS:
         for model in SIDE_BY_SIDE + ("full_trot",):
             c = r[model][motor]["checks"]
             lines.append(f"| {motor} | {model} | {c['verdict'].upper()} | {c['deciding_check']} "
-                         f"| {_maybe(c['torque']['sf'], '.2f')} | "
-                         f"{_maybe(c['speed']['least_margin'], '.2f')} | "
+                         f"| {_maybe(c['torque']['sf'], '.2f')} | {c['torque']['quadrant']} | "
+                         f"{_maybe(c['speed']['least_margin'], '.3f')} | "
                          f"{c['speed']['outside_fraction']:.1%} | "
                          f"{_maybe(c['thermal']['margin'], '.2f')} |")
     path = analysis.results["path"]

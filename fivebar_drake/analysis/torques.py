@@ -32,14 +32,19 @@ class Analysis:
 
 
 def motor_results(params: Params, samples: GaitSamples, tb: TorqueBreakdown, j: int) -> dict:
-    """Peaks of motor j (0 = A, 1 = B) over the sampled cycle; magnitudes are absolute values."""
+    """Peaks of motor j (0 = A, 1 = B) over the sampled cycle; magnitudes are absolute values.
+    The seed's safety factor (Table 5) is the driving peak over the peak |joint torque|; the
+    checks and the torque-speed margin take the motor's operating points (Motor.delivered_torque:
+    the joint torque plus the output friction, at the joint speed), each sample against its own
+    quadrant."""
     motor = params.motor
     total, static, speed = np.abs(tb.total[:, j]), np.abs(tb.static[:, j]), np.abs(samples.qd[:, j])
     k_peak, k_static, k_speed = (int(np.argmax(v)) for v in (total, static, speed))
     peak = float(total[k_peak])
     sf = motor.peak_torque_Nm / peak
-    # Torque the actuator's envelope gives at each sample's speed (driving quadrant).
-    margin = motor.torque_limit(speed) / np.maximum(total, 1e-12)
+    demand = motor.delivered_torque(tb.total[:, j], samples.qd[:, j])
+    # The envelope's torque at each sample's speed in the direction of its demand (< 1 outside).
+    margin = motor.torque_margins(demand, samples.qd[:, j])
     k_line = int(np.argmin(margin))
     return {
         "peak_torque_Nm": peak,
@@ -59,7 +64,8 @@ def motor_results(params: Params, samples: GaitSamples, tb: TorqueBreakdown, j: 
         "peak_acceleration_rad_s2": float(np.max(np.abs(samples.qdd[:, j]))),
         "torque_speed_margin": float(margin[k_line]),
         "torque_speed_margin_at": sample_at(samples, k_line),
-        "checks": motor_checks(motor, params.checks, tb.total[:, j], samples.qd[:, j], peak),
+        "peak_motor_torque_Nm": float(np.max(np.abs(demand))),
+        "checks": motor_checks(motor, params.checks, demand, samples.qd[:, j]),
     }
 
 

@@ -1,7 +1,9 @@
 """The verdict a designer acts on: thresholds (Checks) and the checks of one motor against its
-actuator — torque (safety factor), speed (the operating points against the envelope), thermal
-(RMS current against the continuous current) — and whether a simulated gait was achieved; the
-worst check decides.
+actuator — torque (safety factor: each sample against the peak-current torque of its own
+quadrant, driving or braking), speed (the operating points against the envelope), thermal (RMS
+current against the continuous current) — and whether a simulated gait was achieved; the worst
+check decides. A motor clipped beyond the allowed share is judged on what it delivered
+(at_limit), and every statement of a limit names its quadrant and kind (limit_shares).
 
 Verdicts, best first: pass, warn, fail; a run whose gait was not followed is not_achieved (its
 demand is not a need), one whose worst safety factor lies within the step error of a threshold
@@ -20,6 +22,10 @@ from fivebar_drake.core.validation import MAX_LENGTH_M, MAX_SAFETY_FACTOR, check
 SEVERITY = {"pass": 0, "warn": 1, "fail": 2}
 CHECK_ORDER = ("torque", "speed", "thermal")   # among equally bad checks, the first decides
 MAX_TILT_DEG = 90.0
+QUADRANTS = ("driving", "braking")   # torque and speed of one sign (or standing); opposite signs
+LIMIT_KINDS = ("torque", "voltage")  # the peak current; the back-EMF against the bus voltage
+LIMIT_WORDS = {"torque": "torque limit (the peak current)",
+               "voltage": "voltage limit (the back-EMF at speed)"}
 
 
 @dataclass(frozen=True)
@@ -68,17 +74,35 @@ def _finite(x) -> float | None:
     return float(x) if x is not None and math.isfinite(x) else None
 
 
-def torque_check(checks: Checks, peak_Nm: float, demand_Nm: float) -> dict:
-    """sf = the driving peak torque / the demand (p99 in a simulation, the peak in the
-    analysis)."""
-    sf = peak_Nm / demand_Nm if demand_Nm > 0 else math.inf
-    return {"sf": _finite(sf), "verdict": verdict(checks, sf)}
+def torque_check(checks: Checks, motor: Motor, torque_Nm, speed_rad_s,
+                 percentile: float | None = None) -> dict:
+    """Each sample (torques N*m at joint speeds rad/s, arrays of one shape) against the
+    peak-current torque of its own quadrant (Motor.quadrant_loads; driving: torque and speed of
+    one sign, or standing; braking: opposite signs, where the gearbox's losses help and the
+    motor holds more): its load |torque| / that peak. sf = 1 / the load's percentile
+    (percentile, e.g. 99 in a simulation; None: its largest, the analysis's peak), so a
+    delivered torque, which never exceeds its quadrant's limit, has sf >= 1. Also the quadrant
+    of the sample at that figure, its limit_Nm (that quadrant's peak), the torque_Nm it stands
+    for (share_of_limit x limit_Nm) and share_of_limit = 1 / sf."""
+    load, braking = motor.quadrant_loads(torque_Nm, speed_rad_s)
+    load, braking = load.ravel(), braking.ravel()
+    if not load.size:
+        return {"sf": None, "verdict": "pass", "quadrant": None, "limit_Nm": None,
+                "torque_Nm": None, "share_of_limit": None}
+    figure = float(np.percentile(load, percentile) if percentile is not None else load.max())
+    at = int(np.argmin(np.where(load >= figure * (1.0 - 1e-12), load, np.inf)))
+    quadrant = QUADRANTS[int(braking[at])]
+    limit = motor.braking_peak_torque_Nm if braking[at] else motor.peak_torque_Nm
+    sf = 1.0 / figure if figure > 0 else math.inf
+    return {"sf": _finite(sf), "verdict": verdict(checks, sf), "quadrant": quadrant,
+            "limit_Nm": limit, "torque_Nm": figure * limit, "share_of_limit": figure}
 
 
 def speed_check(checks: Checks, margins, outside) -> dict:
     """From Motor.speed_margins over the operating points (demand torque, speed): least_margin
-    (None if no point is driving within the peak current), outside_fraction (share of the
-    points beyond the envelope on its speed side)."""
+    (None if no point moves within its quadrant's peak current), outside_fraction (share of the
+    points beyond the envelope: driving beyond what the back-EMF leaves, or braking less than it
+    forces beyond the no-load speed)."""
     margins = np.asarray(margins, dtype=float)
     driving = margins[np.isfinite(margins)]
     least = float(driving.min()) if driving.size else None
@@ -114,41 +138,79 @@ def worst_check(checks: dict) -> tuple[str, str]:
     return checks[name]["verdict"], name
 
 
-def motor_checks(motor: Motor, checks: Checks, demand_Nm, speed_rad_s, torque_figure_Nm: float,
-                 delivered_Nm=None) -> dict:
+def motor_checks(motor: Motor, checks: Checks, demand_Nm, speed_rad_s,
+                 percentile: float | None = None, delivered_Nm=None) -> dict:
     """The torque, speed and thermal checks of one motor from its samples evenly spaced in time
-    (arrays of one shape): demand (N*m, the torque asked for) at joint speeds (rad/s); the
-    torque check on torque_figure_Nm (the demand's p99 or peak); the thermal check on the RMS
-    current of delivered_Nm (default: the demand). Returns the three checks, the worst verdict
-    and the deciding check."""
+    (arrays of one shape): demand (N*m, the torque asked of the motor) at joint speeds (rad/s);
+    the torque check (torque_check) on the demand's percentile (None: its peak), each sample
+    against its own quadrant's limit; the thermal check on the RMS current of delivered_Nm
+    (default: the demand). Returns the three checks, the worst verdict and the deciding
+    check."""
     demand = np.asarray(demand_Nm, dtype=float)
     delivered = demand if delivered_Nm is None else np.asarray(delivered_Nm, dtype=float)
     margins, outside = motor.speed_margins(demand, speed_rad_s)
     rms = float(np.sqrt(np.mean(np.square(motor.currents(delivered, speed_rad_s)))))
-    return checks_of(motor, checks, torque_figure_Nm, margins, outside, rms)
+    return checks_of(motor, checks, torque_check(checks, motor, demand, speed_rad_s, percentile),
+                     margins, outside, rms)
 
 
-def at_limit(out: dict, checks: Checks, peak_Nm: float, delivered_Nm: float,
-             torque_share: float, voltage_share: float, allowed_share: float) -> dict:
+def limit_shares(clipped_torque, clipped_voltage, braking) -> dict:
+    """The share of the samples (arrays of one shape: fractions of each sample clipped by the
+    peak current and by the voltage, and whether the sample brakes) at each of the motor's
+    limits: {"<quadrant>_<kind>": share} over QUADRANTS x LIMIT_KINDS."""
+    braking = np.asarray(braking, dtype=bool)
+    out = {}
+    for quadrant, mask in zip(QUADRANTS, (~braking, braking)):
+        for kind, clipped in zip(LIMIT_KINDS, (clipped_torque, clipped_voltage)):
+            clipped = np.asarray(clipped, dtype=float)
+            out[f"{quadrant}_{kind}"] = float(np.mean(clipped * mask)) if clipped.size else 0.0
+    return out
+
+
+def limit_shares_text(shares: dict) -> str:
+    """The limits a motor sat at (limit_shares), largest first, each with its quadrant: 'its
+    braking torque limit (the peak current) 3.0 % of the time, its driving voltage limit (...)
+    0.2 %'; 'no limit' if none."""
+    parts = [(v, k) for k, v in shares.items() if v > 0.0]
+    if not parts:
+        return "no limit"
+    words = []
+    for v, k in sorted(parts, reverse=True):
+        quadrant, kind = k.split("_")
+        words.append(f"its {quadrant} {LIMIT_WORDS[kind]} "
+                     + (f"{v:.1%}" if v >= 0.0005 else "under 0.1%"))
+    return ", ".join(words) + " of the time"
+
+
+def at_limit(out: dict, checks: Checks, motor: Motor, delivered_Nm, speed_rad_s,
+             shares: dict, allowed_share: float, percentile: float | None = None) -> dict:
     """A motor's checks (motor_checks) when its commands were clipped more often than
-    allowed_share of the time (the share above the percentile the torque figure takes): the
-    demand's figure is then an ask the motor did not meet, not a need. The torque check takes
-    what the motor gave instead (sf = the driving peak over delivered_Nm, that percentile of the
-    delivered torque; demand_sf keeps the sf on the demand), and the check of the limit it sat at
-    most often fails, with at_limit_fraction and why: torque (the peak current) or speed (the
-    voltage at speed). Returns out, changed; unchanged below allowed_share."""
-    share = torque_share + voltage_share
+    allowed_share of the time in all (shares: limit_shares, the share at each quadrant's torque
+    and voltage limit; allowed_share: the share above the percentile the torque figure takes):
+    the demand's figure is then an ask the motor did not meet, not a need. The torque check
+    takes what the motor gave instead (torque_check on delivered_Nm at joint speeds speed_rad_s:
+    each sample against its own quadrant's limit, so sf >= 1: at the limit it is 1; demand_sf
+    and demand_quadrant keep the demand's), and the check of the kind of limit it sat at most
+    (over both quadrants) fails (torque: the peak current; speed: the voltage), with
+    at_limit_fraction (all limits), limit (the "<quadrant>_<kind>" of that kind sat at most),
+    limits (every share) and why, naming each limit's quadrant. Returns out, changed; unchanged
+    below allowed_share."""
+    share = float(sum(shares.values()))
     if not share > allowed_share:
         return out
-    out = {**out, "torque": {**out["torque"], **torque_check(checks, peak_Nm, delivered_Nm),
-                             "demand_sf": out["torque"]["sf"]}}
-    name = "torque" if torque_share >= voltage_share else "speed"
-    what = ("its torque limit (the peak current)" if name == "torque" else
-            "its voltage limit at speed (the back-EMF)")
-    out[name] = dict(out[name], verdict="fail", at_limit_fraction=share,
-                     why=f"at {what} {share:.1%} of the time (more than {allowed_share:.0%}): it "
-                         "gave all it had, and the demand beyond it is the controller's ask, "
-                         "not a need")
+    given = torque_check(checks, motor, delivered_Nm, speed_rad_s, percentile)
+    out = {**out, "torque": {**out["torque"], **given, "demand_sf": out["torque"]["sf"],
+                             "demand_quadrant": out["torque"]["quadrant"]}}
+    by_kind = {kind: sum(v for k, v in shares.items() if k.endswith("_" + kind))
+               for kind in LIMIT_KINDS}
+    kind = "torque" if by_kind["torque"] >= by_kind["voltage"] else "voltage"
+    most = max((k for k in shares if k.endswith("_" + kind)), key=lambda k: shares[k])
+    name = "torque" if kind == "torque" else "speed"
+    out[name] = dict(out[name], verdict="fail", at_limit_fraction=share, limit=most,
+                     limits=dict(shares),
+                     why=f"at {limit_shares_text(shares)} (in all {share:.1%}, more than "
+                         f"{allowed_share:.0%}): it gave all it had, and the demand beyond it is "
+                         "the controller's ask, not a need")
     out["verdict"], out["deciding_check"] = worst_check(out)
     return out
 
@@ -158,12 +220,12 @@ def demand_unmet(out: dict) -> dict | None:
     return next((out[k] for k in CHECK_ORDER if "at_limit_fraction" in out[k]), None)
 
 
-def checks_of(motor: Motor, checks: Checks, torque_figure_Nm: float, margins, outside,
+def checks_of(motor: Motor, checks: Checks, torque: dict, margins, outside,
               rms_current_A: float) -> dict:
-    """motor_checks from the figures already computed: the torque figure (N*m), the speed
-    margins and outside flags of the operating points (Motor.speed_margins) and the RMS current
-    (A, Motor.currents)."""
-    out = {"torque": torque_check(checks, motor.peak_torque_Nm, torque_figure_Nm),
+    """motor_checks from the figures already computed: the torque check (torque_check), the
+    speed margins and outside flags of the operating points (Motor.speed_margins) and the RMS
+    current (A, Motor.currents)."""
+    out = {"torque": torque,
            "speed": speed_check(checks, margins, outside)}
     continuous = getattr(motor, "rated_continuous_current_A", None)
     if continuous is None:

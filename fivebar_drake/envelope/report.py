@@ -15,7 +15,7 @@ import json
 import math
 from pathlib import Path
 
-from fivebar_drake.core.checks import CHECK_ORDER, SEVERITY, worst_check
+from fivebar_drake.core.checks import CHECK_ORDER, SEVERITY, limit_shares_text, worst_check
 from fivebar_drake.core.files import json_ready, write_atomic
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.simulation.summary import badness, check_text
@@ -180,10 +180,15 @@ def _fmt(x, pattern: str = "{:.2f}") -> str:
 
 
 def _at_limit(check: dict) -> str:
-    """', at its limit X% of the time' for a check that failed at the motor's limit
-    (core/checks.at_limit): its demand was not met, and is not a need."""
-    share = check.get("at_limit_fraction")
-    return "" if share is None else f", at its limit {share:.1%} of the time"
+    """', at its braking torque limit (the peak current) X% of the time, ...' for a check that
+    failed at the motor's limits (core/checks.at_limit), each limit with its quadrant: its
+    demand was not met, and is not a need."""
+    return "" if "limits" not in check else f", at {limit_shares_text(check['limits'])}"
+
+
+def _sf(check: dict) -> str:
+    """A torque check's safety factor with the quadrant of its figure."""
+    return "—" if check.get("sf") is None else f"{check['sf']:.2f} {check['quadrant']}"
 
 
 def markdown(report: dict) -> str:
@@ -197,9 +202,13 @@ def markdown(report: dict) -> str:
               f"{m['no_load_speed_rad_s']:.2f} rad/s, continuous "
               f"{_fmt(m['continuous_torque_Nm'])} N·m. Each check is from the leg where it is "
               "worst; the verdict is the worst check (not achieved where the motion was not). "
-              "\"At its limit\": the motor's commands were clipped more than 1 % of the time, so "
-              "the SF is on the torque it delivered: the controller's demand beyond it was not "
-              "met and is not a need.",
+              "SF: 1 / the 99th percentile of the demand over the limit of each sample's own "
+              "quadrant (driving: torque and speed of one sign; braking: opposite signs), with "
+              "the quadrant of that percentile. \"At its ... limit\": the motor's commands were "
+              "clipped more than 1 % of the time, at the limits named (quadrant, and torque: the "
+              "peak current, or voltage: the back-EMF at speed), so the SF is on the torque it "
+              "delivered (1 at the limit): the controller's demand beyond it was not met and is "
+              "not a need.",
               ""]
     for motor in MOTORS:
         lines += [f"## Motor {motor}", "",
@@ -215,7 +224,7 @@ def markdown(report: dict) -> str:
             c = row["checks"]
             lines.append(
                 f"| {name} | {row['verdict'].upper()} | {row['deciding_check'] or '—'} | "
-                f"{_fmt(c['torque']['sf'])} ({c['torque']['leg']}){_at_limit(c['torque'])} | "
+                f"{_sf(c['torque'])} ({c['torque']['leg']}){_at_limit(c['torque'])} | "
                 f"{_fmt(c['speed']['least_margin'])}, {c['speed']['outside_fraction']:.1%} "
                 f"({c['speed']['leg']}){_at_limit(c['speed'])} | "
                 f"{_fmt(c['thermal'].get('margin'))}, "

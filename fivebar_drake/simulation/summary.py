@@ -17,7 +17,8 @@ from pathlib import Path
 import numpy as np
 
 from fivebar_drake.core.checks import (CHECK_ORDER, SEVERITY, at_limit, demand_unmet,
-                                       motor_checks)
+                                       limit_shares, limit_shares_text, motor_checks,
+                                       verdict)
 from fivebar_drake.core.files import json_ready, write_atomic
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.robots.quadruped.params import Params
@@ -135,11 +136,12 @@ def motor_summary(sig: Signals, params: Params, win, cycle, cycles: int, i: int,
     demand_p99, applied_p99 = _p(demand), _p(applied)
     static_seed, static_trot = _peak(sig.static_seed[win, i, j]), _peak(sig.static_trot[win, i, j])
     clipped_peak, clipped_line = sig.clipped_peak[win, i, j], sig.clipped_line[win, i, j]
-    checks = at_limit(motor_checks(motor, params.checks, demand, speed, demand_p99, applied),
-                      params.checks, motor.peak_torque_Nm, applied_p99, _mean(clipped_peak),
-                      _mean(clipped_line), 1.0 - PERCENTILE / 100) if demand.size else None
-    sf = _ratio(motor.peak_torque_Nm,
-                applied_p99 if checks and demand_unmet(checks) else demand_p99)
+    # the quadrant of each clipped interval: of the torque the motor delivered (applied here)
+    shares = limit_shares(clipped_peak, clipped_line, applied * speed < 0.0)
+    checks = at_limit(motor_checks(motor, params.checks, demand, speed, PERCENTILE, applied),
+                      params.checks, motor, applied, speed, shares, 1.0 - PERCENTILE / 100,
+                      PERCENTILE) if demand.size else None
+    sf = checks["torque"]["sf"] if checks and checks["torque"]["sf"] is not None else math.nan
     clipped = clipped_peak + clipped_line
     saturated, unsaturated = _mean(clipped), demand[clipped == 0]
     return {
@@ -153,7 +155,7 @@ def motor_summary(sig: Signals, params: Params, win, cycle, cycles: int, i: int,
         "dynamic_to_trot_static": _ratio(demand_p99, static_trot),
         "safety_factor": sf, "verdict": checks["verdict"] if checks else "insufficient",
         "deciding_check": checks["deciding_check"] if checks else None,
-        "saturated_fraction": saturated,
+        "saturated_fraction": saturated, "limit_shares": shares,
         "clipped_peak_fraction": _mean(clipped_peak),
         "clipped_line_fraction": _mean(clipped_line),
         "peak_speed_rad_s": _peak(speed), "p99_speed_rad_s": _p(speed),
@@ -260,6 +262,7 @@ def summarize(sig: Signals, record: SimulationRecord, seed_analysis: dict) -> di
         "motor_peak_torque_Nm": params.motor.peak_torque_Nm,
         "motor": {"model": params.motor.model, "gear_ratio": params.motor.gear_ratio,
                   "peak_torque_Nm": params.motor.peak_torque_Nm,
+                  "braking_peak_torque_Nm": params.motor.braking_peak_torque_Nm,
                   "no_load_speed_rad_s": params.motor.no_load_speed_rad_s,
                   "continuous_torque_Nm": params.motor.continuous_torque_Nm},
         "step_check": None,
@@ -303,12 +306,13 @@ def achievement(params: Params, speed: float, gait_speed: float, max_tilt: float
 
 def motor_achieved(params: Params, m: dict, run_why: str) -> dict:
     """The motor's achieved check: the run followed its gait (run_why == "") and the motor sat
-    at its torque limit at most checks.achieved_max_limit_fraction of the time."""
+    at its limits (either quadrant, torque or voltage) at most
+    checks.achieved_max_limit_fraction of the time."""
     why = [run_why] if run_why else []
     limit = params.checks.achieved_max_limit_fraction
     if m["saturated_fraction"] > limit:
-        why.append(f"the motor sat at its torque limit {m['saturated_fraction']:.1%} of the time "
-                   f"(more than {limit:.0%})")
+        why.append(f"the motor sat at {limit_shares_text(m['limit_shares'])} ("
+                   f"{m['saturated_fraction']:.1%} in all, more than {limit:.0%})")
     return {"verdict": "not_achieved" if why else "pass", "why": "; ".join(why),
             "at_limit_fraction": m["saturated_fraction"]}
 
@@ -316,14 +320,15 @@ def motor_achieved(params: Params, m: dict, run_why: str) -> dict:
 def badness(m: dict) -> tuple:
     """Order of motors, worst last: not achieved; then by verdict; among equal verdicts the
     deciding check (torque before speed before thermal), then its figure (the lower the safety
-    factor, the larger the share outside the envelope or the lower its margin, the worse)."""
+    factor, then the longer at the motor's limits; the larger the share outside the envelope or
+    the lower its margin, the worse)."""
     if m["checks"] is None:
         return (-1,)
     if m["verdict"] == "not_achieved":
         return (3, 0, m["saturated_fraction"], 0.0)
     c, deciding = m["checks"], m["deciding_check"]
     big = math.inf
-    figure = {"torque": (0.0, -(c["torque"]["sf"] or big)),
+    figure = {"torque": (-(c["torque"]["sf"] or big), c["torque"].get("at_limit_fraction", 0.0)),
               "speed": (c["speed"]["outside_fraction"], -(c["speed"]["least_margin"] or big)),
               "thermal": (0.0, -(c["thermal"]["margin"] or big))}[deciding]
     return (SEVERITY[m["verdict"]], -CHECK_ORDER.index(deciding), *figure)
@@ -349,8 +354,8 @@ def answer(s: dict, params: Params) -> str:
     if s["verdict"] == "not_achieved":
         why = c["achieved"]["why"]
         if m["saturated_fraction"] > params.checks.achieved_max_limit_fraction:
-            need = (f"the motors need more than their {params.motor.peak_torque_Nm:g} N·m "
-                    f"(worst motor {leg} {name}; below the limit its demand p99 is "
+            need = (f"the motors need more than they give (worst motor {leg} {name}, at "
+                    f"{limit_shares_text(m['limit_shares'])}; below its limits its demand p99 is "
                     f"{m['unsaturated_demand_p99_Nm']:.2f} N·m)")
         else:
             need = (f"its demand p99 of {m['demand_p99_Nm']:.2f} N·m (worst motor {leg} {name}) "
@@ -365,16 +370,22 @@ def answer(s: dict, params: Params) -> str:
     over = f"over {s['cycles_in_window']} {'cycles' if s['periodic'] else 'maneuver'}"
     limited = demand_unmet(c)
     figure = m["p99_torque_Nm"] if limited else m["demand_p99_Nm"]
+    t = c["torque"]
     if limited:
-        need = (f"the motors worked at their limit (worst motor {leg} {name}, at it "
-                f"{limited['at_limit_fraction']:.1%} of the time, {over}): they delivered "
-                f"{m['p99_torque_Nm']:.2f} N·m ({PERCENTILE:g}th percentile), and what the "
-                "controller asked beyond the limit was not needed: the motion was achieved "
-                f"without it (the demand's {PERCENTILE:g}th percentile: "
-                f"{m['demand_p99_Nm']:.2f} N·m)")
+        need = (f"the motors worked at their limits (worst motor {leg} {name}, at "
+                f"{limit_shares_text(limited['limits'])}, {over}): they delivered "
+                f"{m['p99_torque_Nm']:.2f} N·m ({PERCENTILE:g}th percentile; against each "
+                f"sample's own quadrant {t['share_of_limit']:.0%} of the {t['quadrant']} limit, "
+                f"{t['limit_Nm']:.2f} N·m), and what the controller asked beyond the limit was "
+                "not needed: the motion was achieved without it (the demand's "
+                f"{PERCENTILE:g}th percentile: {m['demand_p99_Nm']:.2f} N·m)")
     else:
+        reached = ("it never reached a limit" if not m["saturated_fraction"] else
+                   f"it sat at {limit_shares_text(m['limit_shares'])}")
         need = (f"the motors need {m['demand_p99_Nm']:.2f} N·m ({PERCENTILE:g}th percentile "
-                f"of the demand {over}, worst motor {leg} {name})")
+                f"of the demand {over}, worst motor {leg} {name}; against each sample's own "
+                f"quadrant {t['share_of_limit']:.0%} of the {t['quadrant']} limit, "
+                f"{t['limit_Nm']:.2f} N·m; {reached})")
     return (f"{head} {need}. "
             f"Verdict {verdict_text}. Checks: {checks}. On the same poses with the same load schedule "
             f"(the robot's weight shared by the feet in stance) the static torque is "
@@ -384,7 +395,11 @@ def answer(s: dict, params: Params) -> str:
 def check_text(name: str, c: dict) -> str:
     limit = f" ({c['why']})" if "at_limit_fraction" in c else ""
     if name == "torque":
-        return f"torque: safety factor {c['sf']:.2f}, {c['verdict']}{limit}"
+        if c["sf"] is None:
+            return f"torque: no demand, {c['verdict']}"
+        what = " on what it delivered" if "demand_sf" in c else ""
+        return (f"torque: safety factor {c['sf']:.2f}{what} ({c['quadrant']}, against its "
+                f"{c['limit_Nm']:.2f} N·m limit), {c['verdict']}{limit}")
     if name == "speed":
         least = "none driving" if c["least_margin"] is None else f"{c['least_margin']:.2f}"
         return (f"speed: least margin {least}, {c['outside_fraction']:.1%} of the time beyond "
@@ -462,8 +477,8 @@ def markdown(s: dict, params: Params) -> str:
                 f"{m['p99_torque_Nm']:.2f} | {m['rms_torque_Nm']:.2f} | {m['static_seed_Nm']:.2f} | "
                 f"{m['static_trot_Nm']:.2f} | {m['static_contact_Nm']:.2f} | "
                 f"{m['dynamic_to_seed_static']:.2f}x | {m['dynamic_to_trot_static']:.2f}x | "
-                f"{m['safety_factor']:.2f} | {m['verdict'].upper()} | "
-                f"{m['saturated_fraction'] * 100:.1f} % | {m['p99_speed_rad_s']:.2f} |")
+                f"{m['safety_factor']:.2f} ({_quadrant(m)}) | {m['verdict'].upper()} | "
+                f"{_clipped(m)} | {m['p99_speed_rad_s']:.2f} |")
     lines += ["", "Torque split (RMS over the window, N·m): contact -J^T F, links M q'' + c + G, "
               "rotor N^2 J q'', friction; residual = applied - their sum.", "",
               "| leg | motor | contact | links | rotor | friction | residual |",
@@ -473,14 +488,34 @@ def markdown(s: dict, params: Params) -> str:
             d = m["decomposition_rms_Nm"]
             lines.append(f"| {leg} | {name} | {d['contact']:.3f} | {d['links']:.3f} | "
                          f"{d['rotor']:.3f} | {d['friction']:.3f} | {d['residual']:.3f} |")
-    lines += ["", f"Units N·m unless stated. Motor limit {params.motor.peak_torque_Nm:g} N·m at "
-              f"the output, torque-speed line to {params.motor.no_load_speed_rad_s:.2f} rad/s. "
-              "Demand = the controller's command before saturation; SF = motor limit / demand "
-              f"p99, or / applied p99 where the motor sat at its torque limit more than "
-              f"{100 - PERCENTILE:g} % of the time (clipped; its demand p99 was not met, and is "
-              f"not a need). Seed static: the seed's G(q) with {params.robot.weight_share_kg:.3f} kg at "
+    motor = params.motor
+    lines += ["", f"Units N·m unless stated. Motor limits at the output: "
+              f"{motor.peak_torque_Nm:.2f} N·m driving (torque and speed of one sign), "
+              f"{motor.braking_peak_torque_Nm:.2f} braking (opposite signs), both at the peak "
+              f"current, the driving torque falling beyond its corner to zero at the no-load speed "
+              f"{motor.no_load_speed_rad_s:.2f} rad/s, beyond which the back-EMF forces braking. "
+              "Demand = the controller's command before saturation; SF = 1 / the "
+              f"{PERCENTILE:g}th percentile of the demand over the limit of each sample's own "
+              "quadrant (the quadrant of that percentile in brackets), or of the applied torque "
+              f"where the motor sat at its limits more than {100 - PERCENTILE:g} % of the time "
+              "(clipped, with the limit it sat at most: its demand p99 was not met, and is not a "
+              f"need). Seed static: the seed's G(q) with {params.robot.weight_share_kg:.3f} kg at "
               "the foot. Per-cycle spreads are in summary.json."]
     return "\n".join(lines) + "\n"
+
+
+def _quadrant(m: dict) -> str:
+    """The quadrant of a motor's torque figure (summary table)."""
+    c = m["checks"]
+    return c["torque"]["quadrant"] or "—" if c else "—"
+
+
+def _clipped(m: dict) -> str:
+    """The share of the time a motor was clipped, with the limit it sat at most."""
+    if not m["saturated_fraction"]:
+        return "0.0 %"
+    most = max(m["limit_shares"], key=lambda k: m["limit_shares"][k]).replace("_", " ")
+    return f"{m['saturated_fraction'] * 100:.1f} % ({most} most)"
 
 
 def write_summary(summary: dict, params: Params, out_dir: Path) -> list[Path]:

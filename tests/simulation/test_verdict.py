@@ -11,7 +11,9 @@ import pytest
 
 from fivebar_drake.robots.quadruped.config import with_changes
 from fivebar_drake.cli import main
-from fivebar_drake.core.checks import Checks, speed_check, thermal_check, worst_check
+from fivebar_drake.core.checks import (Checks, at_limit, demand_unmet, limit_shares,
+                                       limit_shares_text, motor_checks, speed_check, thermal_check,
+                                       torque_check, worst_check)
 from fivebar_drake.pipeline import run_simulation, run_step_check, summarize_run
 from fivebar_drake.simulation.scenario import load_scenario
 from fivebar_drake.simulation.signals import signals
@@ -29,6 +31,49 @@ def test_speed_check_thresholds():
     two = speed_check(CHECKS, [0.9] * 2 + [2.0] * 98, [True] * 2 + [False] * 98)
     assert two["verdict"] == "fail" and two["least_margin"] == 0.9
     assert speed_check(CHECKS, [np.nan, np.inf], [False, False])["least_margin"] is None
+
+
+def test_each_sample_against_its_own_quadrant(params):
+    """The torque check: driving samples against the 5 N m driving peak, braking ones against
+    5 / 0.9^2 = 6.17 N m; a motor that delivers its braking limit has sf 1, never below."""
+    m = params.motor
+    braking_peak = 5.0 / 0.9**2
+    torque, speed = np.array([4.0, -6.0, 1.0]), np.array([2.0, 3.0, -1.0])
+    c = torque_check(CHECKS, m, torque, speed)
+    assert c["sf"] == pytest.approx(braking_peak / 6.0, rel=1e-12) and c["quadrant"] == "braking"
+    assert c["limit_Nm"] == pytest.approx(braking_peak, rel=1e-12)
+    driving = torque_check(CHECKS, m, np.array([4.0, -4.5]), np.array([2.0, 3.0]))
+    assert driving["sf"] == pytest.approx(5.0 / 4.0) and driving["quadrant"] == "driving"
+    at_the_limit = torque_check(CHECKS, m, np.full(50, -braking_peak), np.full(50, 1.0), 99.0)
+    assert at_the_limit["sf"] == pytest.approx(1.0, rel=1e-12)
+
+
+def test_at_limit_judges_what_was_delivered_and_names_the_quadrant(params):
+    """A motor clipped 3 % of the time at its braking peak current: the torque check takes the
+    delivered torque against the braking limit (sf 1, not 5 / 6.17 = 0.81), fails, and says
+    which limit in which quadrant."""
+    m = params.motor
+    braking_peak = 5.0 / 0.9**2
+    n = 1000
+    demand, speed = np.full(n, 3.0), np.full(n, 1.0)
+    demand[:30] = -9.0                                  # asks more braking than it has
+    delivered = np.where(demand < -braking_peak, -braking_peak, demand)
+    out = motor_checks(m, CHECKS, demand, speed, 99.0, delivered)
+    assert out["torque"]["sf"] == pytest.approx(braking_peak / 9.0)
+    shares = limit_shares(np.where(demand != delivered, 1.0, 0.0), np.zeros(n),
+                          delivered * speed < 0)
+    assert shares == {"driving_torque": 0.0, "driving_voltage": 0.0, "braking_torque": 0.03,
+                      "braking_voltage": 0.0}
+    limited = at_limit(out, CHECKS, m, delivered, speed, shares, 0.01, 99.0)
+    torque = limited["torque"]
+    assert torque["sf"] == pytest.approx(1.0, rel=1e-12) and torque["quadrant"] == "braking"
+    assert torque["demand_sf"] == pytest.approx(braking_peak / 9.0)
+    assert torque["verdict"] == "fail" and torque["limit"] == "braking_torque"
+    assert "its braking torque limit (the peak current) 3.0%" in torque["why"]
+    assert demand_unmet(limited) is torque
+    assert limit_shares_text({"driving_voltage": 0.002, "braking_torque": 0.03}) == (
+        "its braking torque limit (the peak current) 3.0%, its driving voltage limit (the "
+        "back-EMF at speed) 0.2% of the time")
 
 
 def test_worst_check_decides():
@@ -79,9 +124,11 @@ def geared(params):
 @pytest.mark.slow
 def test_geared_design_fails_on_speed_not_torque(geared):
     """11.5:1 passes the torque check (SF >= 2) but its B motors' demand lies beyond the
-    envelope's speed side more than 1 % of the time: the verdict names the speed check. The
-    share is recomputed here from the circuit (R i + (k_t / 1.5) N w > V_bus / sqrt(3) at the
-    demanded current), not from the package's envelope."""
+    envelope's speed side more than 1 % of the time: the verdict names the speed check, as the
+    closed form's (tests/analysis/test_speed_check_geared.py). The share is recomputed here from
+    the circuit, not from the package's envelope: driving, R i + (k_t / 1.5) N |w| >
+    V_bus / sqrt(3) at the demanded current; beyond the no-load speed, braking less than the
+    ((k_t / 1.5) N |w| - V) / R amperes the back-EMF forces, or driving at all."""
     design, record, summary = geared
     assert summary["verdict"] == "fail" and summary["deciding_check"] == "speed"
     assert "decided by the speed check" in summary["answer"]
@@ -96,11 +143,14 @@ def test_geared_design_fails_on_speed_not_torque(geared):
             checks = summary["legs"][leg][name]["checks"]
             assert checks["torque"]["sf"] >= 2.0 and checks["torque"]["verdict"] == "pass"
             tau, w = sig.command[win, i, j], sig.qd[win, i, j]
-            driving = tau * w > 0
-            current = np.abs(tau) / (m.gear_ratio * m.gear_efficiency * m.torque_constant_Nm_per_A)
-            beyond = driving & (current <= m.peak_current_A) & (
-                m.winding_resistance_ohm * current
-                + m.torque_constant_Nm_per_A / 1.5 * m.gear_ratio * np.abs(w) > v_phase)
+            driving = tau * w >= 0
+            current = np.abs(tau) / (m.gear_ratio * m.torque_constant_Nm_per_A * np.where(
+                driving, m.gear_efficiency, 1 / m.gear_efficiency))
+            emf = m.torque_constant_Nm_per_A / 1.5 * m.gear_ratio * np.abs(w)
+            forced = (emf - v_phase) / m.winding_resistance_ohm
+            beyond = (current <= m.peak_current_A) & np.where(
+                emf > v_phase, driving | (current < forced),
+                driving & (m.winding_resistance_ohm * current + emf > v_phase))
             assert checks["speed"]["outside_fraction"] == pytest.approx(np.mean(beyond),
                                                                         abs=1e-12)
     worst = summary["legs"][summary["worst_motor"].split()[0]][summary["worst_motor"].split()[1]]

@@ -20,10 +20,12 @@ def analysis_lines(record: AnalysisRecord) -> list[str]:
     lines = [f"foot path: {record.analysis.results['path']['gait']}; every reading, the lowest "
              "safety factor first:"]
     for model, motor, m in sorted(readings, key=lambda r: r[2]["safety_factor"]):
+        torque = m["checks"]["torque"]
         lines.append(
             f"  {model:>9} motor {motor}: peak {m['peak_torque_Nm']:.3f} N m, "
-            f"static {m['static_torque_Nm']:.3f} N m, SF {m['safety_factor']:.2f} "
-            f"({m['verdict'].upper()}), peak speed {m['peak_speed_rad_s']:.2f} rad/s; verdict "
+            f"static {m['static_torque_Nm']:.3f} N m, seed's SF {m['safety_factor']:.2f} "
+            f"({m['verdict'].upper()}), peak speed {m['peak_speed_rad_s']:.2f} rad/s; torque "
+            f"check SF {torque['sf']:.2f} ({torque['quadrant']}); verdict "
             f"{m['checks']['verdict'].upper()} ({m['checks']['deciding_check']} check)")
     return lines
 
