@@ -19,6 +19,8 @@ from fivebar_drake.simulation.signals import StepSignals, step_signals
 
 AIRBORNE_N = 1.0     # a total ground force below this at a plant step: every foot is off
 MIN_FLIGHT_S = 0.01  # a flight lasts at least this long: shorter gaps are the contact chattering
+GIVE_WAY_S = 0.005   # a landing motor asked to brake beyond its braking limit this long (in all)
+#                      gives way: the leg folds faster than the landing planned
 
 
 def flight(t, fz, after: float) -> tuple[int, int] | None:
@@ -54,7 +56,9 @@ def maneuver_figures(record: SimulationRecord, start: float) -> dict:
       to the first whose end has the centre of mass at rest or rising: touchdown speed, the
       ground's impulse and peak force (every step), the motors' peak delivered torque (every
       motor sample), the body's drop (landing_compression_m);
-    - force_capability along the push-off and the landing (capability_along).
+    - force_capability along the push-off and the landing (capability_along);
+    - phases: each phase's demand and delivered peaks and braking beyond the limit
+      (phase_times, phase_figures).
     None where the event did not happen (why_grounded says why no foot left)."""
     scenario, params, lay = record.scenario, record.params, record.layout
     steps = step_signals(record)
@@ -62,7 +66,8 @@ def maneuver_figures(record: SimulationRecord, start: float) -> dict:
     mass, g = lay.mass_kg, params.robot.gravity_m_s2
     fz, t = steps.ground_force[:, 2], steps.t
     dt = np.diff(t, prepend=t[0] - record.design.time_step_s)
-    out = {"jump": None, "landing": None, "force_capability": None, "why_grounded": ""}
+    out = {"jump": None, "landing": None, "force_capability": None, "why_grounded": "",
+           "phases": None}
     phases = {}
     fly = None
     if "takeoff" in events:
@@ -116,6 +121,59 @@ def maneuver_figures(record: SimulationRecord, start: float) -> dict:
             out["jump"]["landing_compression_m"] = landing["compression_m"]
     if phases:
         out["force_capability"] = capability_along(steps, params, phases, lay.legs)
+    out["phases"] = phase_figures(steps, params, phase_times(out, float(t[0]), float(t[-1]),
+                                                             events), lay.legs)
+    return out
+
+
+def phase_times(figures: dict, t0: float, t1: float, events: dict) -> dict:
+    """The maneuver's measured phases (name -> (start, end) s) from its figures: a jump's
+    crouch (to the push-off's onset), push-off (to takeoff), flight, landing (to the end of
+    the landing) and recovery (to the run's end); a drop's fall, landing and recovery; a
+    maneuver without these events, its whole run as one phase."""
+    jump, landing = figures["jump"], figures["landing"]
+    marks = [("before", t0)]
+    if jump:
+        marks += [("crouch", t0), ("push-off", jump["onset_s"]), ("flight", jump["takeoff_s"])]
+    elif "takeoff" in events:
+        marks += [("crouch", t0), ("push-off", events["onset"])]
+    elif landing:
+        marks += [("fall", t0)]
+    else:
+        marks += [("whole", t0)]
+    if landing:
+        marks += [("landing", landing["touchdown_s"]), ("recovery", landing["end_s"])]
+    marks = marks[1:]
+    return {name: (start, marks[k + 1][1] if k + 1 < len(marks) else t1)
+            for k, (name, start) in enumerate(marks)}
+
+
+def phase_figures(steps: StepSignals, params: Params, times: dict, legs) -> dict:
+    """Per phase (name -> (start, end) s) from the motor's every sample: the largest demand
+    (the command) and delivered torque (N*m, any motor, and which), and the time (s, summed
+    over samples) any motor was asked to brake (command against the joint's speed) beyond its
+    braking limit at that speed (Motor.limits); a landing where that time exceeds GIVE_WAY_S
+    gives way (gives_way)."""
+    motor = params.motor
+    upper, lower = motor.limits(steps.motor_speed)
+    command, speed = steps.motor_command, steps.motor_speed
+    braking = command * speed < 0.0
+    beyond = braking & ((command > upper) | (command < lower))
+    period = float(np.median(np.diff(steps.motor_t))) if len(steps.motor_t) > 1 else 0.0
+    out = {}
+    for name, (start, end) in times.items():
+        rows = (steps.motor_t >= start) & (steps.motor_t < end)
+        if not rows.any():
+            continue
+        demand = np.abs(command[rows]).max(axis=0)
+        k = np.unravel_index(np.argmax(demand), demand.shape)
+        over = float(beyond[rows].any(axis=(1, 2)).sum() * period)
+        out[name] = {"start_s": start, "end_s": end, "demand_peak_Nm": float(demand[k]),
+                     "demand_peak_motor": f"{legs[k[0]]} {'AB'[k[1]]}",
+                     "delivered_peak_Nm": float(np.abs(steps.motor_torque[rows]).max()),
+                     "braking_beyond_limit_s": over}
+        if name == "landing":
+            out[name]["gives_way"] = over > GIVE_WAY_S
     return out
 
 

@@ -84,7 +84,8 @@ def step_table(setup: Setup, context) -> dict | None:
     """A one-shot maneuver's plant steps (None without the step log): t (steps,) s, the state
     (steps, nx) at each step's end and the step's generalized contact forces (steps, nv; the
     contact integral's change over the step / its length); the motor's samples: motor_t
-    (samples,) s and the torque it delivered (samples, n) N*m, held until the next sample."""
+    (samples,) s, the command it took and the torque it delivered (samples, n) N*m, held until
+    the next sample."""
     if setup.step_log is None:
         return None
     log = setup.step_log.FindLog(context)
@@ -94,7 +95,8 @@ def step_table(setup: Setup, context) -> dict | None:
     n = setup.layout.state.actuators.size
     return {"t": times[1:], "state": data[1:, :nx],
             "contact_generalized": np.diff(data[:, nx:], axis=0) / np.diff(times)[:, None],
-            "motor_t": motor.sample_times().copy(), "motor_torque": motor.data().T[:, n:2 * n].copy()}
+            "motor_t": motor.sample_times().copy(), "motor_command": motor.data().T[:, :n].copy(),
+            "motor_torque": motor.data().T[:, n:2 * n].copy()}
 
 
 @dataclass(frozen=True)

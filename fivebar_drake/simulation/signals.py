@@ -175,8 +175,10 @@ class StepSignals:
     position (steps, 3) m, the centre of mass com_p and its velocity com_v (steps, 3) m, m/s at
     each step's end (com_motion); per leg and motor q (rad) and qd (rad/s, at the step's end);
     the step's foot forces foot_force_plane (steps, legs, 2) N (leg plane) and the total ground
-    force ground_force (steps, 3) N (world); the motor's samples motor_t (samples,) s and the
-    torque it delivered motor_torque (samples, legs, 2) N*m, held until the next sample."""
+    force ground_force (steps, 3) N (world); the motor's samples motor_t (samples,) s, the
+    command it took motor_command and the torque it delivered motor_torque (samples, legs, 2)
+    N*m, held until the next sample, and the joint speed at each sample motor_speed (samples,
+    legs, 2) rad/s (the step it starts)."""
 
     t: np.ndarray
     body_p: np.ndarray
@@ -187,7 +189,9 @@ class StepSignals:
     foot_force_plane: np.ndarray
     ground_force: np.ndarray
     motor_t: np.ndarray
+    motor_command: np.ndarray
     motor_torque: np.ndarray
+    motor_speed: np.ndarray
 
 
 def step_signals(record: SimulationRecord) -> StepSignals:
@@ -200,12 +204,15 @@ def step_signals(record: SimulationRecord) -> StepSignals:
     down = -params.body.foot_radius_m * (r_wb @ plane_rotation())[:, 2, :2]
     generalized = steps["contact_generalized"]
     com_p, com_v = com_motion(params, lay, st, r_wb)
+    qd = st[:, lay.state.nq + lay.state.v_index]
     return StepSignals(
         t=steps["t"], body_p=st[:, lay.state.body_q + 4:lay.state.body_q + 7], com_p=com_p,
-        com_v=com_v, q=q, qd=st[:, lay.state.nq + lay.state.v_index],
+        com_v=com_v, q=q, qd=qd,
         foot_force_plane=foot_forces(generalized, lay, params, pose, down),
         ground_force=generalized[:, lay.state.body_v + 3:lay.state.body_v + 6],
-        motor_t=steps["motor_t"], motor_torque=steps["motor_torque"][:, lay.state.actuators])
+        motor_t=steps["motor_t"], motor_command=steps["motor_command"][:, lay.state.actuators],
+        motor_torque=steps["motor_torque"][:, lay.state.actuators],
+        motor_speed=qd[np.clip(np.searchsorted(steps["t"], steps["motor_t"]), 0, len(qd) - 1)])
 
 
 def foot_forces(generalized, layout: RobotLayout, params: Params, pose, down) -> np.ndarray:

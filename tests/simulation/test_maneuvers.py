@@ -177,6 +177,25 @@ def test_the_bound_front_motors_are_not_at_their_limit(runs):
         assert m["clipped_peak_fraction"] + m["clipped_line_fraction"] < 0.01, (leg, m)
 
 
+def test_a_landing_beyond_the_braking_limit_gives_way(runs, tmp_path):
+    """A drop from 0.3 m asks the motors to brake beyond their braking limit (a landing of
+    1.1 m/s more than the 0.1 m drop's over the same stroke): the legs give way, the run is not
+    achieved and says why, and the landing's delivered torque sits at the braking peak; the
+    0.1 m drop's landing holds (its phases: fall, landing, recovery)."""
+    s = runs["drop"][2]
+    assert list(s["phases"]) == ["fall", "landing", "recovery"]
+    assert not s["phases"]["landing"]["gives_way"]
+    assert s["phases"]["landing"]["braking_beyond_limit_s"] == 0.0
+    path = tmp_path / "drop.yaml"
+    path.write_text("gait: {kind: drop, height_m: 0.3}\nduration_s: 1.5\n")
+    assert main(["simulate", "--scenario", str(path), "--out", str(tmp_path / "out")]) == 1
+    high = json.loads((tmp_path / "out" / "summary.json").read_text())
+    landing = high["phases"]["landing"]
+    assert landing["gives_way"] and landing["braking_beyond_limit_s"] > 0.005
+    assert high["verdict"] == "not_achieved" and "gave way at the landing" in high["answer"]
+    assert landing["delivered_peak_Nm"] >= 0.99 * runs["drop"][0].params.motor.braking_peak_torque_Nm
+
+
 def test_crawl_torques_match_the_closed_form_statics(runs):
     """Mid-stance of a crawl (quasi-static), each motor's delivered torque against the full
     model's static torque of the same pose with the measured vertical foot load (analysis

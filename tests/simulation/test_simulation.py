@@ -177,6 +177,9 @@ def test_touchdowns_keep_the_body_carried(run):
     weight = params.robot.total_mass_kg * params.robot.gravity_m_s2
     share = sig.ground_force[inside, 2] / weight
     assert 0.9 <= share.min() and share.max() <= 1.33, (share.min(), share.max())
+    reported = summary["vertical_support"]
+    assert reported["least_share"] == pytest.approx(share.min(), rel=1e-9)
+    assert reported["largest_share"] == pytest.approx(share.max(), rel=1e-9)
     for leg in range(sig.applied.shape[1]):
         ratio = (np.abs(sig.static_contact[inside, leg]).max()
                  / np.abs(sig.applied[inside, leg]).max())
@@ -193,7 +196,8 @@ def test_summary_text_follows_the_parameters(runs):
                                 motor=dataclasses.replace(
                                     params.motor, peak_current_A=params.motor.peak_current_A * 1.4))
     text = markdown(summary, other).split(summary["answer"])[1] + answer(summary, other)
-    assert f"{other.robot.weight_share_kg:.3f} kg" in text and "7 N·m" in text
+    assert f"{other.robot.weight_share_kg:.3f} kg" in text
+    assert f"{other.motor.peak_torque_Nm:.2f} N·m driving" in text and "7.00 N·m" in text
     assert f"{params.robot.weight_share_kg:.3f}" not in text
 
 

@@ -17,7 +17,7 @@ from fivebar_drake.core.checks import (Checks, at_limit, demand_unmet, limit_sha
 from fivebar_drake.pipeline import run_simulation, run_step_check, summarize_run
 from fivebar_drake.simulation.scenario import load_scenario
 from fivebar_drake.simulation.signals import signals
-from fivebar_drake.simulation.summary import apply_step_check, cycle_window
+from fivebar_drake.simulation.summary import apply_step_check, cycle_window, extrapolated
 
 DURATION_S = 4.5
 CHECKS = Checks(sf_pass=2.0, sf_warn=1.5)
@@ -94,21 +94,33 @@ def _summary(sfs, verdict="pass"):
             "deciding_check": "torque"}
 
 
-def test_step_check_marks_a_verdict_within_the_step_error(params, monkeypatch):
-    """SF 2.03 that moves by 0.04 at half the step lies within the step error of 2: marginal;
-    one that moves by 0.01 does not."""
+def test_step_check_judges_the_converged_figure(params, monkeypatch):
+    """The step check extrapolates each safety factor to step 0 (first order: f(h/2) + (f(h/2)
+    - f(h)), error |f(h/2) - f(h)|) and judges the verdict on it: SF 2.03 that moves to 1.99 at
+    half the step converges to 1.95 (warn): marginal; 2.04 -> 2.025 converges to 2.01 +- 0.015,
+    which reaches 2: marginal; 2.60 -> 2.58 converges to 2.56 +- 0.02: pass, not marginal."""
     import fivebar_drake.simulation.summary as summary_module
     monkeypatch.setattr(summary_module, "answer", lambda s, p: "")
-    base = _summary([2.03, 2.5])
-    close = copy.deepcopy(base)
-    apply_step_check(close, {**_summary([1.99, 2.5]), "time_step_s": 5e-4}, params)
-    assert close["verdict"] == "marginal" and close["step_check"]["marginal"]
-    assert close["step_check"]["worst_sf_change"] == pytest.approx(0.04)
-    assert close["step_check"]["motors"]["FL A"]["demand_p99_change"] == pytest.approx(
-        2.03 / 1.99 - 1)
-    far = copy.deepcopy(base)
-    apply_step_check(far, {**_summary([2.02, 2.5]), "time_step_s": 5e-4}, params)
-    assert far["verdict"] == "pass" and not far["step_check"]["marginal"]
+    for start, half, converged, marginal in [(2.03, 1.99, 1.95, True), (2.04, 2.025, 2.01, True),
+                                             (2.60, 2.58, 2.56, False)]:
+        run = _summary([start, 3.0])
+        apply_step_check(run, {**_summary([half, 3.0]), "time_step_s": 5e-4}, params)
+        check = run["step_check"]
+        assert check["converged_sf"] == pytest.approx(converged)
+        assert check["converged_sf_error"] == pytest.approx(abs(start - half))
+        assert check["converged_worst_motor"] == "FL A"
+        assert check["marginal"] == marginal and (run["verdict"] == "marginal") == marginal
+        assert check["worst_sf_change"] == pytest.approx(abs(start - half))
+        assert check["motors"]["FL A"]["demand_p99_change"] == pytest.approx(start / half - 1)
+    # a run that fails on speed: the torque figure's step error cannot change its verdict
+    run = {**_summary([2.03, 3.0], "fail"), "deciding_check": "speed"}
+    apply_step_check(run, {**_summary([1.99, 3.0], "fail"), "deciding_check": "speed",
+                           "time_step_s": 5e-4}, params)
+    assert run["verdict"] == "fail" and not run["step_check"]["marginal"]
+    # the default trot's worst SF at 1 and 0.5 ms (measured) against its value at 0.25 ms
+    assert extrapolated(1.4569, 1.4155) == pytest.approx((1.3741, 0.0414), abs=1e-4)
+    estimate, error = extrapolated(1.4569, 1.4155)
+    assert abs(1.4045 - estimate) <= error
 
 
 @pytest.fixture(scope="module")

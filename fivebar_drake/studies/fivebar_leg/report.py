@@ -53,8 +53,10 @@ def simulation_lines(summary: dict) -> list[str]:
         sc = s["step_check"]
         lines.append(f"step check at {sc['half_time_step_s']:g} s: worst demand p99 change "
                      f"{sc['worst_demand_p99_change']:+.2%}, worst SF change "
-                     f"{sc['worst_sf_change']:.3f}" + (f"; MARGINAL: {sc['why']}"
-                                                       if sc["marginal"] else ""))
+                     f"{sc['worst_sf_change']:.3f}; converged worst SF "
+                     f"{sc['converged_sf']:.3f} ± {sc['converged_sf_error']:.3f} "
+                     f"({sc['converged_worst_motor']})" + (f"; MARGINAL: {sc['why']}"
+                                                           if sc["marginal"] else ""))
     return lines + [s["answer"]]
 
 
