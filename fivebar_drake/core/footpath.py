@@ -130,6 +130,11 @@ class FootPath(Variant):
         """When the path starts (s): after the scenario's standing time."""
         return stand_s
 
+    def events(self, gait: Gait) -> dict[str, float]:
+        """The plan's key times (s from the maneuver's start), e.g. onset, takeoff, touchdown;
+        none for a periodic path."""
+        return {}
+
     def span_s(self, gait: Gait) -> float:
         """Time (s) the path takes: a period."""
         return gait.period_s
@@ -508,10 +513,6 @@ class Maneuver(FootPath):
 
     def stance_speed(self, gait: Gait) -> float:
         return 0.0
-
-    def events(self, gait: Gait) -> dict[str, float]:
-        """The plan's key times (s from the maneuver's start), e.g. onset, takeoff, touchdown."""
-        return {}
 
     def check(self, field: str) -> None:
         for f in dataclasses.fields(self):

@@ -26,6 +26,11 @@ class Variant:
         return f"{self.kind} (" + ", ".join(f"{f.name} = {getattr(self, f.name)!r}"
                                             for f in dataclasses.fields(self)) + ")"
 
+    def fields(self) -> dict:
+        """{"kind": its kind, every field: its value} (summary.json's record of what ran)."""
+        return {"kind": self.kind, **{f.name: getattr(self, f.name)
+                                      for f in dataclasses.fields(self)}}
+
     def check(self, field: str) -> None:
         """ParameterError naming f"{field}.NAME" for a field out of its bounds (none here)."""
 

@@ -219,6 +219,10 @@ def summarize(sig: Signals, record: SimulationRecord, seed_analysis: dict) -> di
     seed_peak = max(seed_analysis[m]["peak_torque_Nm"] for m in MOTORS)
     summary = {
         "gait": scenario.gait.kind, "closure": scenario.closure.kind,
+        "ran": {"gait": scenario.gait.fields(), "controller": scenario.controller.fields(),
+                "closure": scenario.closure.fields(),
+                "planned_events_s": {k: start + v for k, v in
+                                     scenario.gait.events(params.gait).items()}},
         "duration_s": t_end, "requested_duration_s": scenario.duration_s,
         "completed": completed, "interrupted": bool(record.interrupted),
         "error": record.error or (f"interrupted by {record.interrupted} at t = {t_end:.2f} s"
@@ -360,6 +364,9 @@ def answer(s: dict, params: Params) -> str:
     naming the check that decided the verdict; the static torque on the same poses with the
     same load schedule beside it, and the seed's own figure separately with its load model."""
     if s["verdict"] == "insufficient":
+        if not s["completed"] and not s["interrupted"]:
+            return (f"No verdict: the run stopped early ({s['error']}): the gait, the "
+                    "controller or the motors could not carry the robot through it.")
         why = (f"the run stopped early ({s['error']})" if not s["completed"] else
                f"it covered {s['cycles_in_window']} whole gait cycles after the ramp, fewer than "
                f"{MIN_CYCLES}")
@@ -517,6 +524,12 @@ def markdown(s: dict, params: Params) -> str:
         f"gait cycles, t = {s['window_s'][0]:.2f} .. {s['window_s'][1]:.2f} s; every value is a "
         f"mean over {s['log_period_s'] * 1e3:g} ms of plant steps.",
     ]
+    lines += ["", "Ran: " + "; ".join(
+        f"{what} {v['kind']} (" + ", ".join(f"{k} = {x!r}" for k, x in v.items() if k != "kind")
+        + ")" for what, v in ((w, s["ran"][w]) for w in ("gait", "controller", "closure")))
+        + (", planned events " + ", ".join(f"{k} {x:.3f} s" for k, x in
+                                          s["ran"]["planned_events_s"].items())
+           if s["ran"]["planned_events_s"] else "") + "."]
     if s["error"]:
         lines += ["", f"**The run stopped early:** {s['error']}"]
     clear = min(s["swing_clear_fraction"].values())

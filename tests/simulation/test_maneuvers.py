@@ -159,6 +159,20 @@ def test_event_figures_do_not_depend_on_the_log_interval(runs):
     assert s["landing"]["peak_force_N"] > 1.1 * np.max(runs["drop"][1].ground_force[:, 2])
 
 
+def test_the_summary_says_what_ran(runs):
+    """summary.json records every variant's kind and fields and a maneuver's planned events
+    beside the measured ones: the jump planned at height_m with its takeoff and touchdown."""
+    record, _, s = runs["jump"]
+    gait, ran = record.scenario.gait, s["ran"]
+    assert ran["gait"] == {"kind": "jump", **dataclasses.asdict(gait)}
+    assert ran["controller"]["kind"] == "foot_leg" and ran["closure"]["kind"] == "bushing"
+    assert ran["controller"]["catch_rate_s"] == record.scenario.controller.catch_rate_s
+    start = record.scenario.stand_s
+    assert ran["planned_events_s"] == pytest.approx(
+        {k: start + v for k, v in gait.events(record.params.gait).items()})
+    assert abs(s["jump"]["takeoff_s"] - ran["planned_events_s"]["takeoff"]) < 0.05
+
+
 def test_no_motor_at_its_limit_with_its_foot_in_the_air(runs):
     """Feet join the support on measured contact: in the jump no motor is clipped in a
     recorded interval where its foot carries no load (below 1 N)."""
