@@ -17,7 +17,7 @@ $(STAMP): pyproject.toml
 DEMO_S ?= 4.5
 
 # simulate exits 1 when a run stops early, has no verdict or did not achieve its motion (it
-# still writes its summary): the seed's ellipse does that, and the comparison reports it; any
+# still writes its summary): the seed's ellipse does that (it falls over), and the comparison reports it; any
 # other failure stops make. The 8:1 and 11.5:1 designs' verdicts side by side: gear_comparison.md
 demo: $(STAMP)
 	$(BIN)/fivebar-drake analyze --out $(OUT)/analysis
