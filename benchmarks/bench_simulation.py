@@ -50,8 +50,9 @@ from fivebar_drake.simulation.scenario import load_scenario
 run_simulation(load_scenario(duration_s=float(sys.argv[1])), progress=False)
 print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024)
 """
-PYTHON_BLOCKS = {"gait source": GaitSource, "leg controller": systems.FootLegController,
-                 "motor model": MotorModel}
+PYTHON_BLOCKS = {"gait source": (GaitSource, ("_update",)),   # each block's Python callbacks
+                 "leg controller": (systems.FootLegController, ("_update",)),
+                 "motor model": (MotorModel, ("_sample", "_remember"))}
 
 
 def run_closure(closure: str, duration: float):
@@ -92,7 +93,8 @@ def python_time_per_block(duration: float) -> tuple[dict, float, float]:
     """Seconds spent in each Python block's updates during a default run (timers wrapped around
     the update methods), the run's wall time and its number of plant steps."""
     spent = collections.Counter()
-    originals = {cls: cls._update for cls in PYTHON_BLOCKS.values()}
+    originals = {(cls, m): getattr(cls, m) for cls, methods in PYTHON_BLOCKS.values()
+                 for m in methods}
 
     def timed(name, update):
         def wrapper(*args):
@@ -101,13 +103,14 @@ def python_time_per_block(duration: float) -> tuple[dict, float, float]:
             spent[name] += time.perf_counter() - start
         return wrapper
 
-    for name, cls in PYTHON_BLOCKS.items():
-        cls._update = timed(name, originals[cls])
+    for name, (cls, methods) in PYTHON_BLOCKS.items():
+        for m in methods:
+            setattr(cls, m, timed(name, originals[cls, m]))
     try:
         record = run_simulation(load_scenario(duration_s=duration), progress=False)
     finally:
-        for cls, update in originals.items():
-            cls._update = update
+        for (cls, m), update in originals.items():
+            setattr(cls, m, update)
     return dict(spent), record.wall_s, duration / record.design.time_step_s
 
 
