@@ -20,8 +20,9 @@ systems.FootLegController for the whole description):
   -J_F^T F in full: the ground forces' least-squares split is already weighted by w (a foot
   with w -> 0 gets none), so the feet on the ground deliver the whole wrench at every w
   (blending the push by w again lost force mid transfer: 11 % of the weight with one foot
-  leaving a standing robot); in a scheduled flight, feet down early deliver it in the share of
-  their weights' sum (up to 1), so the first foot down is not handed the whole landing at once.
+  leaving a standing robot), once their weights' sum reaches the schedule's (up to one foot's
+  worth); below it, after a flight or at a landing, they deliver that share of it, so the first
+  feet down are not handed the whole landing at once.
 """
 
 from __future__ import annotations
@@ -363,9 +364,11 @@ def leg_command(k, references, state, loads, memory, t):
             ff = (m[j, 0] * qdd_des[0] + m[j, 1] * qdd_des[1] + c[j] + weight[j]
                   + k.reflected_inertia * qdd_des[j])
             swing[i, j] = k.gains.kp * wrap(q_des - q) + k.gains.kd * (qd_des[j] - qd) + ff
-    # the feet on the ground share the whole wrench, but in a scheduled flight, where the
-    # first feet down take it up as their weights rise
-    share = 1.0 if scheduled.sum() > 0.0 else min(weights.sum(), 1.0)
+    # the feet on the ground deliver the share of the wrench the schedule expects of the feet
+    # down (all of it once their weights reach the schedule's, up to one foot's worth): the
+    # first feet down after a flight or at a landing take it up as their weights rise
+    expected = min(scheduled.sum(), 1.0)
+    share = min(weights.sum() / expected, 1.0) if expected > 0.0 else min(weights.sum(), 1.0)
     forces = ground_forces(k, body, weights, share, fx, fy, state, r_wb)
     out = np.zeros(2 * n)
     for i in range(n):

@@ -133,10 +133,10 @@ def test_early_touchdown_needs_the_air_and_the_way_down(standing):
 
 
 def test_the_first_foot_down_after_a_flight_takes_its_share_only(params, standing):
-    """In a scheduled flight (every stance weight 0) feet measured down early carry their
-    weights' share of the body's weight, not the whole of it: the vertical forces the commands
-    hold sum to w m g for four feet down together at weight w each (their sum >= 1 would give
-    the whole)."""
+    """In a scheduled flight (every stance weight 0) feet measured down early, and at a landing
+    (every foot due in stance) feet just down, carry their weights' share of the body's weight,
+    not the whole of it: the vertical forces the commands hold sum to 4 w m g for four feet
+    down together at weight w each (a sum of weights >= 1 gives the whole)."""
     controller, layout, state = standing
     n = len(layout.legs)
     weight = layout.mass_kg * params.robot.gravity_m_s2
@@ -144,10 +144,12 @@ def test_the_first_foot_down_after_a_flight_takes_its_share_only(params, standin
     references[:2 * n] = np.tile([params.gait.x_center_m, params.gait.y_home_m], n)
     references[3 * n:4 * n:2] = 0.0
     transfer = controller.constants.transfer_s
-    for since in (0.15 * transfer, 0.3 * transfer):
-        memory = controller.standing_support()
-        memory[:] = (1.0, 1.0, 0.0, 0.0)                        # all down early at t = 0
-        command = controller.command(references, state, np.full(n, 100.0), memory, since)
-        vertical = delivered_forces(params, layout, state, command) @ plane_rotation()[2, :2]
-        w = smoothstep(since / transfer)
-        assert 4 * w < 1.0 and vertical.sum() == pytest.approx(4 * w * weight, rel=0.01)
+    for scheduled, early in ((0.0, 1.0), (1.0, 0.0)):       # a flight, a landing
+        references[6 * n:] = scheduled
+        for since in (0.15 * transfer, 0.3 * transfer):
+            memory = controller.standing_support()
+            memory[:] = (1.0, early, 0.0, 0.0)                  # all down at t = 0
+            command = controller.command(references, state, np.full(n, 100.0), memory, since)
+            vertical = delivered_forces(params, layout, state, command) @ plane_rotation()[2, :2]
+            w = smoothstep(since / transfer)
+            assert 4 * w < 1.0 and vertical.sum() == pytest.approx(4 * w * weight, rel=0.01)
