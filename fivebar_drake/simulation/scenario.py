@@ -28,7 +28,7 @@ from fivebar_drake.core.footpath import PATHS, FootPath, Trot
 from fivebar_drake.core.validation import (MAX_LENGTH_M, MAX_MASS_KG, ParameterError,
                                            check_number, require)
 from fivebar_drake.core.yaml_files import load_yaml
-from fivebar_drake.robots.quadruped.config import load_params, with_gait
+from fivebar_drake.robots.quadruped.config import load_params, with_path_defaults
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.closure import CLOSURES, Closure, CompliantBushing
 from fivebar_drake.robots.quadruped.plant import default_plant_config
@@ -199,11 +199,11 @@ class Scenario:
         params = load_params(self.params_file or None)
         overrides = {f.name[len("gait_"):]: getattr(self, f.name) for f in dataclasses.fields(self)
                      if f.name.startswith("gait_") and getattr(self, f.name) is not None}
-        overrides = {**self.gait.gait_defaults, **overrides}   # the path's own, unless given
         try:
-            return with_gait(params, **overrides) if overrides else params
+            return with_path_defaults(params, self.gait, **overrides)
         except ParameterError as err:
-            given = ", ".join(f"gait_{k} = {v!r}" for k, v in overrides.items())
+            given = ", ".join(f"gait_{k} = {v!r}" for k, v in
+                              {**self.gait.gait_defaults, **overrides}.items())
             raise ParameterError(f"scenario {given} overriding the parameter file: "
                                  f"{err.message}", err.field) from None
 

@@ -25,7 +25,8 @@ from urllib.parse import urlsplit
 
 from fivebar_drake.core.files import read_input_text, say, write_atomic
 from fivebar_drake.core.validation import ParameterError
-from fivebar_drake.robots.quadruped.config import load_params, with_changes
+from fivebar_drake.robots.quadruped.config import (load_params, with_changes,
+                                                   with_path_defaults)
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.simulation.scenario import load_scenario
 from fivebar_drake.sweep.points import (SCENARIO, analysis_rows, columns, scenario_with,
@@ -61,9 +62,10 @@ def base_inputs(spec: SweepSpec):
     scenario = None
     if spec.fidelity == "simulation":
         scenario = load_scenario(spec.scenario, duration_s=spec.duration_s)
-        params = load_params(spec.config) if spec.config else scenario.load_params()
+        params = (with_path_defaults(load_params(spec.config), scenario.gait) if spec.config
+                  else scenario.load_params())
     else:
-        params = load_params(spec.config)
+        params = with_path_defaults(load_params(spec.config), spec.gait)
     for v in spec.vary:
         for value in (v.values or (v.low, v.high)):
             if v.path.startswith(SCENARIO):

@@ -144,3 +144,24 @@ def test_a_gait_registered_alone_runs_through_the_pipeline(params, stand_still):
     assert np.abs(height - standing_height(params)).max() < 5e-3
     assert np.abs(xy - xy[0]).max() < 5e-3
     assert tilt_deg(state[:, body:body + 4]).max() < 1.0
+
+
+def test_analyze_simulate_and_a_sweep_run_the_same_path(tmp_path):
+    """A path's own gait fields (the bound's 2 Hz and a = 30 mm) apply alike to analyze,
+    simulate and a sweep's base; a --set or a scenario's gait_* override goes over them."""
+    from fivebar_drake.studies.fivebar_leg import load_analysis
+    from fivebar_drake.sweep.engine import base_inputs
+    from fivebar_drake.sweep.spec import load_spec
+
+    bound = load_scenario(gait="bound").load_params().gait
+    assert (bound.frequency_hz, bound.a_m) == (2.0, 0.03)
+    analysed = load_analysis(None, "bound").inputs[0].gait
+    assert (analysed.frequency_hz, analysed.a_m) == (bound.frequency_hz, bound.a_m)
+    assert load_analysis(None, "bound", ["gait.frequency_hz=1.5"]).inputs[0].gait.frequency_hz \
+        == 1.5
+    assert load_scenario(gait="bound", gait_frequency_hz=1.5).load_params().gait.frequency_hz \
+        == 1.5
+    spec = tmp_path / "s.yaml"
+    spec.write_text("fidelity: analysis\ngait: bound\nvary:\n  motor.gear_ratio: [8, 10]\n")
+    params, _ = base_inputs(load_spec(spec))
+    assert (params.gait.frequency_hz, params.gait.a_m) == (2.0, 0.03)

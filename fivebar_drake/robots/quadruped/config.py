@@ -107,6 +107,14 @@ def with_gait(params: Params, **changes) -> Params:
     return params
 
 
+def with_path_defaults(params: Params, path: FootPath | str, **overrides) -> Params:
+    """The parameters a foot path runs with, the same for analyze, simulate and a sweep: the
+    path's own gait fields (FootPath.gait_defaults, e.g. the bound's 2 Hz and a = 30 mm) over the
+    parameter file's, and overrides (gait field -> value) over both; validated (with_gait)."""
+    changes = {**foot_path(path).gait_defaults, **overrides}
+    return with_gait(params, **changes) if changes else params
+
+
 def with_changes(params: Params, changes: dict) -> Params:
     """The parameters with fields changed by dotted path (section.field, or links.NAME.field),
     validated as a parameter file is (ParameterError naming the field). The motor is given by

@@ -56,8 +56,12 @@ def with_sets(params: Params, sets: list[str] | None) -> Params:
 
 def load_analysis(config: str | Path | None, gait: str | None = None,
                   sets: list[str] | None = None) -> Plan:
-    """The parameters with their --set edits and the foot path (default: the seed's ellipse)."""
-    return Plan((with_sets(load_params(config), sets), gait or "seed_ellipse"),
+    """The parameters with the foot path's own gait fields (with_path_defaults, as simulate
+    runs it) and the --set edits over them, and the foot path (default: the seed's ellipse)."""
+    from fivebar_drake.robots.quadruped.config import with_path_defaults
+
+    path = gait or "seed_ellipse"
+    return Plan((with_sets(with_path_defaults(load_params(config), path), sets), path),
                 (f"parameters: {config or 'packaged default'}",))
 
 
