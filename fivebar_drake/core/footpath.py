@@ -88,7 +88,6 @@ class FootPath(Variant):
     point: ClassVar = None
     title: ClassVar[str] = ""          # the path in a few words, e.g. "trot foot path"
     periodic: ClassVar[bool] = True    # False: a one-shot maneuver (Maneuver)
-    pattern: ClassVar[str] = "trot"    # the legs' phases (the robot's legs.GAIT_PHASES_RAD)
     goal: ClassVar[str] = "speed"      # what "achieved" means (simulation/summary.achievement)
     gait_defaults: ClassVar[dict] = {}  # gait fields (m, Hz) this path takes unless the scenario
     #                                     sets them (scenario.gait_*)
@@ -96,6 +95,11 @@ class FootPath(Variant):
     def text(self, gait: Gait) -> str:
         """The path in words with its numbers (mm, m/s), for the analysis report."""
         return self.title
+
+    def leg_phase(self, leg: str) -> float:
+        """The gait phase (rad) of a quadruped leg named front/rear then left/right ("FL",
+        "RR", ...): a trot's, diagonal pairs in phase, the pairs half a cycle apart."""
+        return math.pi if (leg[0] == "F") != (leg[1] == "L") else 0.0
 
     def constants(self, gait: Gait) -> tuple:
         """The NamedTuple of constants `point` takes."""
@@ -283,15 +287,18 @@ class Trot(FootPath):
 @register_path
 @dataclass(frozen=True)
 class Walk(Trot):
-    """A statically stable crawl: the trot path, one leg at a time (legs.GAIT_PHASES_RAD
-    "walk": rear left, front left, rear right, front right, a quarter cycle apart), duty factor
-    >= 0.75 so three or four feet are always down."""
+    """A statically stable crawl: the trot path, one leg at a time (rear left, front left, rear
+    right, front right, a quarter cycle apart), duty factor >= 0.75 so three or four feet are
+    always down."""
 
     kind: ClassVar[str] = "walk"
     title: ClassVar[str] = "crawl (one leg at a time)"
-    pattern: ClassVar[str] = "walk"
     gait_defaults: ClassVar[dict] = {"frequency_hz": 0.5}
+    order: ClassVar[tuple] = ("RL", "FL", "RR", "FR")   # each lifts off at f t = 1 - phase / 2 pi
     duty_factor: Optional[float] = 0.8
+
+    def leg_phase(self, leg: str) -> float:
+        return float(np.mod(-2.0 * math.pi * self.order.index(leg) / 4.0, 2.0 * math.pi))
 
     def check(self, field: str) -> None:
         check_number(f"{field}.duty_factor", self.duty_factor, MIN_CRAWL_DUTY, 1.0,
@@ -301,20 +308,21 @@ class Walk(Trot):
 @register_path
 @dataclass(frozen=True)
 class Bound(Trot):
-    """A bound: the trot path with the front pair and the rear pair half a cycle apart
-    (legs.GAIT_PHASES_RAD "bound")."""
+    """A bound: the trot path with the front pair and the rear pair half a cycle apart."""
 
     kind: ClassVar[str] = "bound"
     title: ClassVar[str] = "bound (front pair, rear pair)"
-    pattern: ClassVar[str] = "bound"
     gait_defaults: ClassVar[dict] = {"frequency_hz": 2.0, "a_m": 0.03}
     duty_factor: Optional[float] = 0.75
+
+    def leg_phase(self, leg: str) -> float:
+        return 0.0 if leg[0] == "F" else math.pi
 
 
 @register_path
 @dataclass(frozen=True)
 class Pronk(Trot):
-    """A pronk: all four legs together (legs.GAIT_PHASES_RAD "pronk"); in stance the foot rises
+    """A pronk: all four legs together; in stance the foot rises
     by dip_m sin(pi sigma) towards the hip (the body dips and is pushed back up), leaving at the
     vertical speed pi dip_m / T_stance, so the body flies 2 pi dip_m / (g T_stance) s: the
     default dip, 36 mm, gives the 0.1 s flight of the default 3 Hz, duty 0.7 (g = 9.81 m/s^2);
@@ -322,10 +330,12 @@ class Pronk(Trot):
 
     kind: ClassVar[str] = "pronk"
     title: ClassVar[str] = "pronk (all four legs together)"
-    pattern: ClassVar[str] = "pronk"
     gait_defaults: ClassVar[dict] = {"frequency_hz": 3.0, "a_m": 0.03, "b_m": 0.015}
     duty_factor: Optional[float] = 0.7
     dip_m: float = 0.0364
+
+    def leg_phase(self, leg: str) -> float:
+        return 0.0
 
     def check(self, field: str) -> None:
         super().check(field)
@@ -473,9 +483,11 @@ class Maneuver(FootPath):
     statistics window. Subclasses give `segments`."""
 
     periodic: ClassVar[bool] = False
-    pattern: ClassVar[str] = "pronk"
     point: ClassVar = staticmethod(maneuver_point)
     stand_first: ClassVar[bool] = True
+
+    def leg_phase(self, leg: str) -> float:
+        return 0.0
 
     def segments(self, gait: Gait) -> list[tuple]:
         """[(duration s, stance, x (p0, v0, a0, p1, v1, a1), y (the same)), ...] in m, m/s,

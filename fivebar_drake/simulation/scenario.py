@@ -32,7 +32,7 @@ from fivebar_drake.robots.quadruped.config import load_params, with_path_default
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.closure import CLOSURES, Closure, CompliantBushing
 from fivebar_drake.robots.quadruped.plant import default_plant_config
-from fivebar_drake.robots.quadruped.legs import GAIT_PHASES_RAD, LEGS
+from fivebar_drake.robots.quadruped.legs import LEGS, path_phases
 from fivebar_drake.simulation.systems import CONTROLLERS, MIN_TIME_STEP_S, Controller, FootLeg
 
 
@@ -179,7 +179,7 @@ class Scenario:
                                                      "the controller (scenario.control_period_s)")
         number("scenario.load_transfer_s", self.load_transfer_s, 0.0)
         if self.phases_rad is None:
-            self.phases_rad = list(GAIT_PHASES_RAD[self.gait.pattern])
+            self.phases_rad = list(path_phases(self.gait))
         require(len(self.phases_rad) == len(LEGS), "scenario.phases_rad", self.phases_rad,
                 f"needs {len(LEGS)} values ({', '.join(LEGS)})")
         for i, phase in enumerate(self.phases_rad):

@@ -10,20 +10,18 @@ from __future__ import annotations
 
 import numpy as np
 
+from fivebar_drake.core.footpath import foot_path
+
 LEGS = ("FL", "FR", "RL", "RR")           # front/rear, left/right
-# Gait phase (rad) of each leg in a trot: diagonal pairs (FL, RR and FR, RL) in phase, the pairs
-# half a cycle apart.
-TROT_PHASES_RAD = tuple(np.pi if (leg[0] == "F") != (leg[1] == "L") else 0.0 for leg in LEGS)
-# Each foot path's pattern (footpath.FootPath.pattern) as gait phases (rad) of LEGS: a crawl
-# lifts one leg at a time, a quarter cycle apart, rear left, front left, rear right, front right
-# (each leg lifts off at f t = 1 - phase / 2 pi); a bound the front pair then the rear pair; a pronk
-# (and every maneuver) all four together.
-CRAWL_ORDER = ("RL", "FL", "RR", "FR")
-GAIT_PHASES_RAD = {
-    "trot": TROT_PHASES_RAD,
-    "walk": tuple(float(np.mod(-2 * np.pi * CRAWL_ORDER.index(leg) / 4, 2 * np.pi)) for leg in LEGS),
-    "bound": tuple(0.0 if leg[0] == "F" else np.pi for leg in LEGS),
-    "pronk": (0.0,) * len(LEGS)}
+
+
+def path_phases(path) -> tuple[float, ...]:
+    """Gait phases (rad) of LEGS for a foot path (a FootPath or its kind): the path's own
+    (FootPath.leg_phase)."""
+    return tuple(foot_path(path).leg_phase(leg) for leg in LEGS)
+
+
+TROT_PHASES_RAD = path_phases("trot")   # diagonal pairs in phase, the pairs half a cycle apart
 PLANE_RPY = (np.pi / 2, 0.0, np.pi)       # roll, pitch, yaw (rad) of a leg plane in the body
 
 
