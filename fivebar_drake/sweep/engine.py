@@ -25,7 +25,7 @@ from urllib.parse import urlsplit
 
 from fivebar_drake.core.files import read_input_text, say, write_atomic
 from fivebar_drake.core.validation import ParameterError
-from fivebar_drake.robots.quadruped.config import (load_params, with_changes,
+from fivebar_drake.robots.quadruped.config import (check_path, load_params, with_changes,
                                                    with_path_defaults)
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.simulation.scenario import load_scenario
@@ -66,6 +66,7 @@ def base_inputs(spec: SweepSpec):
                   else scenario.load_params())
     else:
         params = with_path_defaults(load_params(spec.config), spec.gait)
+        check_path(params, spec.gait)
     for v in spec.vary:
         for value in (v.values or (v.low, v.high)):
             if v.path.startswith(SCENARIO):

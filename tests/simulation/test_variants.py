@@ -19,6 +19,7 @@ from fivebar_drake.core.rotation import tilt_deg
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.pipeline import run_simulation
 from fivebar_drake.robots.quadruped.plant import standing_height
+from fivebar_drake.simulation.builder import check_run
 from fivebar_drake.robots.quadruped.closure import Ball
 from fivebar_drake.simulation.scenario import load_scenario
 from fivebar_drake.simulation.systems import FootLeg
@@ -165,3 +166,44 @@ def test_analyze_simulate_and_a_sweep_run_the_same_path(tmp_path):
     spec.write_text("fidelity: analysis\ngait: bound\nvary:\n  motor.gear_ratio: [8, 10]\n")
     params, _ = base_inputs(load_spec(spec))
     assert (params.gait.frequency_hz, params.gait.a_m) == (2.0, 0.03)
+
+
+@pytest.fixture
+def far_away():
+    """A toy periodic gait whose feet stand 1 m below the hips, beyond any leg's reach,
+    registered for the test alone (and removed after it)."""
+    @register_path
+    @dataclass(frozen=True)
+    class FarAway(FootPath):
+        """Holds every foot out of reach."""
+
+        kind: ClassVar[str] = "far_away"
+        point: ClassVar = staticmethod(home_point)
+
+        def constants(self, gait):
+            return Home(gait.x_center_m, -1.0)
+
+        def stance_start(self, gait):
+            return 0.0
+
+        def stance_speed(self, gait):
+            return 0.0
+
+    yield FarAway
+    del PATHS["far_away"]
+
+
+def test_a_gait_out_of_reach_breaks_only_its_own_runs(far_away, tmp_path):
+    """Registering a gait never makes a parameter file fail to load (the packaged robots
+    included); the command that runs it refuses it, naming it (exit 2)."""
+    from fivebar_drake.robots.quadruped.config import load_params
+    from fivebar_drake.studies.fivebar_leg import load_analysis
+
+    for name in (None, "doggo", "minitaur"):
+        load_params(None if name is None else
+                    Path(__file__).parents[2] / "fivebar_drake" / "data" / f"{name}.toml")
+    with pytest.raises(ParameterError, match="out of|outside|reach") as err:
+        load_analysis(None, "far_away")
+    assert err.value.source == "command line (--gait far_away)"
+    with pytest.raises(ParameterError, match="out of|outside|reach"):
+        check_run(load_scenario(gait="far_away"), load_params())

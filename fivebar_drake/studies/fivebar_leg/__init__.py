@@ -58,11 +58,15 @@ def load_analysis(config: str | Path | None, gait: str | None = None,
                   sets: list[str] | None = None) -> Plan:
     """The parameters with the foot path's own gait fields (with_path_defaults, as simulate
     runs it) and the --set edits over them, and the foot path (default: the seed's ellipse)."""
-    from fivebar_drake.robots.quadruped.config import with_path_defaults
+    from fivebar_drake.robots.quadruped.config import check_path, with_path_defaults
 
     path = gait or "seed_ellipse"
-    return Plan((with_sets(with_path_defaults(load_params(config), path), sets), path),
-                (f"parameters: {config or 'packaged default'}",))
+    params = with_sets(with_path_defaults(load_params(config), path), sets)
+    try:
+        check_path(params, path)
+    except ParameterError as err:
+        raise err.located(f"command line (--gait {path})") from None
+    return Plan((params, path), (f"parameters: {config or 'packaged default'}",))
 
 
 def analyze(inputs: tuple[Params, str]) -> pipeline.AnalysisRecord:
