@@ -111,28 +111,35 @@ def home_point(c, u):
     return c.x, c.y, 0.0, 0.0, 0.0, 0.0, True
 
 
+class StandStill(FootPath):
+    """Holds every foot at home: all stance, no speed (y_m: the home's height, None = the
+    parameter file's)."""
+
+    point: ClassVar = staticmethod(home_point)
+    y_m: ClassVar = None
+
+    def constants(self, gait):
+        return Home(gait.x_center_m, gait.y_home_m if self.y_m is None else self.y_m)
+
+    def stance_start(self, gait):
+        return 0.0
+
+    def stance_speed(self, gait):
+        return 0.0
+
+
+def toy_gait(kind: str, y_m=None):
+    """A StandStill registered as `kind` for one test (removed after it)."""
+    cls = register_path(dataclass(frozen=True)(type(kind, (StandStill,),
+                                                     {"kind": kind, "y_m": y_m})))
+    yield cls
+    del PATHS[kind]
+
+
 @pytest.fixture
 def stand_still():
     """A toy gait registered for the test alone (and removed after it)."""
-    @register_path
-    @dataclass(frozen=True)
-    class StandStill(FootPath):
-        """Holds every foot at home: all stance, no speed."""
-
-        kind: ClassVar[str] = "stand_still"
-        point: ClassVar = staticmethod(home_point)
-
-        def constants(self, gait):
-            return Home(gait.x_center_m, gait.y_home_m)
-
-        def stance_start(self, gait):
-            return 0.0
-
-        def stance_speed(self, gait):
-            return 0.0
-
-    yield StandStill
-    del PATHS["stand_still"]
+    yield from toy_gait("stand_still")
 
 
 def test_a_gait_registered_alone_runs_through_the_pipeline(params, stand_still):
@@ -170,27 +177,8 @@ def test_analyze_simulate_and_a_sweep_run_the_same_path(tmp_path):
 
 @pytest.fixture
 def far_away():
-    """A toy periodic gait whose feet stand 1 m below the hips, beyond any leg's reach,
-    registered for the test alone (and removed after it)."""
-    @register_path
-    @dataclass(frozen=True)
-    class FarAway(FootPath):
-        """Holds every foot out of reach."""
-
-        kind: ClassVar[str] = "far_away"
-        point: ClassVar = staticmethod(home_point)
-
-        def constants(self, gait):
-            return Home(gait.x_center_m, -1.0)
-
-        def stance_start(self, gait):
-            return 0.0
-
-        def stance_speed(self, gait):
-            return 0.0
-
-    yield FarAway
-    del PATHS["far_away"]
+    """A toy gait whose feet stand 1 m below the hips, beyond any leg's reach."""
+    yield from toy_gait("far_away", -1.0)
 
 
 def test_a_gait_out_of_reach_breaks_only_its_own_runs(far_away, tmp_path):
