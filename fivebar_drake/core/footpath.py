@@ -752,18 +752,30 @@ def stance_loads(gait: Gait, path: FootPath | str, t, phases_rad, weight_N: floa
                         weight_N)
 
 
+REFERENCES_PER_LEG = 7   # the foot references' layout: per leg a target, a velocity and an
+#                          acceleration (x, y) each, then its stance weight (reference_parts)
+
+
+@jit
+def reference_parts(references):
+    """The foot references (REFERENCES_PER_LEG x legs) as views: targets (legs, 2) m,
+    velocities (legs, 2) m/s, accelerations (legs, 2) m/s^2 in the leg planes, stance weights
+    (legs,) in [0, 1]."""
+    n = references.shape[0] // REFERENCES_PER_LEG
+    return (references[:2 * n].reshape(n, 2), references[2 * n:4 * n].reshape(n, 2),
+            references[4 * n:6 * n].reshape(n, 2), references[6 * n:])
+
+
 @jit_uncached
 def foot_references(point, constants, frequency, period, stance_start_u, transfer_s, home,
                     phases, start_s, ramp_s, periodic, t):
-    """The foot references at time t (s) as one vector (7 legs / 2, GaitSource): targets,
-    velocities and accelerations (legs x (x, y) each), then stance weights (legs); the path
-    point(constants, u) (FootPath.point) at frequency (Hz) and period (s); not periodic (a
-    maneuver): u = frequency t, the weights its stance flags."""
+    """The foot references at time t (s) as one vector (reference_parts: targets, velocities
+    and accelerations, stance weights of the legs); the path point(constants, u)
+    (FootPath.point) at frequency (Hz) and period (s); not periodic (a maneuver): u =
+    frequency t, the weights its stance flags."""
     n = phases.shape[0]
-    out = np.zeros(7 * n)
-    targets, vel, acc = (out[:2 * n].reshape(n, 2), out[2 * n:4 * n].reshape(n, 2),
-                         out[4 * n:6 * n].reshape(n, 2))
-    weights = out[6 * n:]
+    out = np.zeros(REFERENCES_PER_LEG * n)
+    targets, vel, acc, weights = reference_parts(out)
     weights[:] = 1.0
     tau = t - start_s
     if tau < 0.0:
@@ -786,8 +798,9 @@ class GaitSource(LeafSystem):
     """Time (s) -> foot targets of all legs in their leg planes and the stance schedule,
     sampled every period_s (the controller's period).
 
-    Output port "foot_references" (7 legs / 2): foot targets (legs x (x, y), m), velocities
-    (m/s), accelerations (m/s^2), then the stance weights (legs, in [0, 1]).
+    Output port "foot_references" (REFERENCES_PER_LEG x legs, reference_parts): foot targets
+    (legs x (x, y), m), velocities (m/s), accelerations (m/s^2), then the stance weights (legs,
+    in [0, 1]).
     The foot path (FootPath.point) with gait time tau = t - start_s, each leg at its phase
     (rad), about the home point (x_c, y_home) scaled by s ramping 0 -> 1 over ramp_s; the
     stance weights blend from all-stance to the schedule with the same s. While standing

@@ -41,7 +41,7 @@ class Setup:
     instance: object
     layout: RobotLayout
     design: ClosureDesign
-    gains: tuple
+    gains: tuple | None
     recorder: VectorLogSink
     motor_log: VectorLogSink
     motor_samples_per_row: int
@@ -239,7 +239,7 @@ def build_diagram(scenario: Scenario, params: Params, design: ClosureDesign,
             layout.state.actuators.size, PERIODIC, design.time_step_s))
         builder.Connect(motor.GetOutputPort("applied_torque"), actuation_log.get_input_port())
     setup = Setup(plant=plant, instance=instance, layout=layout, design=design,
-                  gains=controller.gains, recorder=recorder, motor_log=motor_log,
+                  gains=getattr(controller, "gains", None), recorder=recorder, motor_log=motor_log,
                   motor_samples_per_row=per_row, controller=controller,
                   actuation_log=actuation_log, step_log=step_log)
     return builder.Build(), setup

@@ -104,7 +104,7 @@ class SimulationRecord:
     """A simulated run as plain data (numpy arrays and dataclasses, no Drake object), all that
     post-processing needs: the scenario and parameters it ran with, the plant's layout
     (RobotLayout: legs, joint and state indices, hips, mass properties), the closure design
-    (ClosureDesign: time step s, bushing), the controller gains (ControlGains, SI); the
+    (ClosureDesign: time step s, bushing), the controller gains (ControlGains, SI; None for a controller without); the
     recorder's table (interval_table: one row per log interval, SI); the wall time of the
     stepping (s); the error text if the run stopped early ("" if not), the signal that stopped
     it ("SIGINT", "SIGTERM"; "" if none); with log_actuation the times (steps,) s and joint
@@ -115,7 +115,7 @@ class SimulationRecord:
     params: Params
     layout: RobotLayout
     design: ClosureDesign
-    gains: ControlGains
+    gains: ControlGains | None
     table: dict[str, np.ndarray]
     wall_s: float
     error: str = ""

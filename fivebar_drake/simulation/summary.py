@@ -261,8 +261,8 @@ def summarize(sig: Signals, record: SimulationRecord, seed_analysis: dict) -> di
             "stiffness_N_m": design.bushing.stiffness_N_m,
             "damping_N_s_m": design.bushing.damping_N_s_m},
         "knee_effective_mass_kg": design.m_eff_kg, "design_loop_force_N": design.loop_force_N,
-        "controller_gains": {k: np.asarray(v).tolist() for k, v in
-                             record.gains._asdict().items()},
+        "controller_gains": None if record.gains is None else {
+            k: np.asarray(v).tolist() for k, v in record.gains._asdict().items()},
         "seed_peak_torque_Nm": seed_peak,
         "seed_load_model": seed_analysis_load(params),
         "motor_peak_torque_Nm": params.motor.peak_torque_Nm,

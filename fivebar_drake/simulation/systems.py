@@ -14,6 +14,7 @@ from typing import ClassVar
 import numpy as np
 from pydrake.systems.framework import LeafSystem
 
+from fivebar_drake.core.footpath import REFERENCES_PER_LEG
 from fivebar_drake.core.validation import check_number
 from fivebar_drake.core.variants import Variant, documented, registrar
 from fivebar_drake.mechanisms.fivebar import (LINK_NAMES, com_fractions, physical_izz)
@@ -47,9 +48,9 @@ class Controller(Variant):
     "foot_references" (GaitSource) and "plant_state" (nx) and the output port "torque_command"
     (8, N*m, actuation order), updated every control_period_s (s; the gait source samples at the
     same period), optionally the input port "contact_impulse" (nv, the integral of the plant's
-    generalized contact forces: connected when the block has it), and the attribute `gains` (a
-    NamedTuple, summary.json's controller_gains). Its fields are also scenario fields (the
-    scenario's flat names)."""
+    generalized contact forces: connected when the block has it), and optionally the attribute
+    `gains` (a NamedTuple, summary.json's controller_gains; null without it). Its fields are also
+    scenario fields (the scenario's flat names)."""
 
     control_period_s: float = documented(0.002, "update period of the leg controller")
 
@@ -138,7 +139,8 @@ class FootLegController(LeafSystem):
             transfer_s=float(transfer_s))
         n = layout.state.q_index.size
         self._period = knobs.control_period_s
-        self._references = self.DeclareVectorInputPort("foot_references", 7 * n // 2)
+        self._references = self.DeclareVectorInputPort(
+            "foot_references", REFERENCES_PER_LEG * layout.state.q_index.shape[0])
         self._state = self.DeclareVectorInputPort("plant_state", layout.nx)
         self._impulse = self.DeclareVectorInputPort("contact_impulse", layout.nv)
         # the released command (the output) and the delay_periods commands after it, oldest first

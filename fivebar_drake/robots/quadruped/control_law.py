@@ -31,7 +31,7 @@ from typing import NamedTuple
 import numpy as np
 
 from fivebar_drake.core.compiled import jit
-from fivebar_drake.core.footpath import smoothstep
+from fivebar_drake.core.footpath import reference_parts, smoothstep
 from fivebar_drake.core.rotation import body_rotation, wrap
 from fivebar_drake.mechanisms.fivebar import (bias_at, coriolis_at, foot_from, forward_pose,
                                               inverse_pose, link_jacobians_at, mass_matrix_at,
@@ -305,9 +305,8 @@ def leg_command(k, references, state, loads, memory, t):
     in stance that is not yet on the ground reaches down to it (its kinematic clearance,
     foot_clearance) at SEARCH_SPEED_M_S from when it was due. NaN where a target is out of reach
     or the legs cannot close."""
-    n = references.shape[0] // 7
-    targets, velocities = references[:2 * n].reshape(n, 2), references[2 * n:4 * n].reshape(n, 2)
-    accelerations, weights = references[4 * n:6 * n].reshape(n, 2), references[6 * n:]
+    targets, velocities, accelerations, weights = reference_parts(references)
+    n = weights.shape[0]
     r_wb = body_rotation(state[k.state.body_q:k.state.body_q + 4])
     swing, stance, jf_now = np.empty((n, 2)), np.empty((n, 2)), np.empty((n, 2, 2))
     fx, fy = np.empty(n), np.empty(n)

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 from pydrake.systems.framework import DiagramBuilder
 
+from fivebar_drake.core.footpath import REFERENCES_PER_LEG, reference_parts
 from fivebar_drake.mechanisms.fivebar import foot_jacobian, forward, static_torques
 from fivebar_drake.robots.quadruped.closure import Ball
 from fivebar_drake.robots.quadruped.control_law import AIRBORNE_S, support_weights
@@ -53,12 +54,13 @@ def test_feet_carry_the_weight_while_a_foot_gives_off_its_load(params, standing,
     controller, layout, state = standing
     n = len(layout.legs)
     weight = layout.mass_kg * params.robot.gravity_m_s2
-    references = np.zeros(7 * n)
-    references[:2 * n] = np.tile([params.gait.x_center_m, params.gait.y_home_m], n)
+    references = np.zeros(REFERENCES_PER_LEG * n)
+    targets, _, _, weights = reference_parts(references)
+    targets[:] = (params.gait.x_center_m, params.gait.y_home_m)
     sums = []
     for w in np.linspace(1.0, 0.0, 21):
-        references[6 * n:] = 1.0
-        references[6 * n + leaving] = w
+        weights[:] = 1.0
+        weights[leaving] = w
         forces = delivered_forces(params, layout, state, controller.command(references, state))
         vertical = forces @ plane_rotation()[2, :2]         # leg plane (x, y) -> body z
         if w == 0.0:
@@ -140,12 +142,12 @@ def test_the_first_foot_down_after_a_flight_takes_its_share_only(params, standin
     controller, layout, state = standing
     n = len(layout.legs)
     weight = layout.mass_kg * params.robot.gravity_m_s2
-    references = np.zeros(7 * n)
-    references[:2 * n] = np.tile([params.gait.x_center_m, params.gait.y_home_m], n)
-    references[3 * n:4 * n:2] = 0.0
+    references = np.zeros(REFERENCES_PER_LEG * n)
+    targets, _, _, weights = reference_parts(references)
+    targets[:] = (params.gait.x_center_m, params.gait.y_home_m)
     transfer = controller.constants.transfer_s
     for scheduled, early in ((0.0, 1.0), (1.0, 0.0)):       # a flight, a landing
-        references[6 * n:] = scheduled
+        weights[:] = scheduled
         for since in (0.15 * transfer, 0.3 * transfer):
             memory = controller.standing_support()
             memory[:] = (1.0, early, 0.0, 0.0)                  # all down at t = 0
