@@ -3,7 +3,7 @@ signals): body motion, per leg and motor joint angles and speeds, torques, clip 
 forces, the gait schedule, the leg's limit tests, the robot's centre of mass and the ground's
 total force.
 
-Every series is a mean over one log interval of plant steps (systems.StepRecorder), so a contact
+Every series is a mean over one log interval of plant steps (builder.add_recorders), so a contact
 spike counts for the time it lasts. Per leg and motor, over the poses the robot went through:
 - applied: the torque the motor delivered (the command after saturation); demand: the command;
 - static_seed: the seed's G(q) with m_leg g at the foot; static_trot: the full model's static
@@ -22,8 +22,8 @@ import numpy as np
 
 from fivebar_drake.core.footpath import evaluate, shared_loads
 from fivebar_drake.core.rotation import body_rotations, tilt_deg
-from fivebar_drake.mechanisms.fivebar import (LimitTest, forward, inverse, limit_tests, link_coms,
-                                              link_jacobians, static_torques, torques)
+from fivebar_drake.mechanisms.fivebar import (LINK_NAMES, LimitTest, forward, inverse, limit_tests,
+                                              link_coms, link_jacobians, static_torques, torques)
 from fivebar_drake.robots.quadruped.leg_loads import full_model, seed_model
 from fivebar_drake.robots.quadruped.legs import plane_rotation
 from fivebar_drake.robots.quadruped.params import Params
@@ -150,7 +150,7 @@ def com_motion(params: Params, lay: RobotLayout, st, r_wb) -> tuple[np.ndarray, 
     relative motion (J_v q_dot per link, leg plane) weighted by their masses. r_wb: the body's
     rotation to the world per row (rows, 3, 3)."""
     leg, links = params.leg, params.links
-    masses = np.array([links[n].mass_kg for n in ("AC", "BD", "CE", "DE")])
+    masses = np.array([links[n].mass_kg for n in LINK_NAMES])
     q = st[:, lay.state.q_index]                                       # (rows, legs, 2)
     qd = st[:, lay.state.nq + lay.state.v_index]
     pose = forward(leg, q)
