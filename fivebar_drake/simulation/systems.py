@@ -147,10 +147,11 @@ class FootLegController(LeafSystem):
         self._released = self.DeclareDiscreteState(n)
         self._queue = self.DeclareDiscreteState(knobs.control_delay_periods * n)
         self._delayed = knobs.control_delay_periods > 0
-        # the feet's support (control_law.support_weights), every foot standing before the run;
-        # the contact impulse at the last tick
-        self._support = self.DeclareDiscreteState(self.standing_support().ravel())
-        self._last_impulse = self.DeclareDiscreteState(layout.nv)
+        # the tick's memory, one group: the feet's support (control_law.support_weights), every
+        # foot standing before the run, then the contact impulse at the last tick
+        self._support_size = self.standing_support().size
+        self._memory = self.DeclareDiscreteState(np.concatenate([self.standing_support().ravel(),
+                                                                 np.zeros(layout.nv)]))
         self.DeclarePeriodicDiscreteUpdateEvent(knobs.control_period_s, 0.0, self._update)
         self.DeclareStateOutputPort("torque_command", self._released)
 
@@ -187,19 +188,23 @@ class FootLegController(LeafSystem):
         """What a tick at the context's time computes from (the arguments of command): the
         foot references, the plant state, the feet's measured normal forces over the last
         period (N) and a copy of the support memory."""
+        return self._tick(context)[:5]
+
+    def _tick(self, context) -> tuple:
+        """tick_inputs, and the contact impulse now (nv,)."""
         state = self._state.Eval(context)
         impulse = self._impulse.Eval(context)
-        last = context.get_discrete_state(self._last_impulse).get_value()
-        memory = context.get_discrete_state(self._support).get_value()
+        memory = context.get_discrete_state(self._memory).get_value()
+        last = memory[self._support_size:]
         return (self._references.Eval(context), state,
                 foot_loads(self.constants, state, (impulse - last) / self._period),
-                memory.reshape(-1, SUPPORT_FIELDS).copy(), context.get_time())
+                memory[:self._support_size].reshape(-1, SUPPORT_FIELDS).copy(),
+                context.get_time(), impulse)
 
     def _update(self, context, discrete_state):
-        references, state, loads, memory, t = self.tick_inputs(context)
+        references, state, loads, memory, t, impulse = self._tick(context)
         new = self.command(references, state, loads, memory, t)
-        discrete_state.set_value(self._support, memory.ravel())
-        discrete_state.set_value(self._last_impulse, self._impulse.Eval(context))
+        discrete_state.set_value(self._memory, np.concatenate([memory.ravel(), impulse]))
         if self._delayed:
             queue = np.concatenate([context.get_discrete_state(self._queue).get_value(), new])
             new = queue[:new.size]
