@@ -104,14 +104,22 @@ def run_step_check(record: SimulationRecord, progress: bool = True,
     return run_simulation(scenario, record.params, progress=progress, stop=stop)
 
 
+def _signals(record: SimulationRecord) -> tuple:
+    """(Signals, StepSignals or None: a one-shot maneuver's plant steps) of a run."""
+    return signals(record), step_signals(record) if record.steps is not None else None
+
+
 def _review(record: SimulationRecord, half: SimulationRecord | None = None):
-    """(Signals, summary dictionary) of a run; with `half` (run_step_check) its step check."""
-    sig = signals(record)
+    """(Signals, StepSignals or None, summary dictionary) of a run; with `half`
+    (run_step_check) its step check."""
+    sig, steps = _signals(record)
     reference = seed_results(record.params)
-    summary = summarize(sig, record, reference)
+    summary = summarize(sig, record, reference, steps)
     if half is not None:
-        apply_step_check(summary, summarize(signals(half), half, reference), record.params)
-    return sig, summary
+        half_sig, half_steps = _signals(half)
+        apply_step_check(summary, summarize(half_sig, half, reference, half_steps),
+                         record.params)
+    return sig, steps, summary
 
 
 def summarize_run(record: SimulationRecord, half: SimulationRecord | None = None) -> dict:
@@ -120,7 +128,7 @@ def summarize_run(record: SimulationRecord, half: SimulationRecord | None = None
     sentence; with `half`, the same run at half the plant step (run_step_check), the step
     check (summary["step_check"], verdict "marginal" where the step error reaches a
     threshold)."""
-    return _review(record, half)[1]
+    return _review(record, half)[2]
 
 
 def write_simulation(record: SimulationRecord, out_dir: str | Path,
@@ -137,8 +145,7 @@ def write_simulation(record: SimulationRecord, out_dir: str | Path,
     over their sum."""
     start = time.perf_counter()
     out = prepare_output_dir(out_dir, "out_dir", SIMULATION_FILES)
-    sig, summary = _review(record, half)
-    steps = step_signals(record) if record.steps is not None else None
+    sig, steps, summary = _review(record, half)
     written = write_sim_plots(sig, record.layout.legs, record.params, summary, out, steps)
     written.append(write_recording(out / RECORDING_FILE, sig, record, summary, name))
     outputs = time.perf_counter() - start

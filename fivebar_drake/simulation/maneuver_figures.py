@@ -11,11 +11,11 @@ import math
 
 import numpy as np
 
-from fivebar_drake.mechanisms.fivebar import forward, held_force, link_jacobians
+from fivebar_drake.mechanisms.fivebar import MOTORS, forward, held_force, link_jacobians
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.plant import standing_height
 from fivebar_drake.simulation.runner import SimulationRecord
-from fivebar_drake.simulation.signals import StepSignals, step_signals
+from fivebar_drake.simulation.signals import StepSignals
 
 AIRBORNE_N = 1.0     # a total ground force below this at a plant step: every foot is off
 MIN_FLIGHT_S = 0.01  # a flight lasts at least this long: shorter gaps are the contact chattering
@@ -44,8 +44,9 @@ def flight(t, fz, after: float) -> tuple[int, int] | None:
     return None
 
 
-def maneuver_figures(record: SimulationRecord, start: float) -> dict:
-    """A maneuver's figures from its plant steps (start: the maneuver's start, s):
+def maneuver_figures(record: SimulationRecord, start: float, steps: StepSignals) -> dict:
+    """A maneuver's figures from its plant steps (steps: step_signals(record); start: the
+    maneuver's start, s):
     - jump (a plan with a takeoff): takeoff = the last step with ground contact before the first
       flight (flight) after the push-off's onset; takeoff speed = the centre of mass's vertical
       speed there; height_m = the body's apex above its standing height; time_to_apex_s from the
@@ -61,7 +62,6 @@ def maneuver_figures(record: SimulationRecord, start: float) -> dict:
       (phase_times, phase_figures).
     None where the event did not happen (why_grounded says why no foot left)."""
     scenario, params, lay = record.scenario, record.params, record.layout
-    steps = step_signals(record)
     events = {k: start + v for k, v in scenario.gait.events(params.gait).items()}
     mass, g = lay.mass_kg, params.robot.gravity_m_s2
     fz, t = steps.ground_force[:, 2], steps.t
@@ -169,7 +169,7 @@ def phase_figures(steps: StepSignals, params: Params, times: dict, legs) -> dict
         k = np.unravel_index(np.argmax(demand), demand.shape)
         over = float(beyond[rows].any(axis=(1, 2)).sum() * period)
         out[name] = {"start_s": start, "end_s": end, "demand_peak_Nm": float(demand[k]),
-                     "demand_peak_motor": f"{legs[k[0]]} {'AB'[k[1]]}",
+                     "demand_peak_motor": f"{legs[k[0]]} {MOTORS[k[1]]}",
                      "delivered_peak_Nm": float(np.abs(steps.motor_torque[rows]).max()),
                      "braking_beyond_limit_s": over}
         if name == "landing":

@@ -24,6 +24,7 @@ from fivebar_drake.core.footpath import evaluate, shared_loads
 from fivebar_drake.core.rotation import body_rotations, tilt_deg
 from fivebar_drake.mechanisms.fivebar import (LINK_NAMES, LimitTest, forward, inverse, limit_tests,
                                               link_coms, link_jacobians, static_torques, torques)
+from fivebar_drake.robots.quadruped.control_law import contact_force_plane
 from fivebar_drake.robots.quadruped.leg_loads import full_model, seed_model
 from fivebar_drake.robots.quadruped.legs import plane_rotation
 from fivebar_drake.robots.quadruped.params import Params
@@ -217,12 +218,14 @@ def step_signals(record: SimulationRecord) -> StepSignals:
 
 def foot_forces(generalized, layout: RobotLayout, params: Params, pose, down) -> np.ndarray:
     """Mean ground force on each foot (rows, legs, 2) in N, leg plane, from the interval means
-    of the generalized contact forces (rows, nv): the contact point P (foot centre + down, leg
-    plane) on link DE gives tau[theta_B] = (P - B)_perp . F and tau[phi_D] = (P - D)_perp . F
-    (perp: turned +90 deg about the hinge); the A side of the loop is not touched."""
-    perp = lambda v: np.stack([-v[..., 1], v[..., 0]], -1)  # noqa: E731
+    of the generalized contact forces (rows, nv) on the joints B and D (contact_v_index) at the
+    contact point P (foot centre + down, leg plane): the controller's formula
+    (control_law.contact_force_plane); the A side of the loop is not touched."""
     p = pose.f + down[:, None, :]
-    jac_t = np.stack([perp(p - params.leg.b), perp(p - pose.d)], -2)      # rows of J_P^T
-    tau = np.stack([generalized[:, [layout.indices[leg].v[k] for leg in layout.legs]]
-                    for k in (1, 3)], -1)
-    return np.linalg.solve(jac_t, tau[..., None])[..., 0]
+    tau = generalized[:, layout.state.contact_v_index]                  # (rows, legs, 2)
+    b = params.leg.b
+    return np.stack(contact_force_plane(
+        float(b[0]), float(b[1]), np.ascontiguousarray(pose.d[..., 0]),
+        np.ascontiguousarray(pose.d[..., 1]), np.ascontiguousarray(p[..., 0]),
+        np.ascontiguousarray(p[..., 1]), np.ascontiguousarray(tau[..., 0]),
+        np.ascontiguousarray(tau[..., 1])), -1)

@@ -26,7 +26,7 @@ from fivebar_drake.robots.quadruped.plant import standing_height
 from fivebar_drake.simulation.maneuver_figures import maneuver_figures
 from fivebar_drake.simulation.runner import SimulationRecord
 from fivebar_drake.simulation.scenario import Scenario
-from fivebar_drake.simulation.signals import Signals
+from fivebar_drake.simulation.signals import Signals, StepSignals
 
 
 SUMMARY_FILES = ("summary.md", "summary.json")   # summary.json last: its presence means complete
@@ -181,10 +181,12 @@ def _drag(sig: Signals, win, i: int) -> float:
     return float(np.mean(sig.swing_contact[win, i][mid])) if mid.any() else math.nan
 
 
-def summarize(sig: Signals, record: SimulationRecord, seed_analysis: dict) -> dict:
-    """The summary.json dictionary (SI units) of a run from its signals (signals(record)) and
-    record. seed_analysis: the analysis results of the seed model on the seed's ellipse
-    (report.json's results.seed)."""
+def summarize(sig: Signals, record: SimulationRecord, seed_analysis: dict,
+              steps: StepSignals | None) -> dict:
+    """The summary.json dictionary (SI units) of a run from its signals (signals(record)), its
+    plant steps (step_signals(record), a one-shot maneuver's; None for a gait) and record.
+    seed_analysis: the analysis results of the seed model on the seed's ellipse (report.json's
+    results.seed)."""
     scenario, params, design = record.scenario, record.params, record.design
     leg_names = record.layout.legs
     t_end = float(sig.t[-1]) if len(sig.t) else 0.0
@@ -203,7 +205,7 @@ def summarize(sig: Signals, record: SimulationRecord, seed_analysis: dict) -> di
     speed = float((p[-1, 0] - p[0, 0]) / (tw[-1] - tw[0])) if len(tw) > 1 else math.nan
     gait_speed = scenario.gait.stance_speed(params.gait)
     max_tilt = float(np.max(sig.tilt_deg)) if len(sig.t) else math.nan
-    maneuver = maneuver_figures(record, start) if not scenario.gait.periodic else None
+    maneuver = maneuver_figures(record, start, steps) if not scenario.gait.periodic else None
     run_why = achievement(params, speed, gait_speed, max_tilt, scenario.gait.goal,
                           float(sig.body_p[win][-1, 2]) if win.any() else math.nan,
                           standing_height(params), maneuver)

@@ -149,9 +149,9 @@ class FootLegController(LeafSystem):
         self._delayed = knobs.control_delay_periods > 0
         # the tick's memory, one group: the feet's support (control_law.support_weights), every
         # foot standing before the run, then the contact impulse at the last tick
-        self._support_size = self.standing_support().size
-        self._memory = self.DeclareDiscreteState(np.concatenate([self.standing_support().ravel(),
-                                                                 np.zeros(layout.nv)]))
+        support = self.standing_support().ravel()
+        self._support_size = support.size
+        self._memory = self.DeclareDiscreteState(np.concatenate([support, np.zeros(layout.nv)]))
         self.DeclarePeriodicDiscreteUpdateEvent(knobs.control_period_s, 0.0, self._update)
         self.DeclareStateOutputPort("torque_command", self._released)
 

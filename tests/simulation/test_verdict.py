@@ -2,7 +2,6 @@
 worst deciding; the step check; a run that did not follow its gait is not_achieved (exit 1),
 its demand never reported as a need."""
 
-import copy
 import json
 import math
 

@@ -33,6 +33,15 @@ def standing(params):
     return controller, layout, plant.GetPositionsAndVelocities(context)
 
 
+def at_home(params, n):
+    """Foot references (REFERENCES_PER_LEG x n legs) with every foot at home, at rest, and a
+    view of their stance weights (to set)."""
+    references = np.zeros(REFERENCES_PER_LEG * n)
+    targets, _, _, weights = reference_parts(references)
+    targets[:] = (params.gait.x_center_m, params.gait.y_home_m)
+    return references, weights
+
+
 def delivered_forces(params, layout, state, command):
     """Ground forces on the feet (legs, 2) in N, leg plane, that the command holds at rest:
     command = links' static torque - J_F^T F, so F = -J_F^-T (command - links' static torque)."""
@@ -52,11 +61,8 @@ def test_feet_carry_the_weight_while_a_foot_gives_off_its_load(params, standing,
     1 -> 0: the vertical ground forces the commands hold sum to the robot's weight at every tick
     (the least-squares split is already weighted: blending the push again by w loses force)."""
     controller, layout, state = standing
-    n = len(layout.legs)
     weight = layout.mass_kg * params.robot.gravity_m_s2
-    references = np.zeros(REFERENCES_PER_LEG * n)
-    targets, _, _, weights = reference_parts(references)
-    targets[:] = (params.gait.x_center_m, params.gait.y_home_m)
+    references, weights = at_home(params, len(layout.legs))
     sums = []
     for w in np.linspace(1.0, 0.0, 21):
         weights[:] = 1.0
@@ -140,18 +146,15 @@ def test_the_first_foot_down_after_a_flight_takes_its_share_only(params, standin
     not the whole of it: the vertical forces the commands hold sum to 4 w m g for four feet
     down together at weight w each (a sum of weights >= 1 gives the whole)."""
     controller, layout, state = standing
-    n = len(layout.legs)
     weight = layout.mass_kg * params.robot.gravity_m_s2
-    references = np.zeros(REFERENCES_PER_LEG * n)
-    targets, _, _, weights = reference_parts(references)
-    targets[:] = (params.gait.x_center_m, params.gait.y_home_m)
+    references, weights = at_home(params, len(layout.legs))
     transfer = controller.constants.transfer_s
     for scheduled, early in ((0.0, 1.0), (1.0, 0.0)):       # a flight, a landing
         weights[:] = scheduled
         for since in (0.15 * transfer, 0.3 * transfer):
             memory = controller.standing_support()
             memory[:] = (1.0, early, 0.0, 0.0)                  # all down at t = 0
-            command = controller.command(references, state, np.full(n, 100.0), memory, since)
+            command = controller.command(references, state, np.full(len(layout.legs), 100.0), memory, since)
             vertical = delivered_forces(params, layout, state, command) @ plane_rotation()[2, :2]
             w = smoothstep(since / transfer)
             assert 4 * w < 1.0 and vertical.sum() == pytest.approx(4 * w * weight, rel=0.01)
