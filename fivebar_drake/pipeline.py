@@ -26,6 +26,7 @@ from fivebar_drake.analysis.plots import write_plots
 from fivebar_drake.analysis.report import ANALYSIS_FILES, write_report
 from fivebar_drake.analysis.torques import Analysis, analyze, seed_results
 from fivebar_drake.core.files import prepare_output_dir
+from fivebar_drake.core.summary_schema import Summary
 from fivebar_drake.robots.quadruped.config import load_params, sampling_error
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.simulation.plots import CAPABILITY_FILE, SIM_PLOT_FILES, write_sim_plots
@@ -33,8 +34,8 @@ from fivebar_drake.simulation.recording import RECORDING_FILE, write_recording
 from fivebar_drake.simulation.runner import SimulationRecord, simulate
 from fivebar_drake.simulation.scenario import Scenario
 from fivebar_drake.simulation.signals import signals, step_signals
-from fivebar_drake.simulation.summary import (SUMMARY_FILES, apply_step_check, summarize,
-                                              write_summary)
+from fivebar_drake.simulation.summary import apply_step_check, summarize
+from fivebar_drake.simulation.summary_text import SUMMARY_FILES, write_summary
 
 
 SIMULATION_FILES = (SIM_PLOT_FILES + (CAPABILITY_FILE, RECORDING_FILE)
@@ -110,7 +111,7 @@ def _signals(record: SimulationRecord) -> tuple:
 
 
 def _review(record: SimulationRecord, half: SimulationRecord | None = None):
-    """(Signals, StepSignals or None, summary dictionary) of a run; with `half`
+    """(Signals, StepSignals or None, Summary) of a run; with `half`
     (run_step_check) its step check."""
     sig, steps = _signals(record)
     reference = seed_results(record.params)
@@ -122,7 +123,7 @@ def _review(record: SimulationRecord, half: SimulationRecord | None = None):
     return sig, steps, summary
 
 
-def summarize_run(record: SimulationRecord, half: SimulationRecord | None = None) -> dict:
+def summarize_run(record: SimulationRecord, half: SimulationRecord | None = None) -> Summary:
     """The run's summary (summary.json's dictionary, SI units): whole-cycle statistics per leg
     and motor against the static estimates, the checks, the verdict and the answer in one
     sentence; with `half`, the same run at half the plant step (run_step_check), the step
@@ -133,7 +134,7 @@ def summarize_run(record: SimulationRecord, half: SimulationRecord | None = None
 
 def write_simulation(record: SimulationRecord, out_dir: str | Path,
                      half: SimulationRecord | None = None,
-                     name: str = "") -> tuple[dict, list[Path]]:
+                     name: str = "") -> tuple[Summary, list[Path]]:
     """Write SIMULATION_FILES into out_dir (made if needed), each atomically: first remove a
     previous run's files, then the plots, the Rerun recording, summary.md and summary.json
     last, so a summary.json always describes complete files. Returns (the summary as written,

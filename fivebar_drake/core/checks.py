@@ -1,9 +1,10 @@
 """The verdict a designer acts on: thresholds (Checks) and the checks of one motor against its
 actuator — torque (safety factor: each sample against the peak-current torque of its own
 quadrant, driving or braking), speed (the operating points against the envelope), thermal (RMS
-current against the continuous current) — and whether a simulated gait was achieved; the worst
-check decides. A motor clipped beyond the allowed share is judged on what it delivered
-(at_limit), and every statement of a limit names its quadrant and kind (limit_shares).
+current against the continuous current) — the worst check deciding. A motor clipped beyond the
+allowed share is judged on what it delivered (at_limit), and every statement of a limit names its
+quadrant and kind (limit_shares). A simulated run's verdict policy (achieved or not, the worst
+motor deciding, the step check) is beside this, in verdicts.py.
 
 Verdicts, best first: pass, warn, fail; a run whose gait was not followed is not_achieved (its
 demand is not a need), one whose worst safety factor lies within the step error of a threshold

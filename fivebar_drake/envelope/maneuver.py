@@ -12,11 +12,12 @@ from pathlib import Path
 
 import numpy as np
 
+from fivebar_drake.core.summary_schema import Summary
 from fivebar_drake.envelope.spec import Maneuver
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.pipeline import run_simulation, write_simulation
 from fivebar_drake.simulation.signals import per_motor
-from fivebar_drake.simulation.summary import window_rows
+from fivebar_drake.simulation.run_statistics import window_rows
 
 OPERATING_POINTS = 2000      # (speed, torque) samples per motor and maneuver for the picture
 EXTREMES = 50                # of them, the largest |torque| and the largest |speed| samples
@@ -33,7 +34,7 @@ class ManeuverResult:
     the task raised ("" if it ran; a run that stopped early says so in its summary)."""
 
     name: str
-    summary: dict | None = None
+    summary: Summary | None = None
     files: tuple[tuple[str, bytes], ...] = ()
     speed: np.ndarray | None = None
     demand: np.ndarray | None = None

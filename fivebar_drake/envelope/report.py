@@ -7,7 +7,7 @@ factor; the largest share beyond the envelope, then the least speed margin; the 
 margin; not achieved, then the most time at the torque limit): its verdict is the worst of its
 checks, as summary.json's verdict is the worst over the motors, and not_achieved where the
 motion was not achieved. The maneuver that sizes a motor is its worst row in summary.json's
-order (simulation/summary.badness: the verdict, then the deciding check and its figure)."""
+order (core/verdicts.badness: the verdict, then the deciding check and its figure)."""
 
 from __future__ import annotations
 
@@ -17,14 +17,17 @@ from pathlib import Path
 
 from fivebar_drake.core.checks import CHECK_ORDER, SEVERITY, limit_shares_text, worst_check
 from fivebar_drake.core.files import json_ready, write_atomic
+from fivebar_drake.core.summary_schema import MotorSummary, Summary
+from fivebar_drake.core.verdicts import badness
 from fivebar_drake.mechanisms.fivebar import MOTORS
-from fivebar_drake.simulation.summary import badness, check_text
+from fivebar_drake.simulation.summary_text import check_text
 
 REPORT_FILES = ("envelope.md", "envelope.json")      # envelope.json last
 VERDICTS = ("pass", "warn", "fail", "not_achieved")  # the verdicts of a maneuver that has one
 
 
-def _worst_leg(legs: dict, motor: str, key) -> tuple[str, dict]:
+def _worst_leg(legs: dict[str, dict[str, MotorSummary]], motor: str,
+               key) -> tuple[str, MotorSummary]:
     """(leg, that leg's motor) with the largest key(motor's summary)."""
     return max(((leg, ms[motor]) for leg, ms in legs.items()), key=lambda x: key(x[1]))
 
@@ -33,7 +36,7 @@ def _inf(x) -> float:
     return math.inf if x is None else x
 
 
-def motor_row(summary: dict, motor: str) -> dict:
+def motor_row(summary: Summary, motor: str) -> dict:
     """The checks of one motor (A or B) in a maneuver over the legs (module docstring), with
     the leg of each, its verdict and deciding check; the demand p99 and the time at the torque
     limit of the worst legs. Without checks (no statistics window) the verdict is
@@ -93,7 +96,7 @@ def _rated(row: dict) -> bool:
 
 
 def sizing(maneuvers: dict) -> dict:
-    """Per motor: the maneuver that sizes it (its worst row in summary.badness order) and, per
+    """Per motor: the maneuver that sizes it (its worst row in verdicts.badness order) and, per
     check, the maneuver where that check is worst (torque: the lowest safety factor; speed: the
     largest share beyond the envelope, then the least margin; thermal: the highest RMS
     current); None where no maneuver has a verdict."""

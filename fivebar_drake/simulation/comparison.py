@@ -8,9 +8,10 @@ import json
 from pathlib import Path
 
 from fivebar_drake.core.files import read_input_text, save_figure, write_atomic
+from fivebar_drake.core.summary_schema import MotorSummary, Summary
 from fivebar_drake.core.validation import ParameterError, require
 from fivebar_drake.mechanisms.fivebar import MOTORS
-from fivebar_drake.simulation.summary import MIN_CYCLES
+from fivebar_drake.simulation.run_statistics import MIN_CYCLES
 
 
 TEXT_KEYS = ("gait", "closure", "answer", "verdict")
@@ -21,7 +22,14 @@ MOTOR_KEYS = ("demand_p99_Nm", "rms_torque_Nm", "static_seed_Nm", "static_trot_N
 MAX_LEGS = 16
 
 
-def load_summaries(run_dirs) -> list[dict]:
+class Labelled(Summary):
+    """A run's summary.json (its types checked for the keys read here: TOP_KEYS, MOTOR_KEYS)
+    with its folder's name."""
+
+    label: str
+
+
+def load_summaries(run_dirs) -> list[Labelled]:
     """summary.json of each run folder, in order; ParameterError naming the file if one is
     missing or is not a summary of `fivebar-drake simulate`."""
     out = []
@@ -41,7 +49,7 @@ def _number(value) -> bool:
     return value is None or (isinstance(value, (int, float)) and not isinstance(value, bool))
 
 
-def _summary(path: Path) -> dict:
+def _summary(path: Path) -> Summary:
     """summary.json at path, its types checked: it is untrusted data (ParameterError naming
     the field)."""
     try:
@@ -84,11 +92,11 @@ def _num(value, fmt=".2f") -> str:
     return "n/a" if value is None else format(value, fmt)
 
 
-def _label(s: dict) -> str:
+def _label(s: Labelled) -> str:
     return s.get("label") or s["gait"]
 
 
-def _verdict_cell(m: dict) -> str:
+def _verdict_cell(m: MotorSummary) -> str:
     """A motor's verdict, its deciding check and the checks' figures, in one table cell."""
     c = m.get("checks")
     if not isinstance(c, dict):
@@ -99,7 +107,7 @@ def _verdict_cell(m: dict) -> str:
             f"% beyond the envelope, current margin {_num(thermal.get('margin'))}")
 
 
-def verdict_table(summaries: list[dict]) -> list[str]:
+def verdict_table(summaries: list[Labelled]) -> list[str]:
     """Markdown lines: per motor, each run's verdict with its deciding check and figures."""
     lines = ["| leg | motor | " + " | ".join(_label(s) for s in summaries) + " |",
              "|---|---|" + "---|" * len(summaries)]
@@ -110,7 +118,7 @@ def verdict_table(summaries: list[dict]) -> list[str]:
     return lines
 
 
-def markdown(summaries: list[dict]) -> str:
+def markdown(summaries: list[Labelled]) -> str:
     lines = ["# Runs side by side", "",
              "Each run's demand (the controller's command before saturation, 99th percentile "
              "over its whole gait cycles) and RMS applied torque per motor, beside the static "
@@ -143,7 +151,7 @@ def markdown(summaries: list[dict]) -> str:
     return "\n".join(lines) + "\n"
 
 
-def figure(summaries: list[dict]):
+def figure(summaries: list[Labelled]):
     import matplotlib.pyplot as plt
     import numpy as np
 

@@ -1,9 +1,10 @@
 """The figures of a one-shot maneuver from its plant steps (signals.StepSignals: every step's
 contact forces and state, the motor's every sample), so that they do not depend on the log
 interval: the jump (takeoff, apex, height, agility, the push-off's work and the rise it bounds),
-the landing (touchdown speed, impulse, peak force and torque, compression) and the force the
-motors hold along both against the force the ground asked (maneuver_figures, capability_along);
-why a jump did not leave the ground."""
+the landing (touchdown speed, impulse, peak force and torque, compression), each beside its
+plan where the maneuver plans it (planned), and the force the motors hold along both against the
+force the ground asked (maneuver_figures, capability_along); why a jump did not leave the
+ground."""
 
 from __future__ import annotations
 
@@ -60,6 +61,8 @@ def maneuver_figures(record: SimulationRecord, start: float, steps: StepSignals)
     - force_capability along the push-off and the landing (capability_along);
     - phases: each phase's demand and delivered peaks and braking beyond the limit
       (phase_times, phase_figures).
+    - planned beside the jump's and the landing's figures: the plan's value of each figure it
+      plans (planned: a jump's height_m, onset_s and takeoff_s, a landing's touchdown_s).
     None where the event did not happen (why_grounded says why no foot left)."""
     scenario, params, lay = record.scenario, record.params, record.layout
     events = {k: start + v for k, v in scenario.gait.events(params.gait).items()}
@@ -94,6 +97,7 @@ def maneuver_figures(record: SimulationRecord, start: float, steps: StepSignals)
                                                   - steps.com_p[k_to, 2]),
                 "com_rise_m": float(steps.com_p[k_apex:k_td, 2].max() - steps.com_p[k_on, 2]),
                 "push_work_J": work, "energy_bound_rise_m": work / (mass * g)}
+            out["jump"]["planned"] = planned(out["jump"], scenario.gait.fields(), events)
             phases["push-off"] = push
     elif "touchdown" in events:
         fly = flight(t, fz, t[0] - 1.0)
@@ -113,6 +117,7 @@ def maneuver_figures(record: SimulationRecord, start: float, steps: StepSignals)
             "peak_force_N": float(fz[land].max()),
             "peak_torque_Nm": float(np.abs(steps.motor_torque[samples]).max()),
             "compression_m": float(steps.body_p[k_td - 1, 2] - steps.body_p[land, 2].min())}
+        landing["planned"] = planned(landing, scenario.gait.fields(), events)
         out["landing"] = landing
         phases["landing"] = np.zeros(len(t), dtype=bool)
         phases["landing"][land] = True
@@ -124,6 +129,15 @@ def maneuver_figures(record: SimulationRecord, start: float, steps: StepSignals)
     out["phases"] = phase_figures(steps, params, phase_times(out, float(t[0]), float(t[-1]),
                                                              events), lay.legs)
     return out
+
+
+def planned(figures: dict, plan: dict, events: dict) -> dict[str, float]:
+    """The plan of each measured figure the plan names: a field of the maneuver (plan:
+    Variant.fields) or an event (events: name -> s, as "<name>_s") of the figure's key, e.g. a
+    jump's planned height_m and takeoff_s beside the measured ones."""
+    named = {**plan, **{f"{name}_s": t for name, t in events.items()}}
+    return {key: float(named[key]) for key in figures if key in named
+            and isinstance(named[key], (int, float)) and not isinstance(named[key], bool)}
 
 
 def phase_times(figures: dict, t0: float, t1: float, events: dict) -> dict:

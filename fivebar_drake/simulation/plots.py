@@ -19,6 +19,7 @@ from matplotlib.ticker import MaxNLocator
 import numpy as np
 
 from fivebar_drake.core.files import save_figure
+from fivebar_drake.core.summary_schema import Summary
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.simulation.maneuver_figures import capability_along
@@ -182,7 +183,7 @@ SIM_PLOT_FILES = ("sim_torques.png", "sim_motion.png")
 CAPABILITY_FILE = "force_capability.png"    # jump and drop only
 
 
-def write_sim_plots(sig: Signals, legs, params: Params, summary: dict,
+def write_sim_plots(sig: Signals, legs, params: Params, summary: Summary,
                     out_dir: Path, steps: StepSignals | None = None) -> list[Path]:
     """Write SIM_PLOT_FILES into out_dir (atomically), and CAPABILITY_FILE for a maneuver with
     a push-off or a landing (from its plant steps); returns their paths."""
@@ -197,7 +198,8 @@ def write_sim_plots(sig: Signals, legs, params: Params, summary: dict,
     return written
 
 
-def capability_figure(sig: StepSignals, legs, params: Params, summary: dict) -> plt.Figure:
+def capability_figure(sig: StepSignals, legs, params: Params,
+                      summary: Summary) -> plt.Figure:
     """Along the push-off and the landing (a panel each), per leg against its foot's height
     in the leg plane (the stroke): the measured ground force and the force the motors hold
     along it, within the torque box and within the envelope at the joint speeds, at every

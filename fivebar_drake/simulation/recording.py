@@ -31,6 +31,7 @@ import rerun.blueprint as rrb
 
 from fivebar_drake.core.rerun_files import TIMELINE, pose_frames, recording_file, scalars
 from fivebar_drake.core.rotation import body_rotations
+from fivebar_drake.core.summary_schema import Summary
 from fivebar_drake.mechanisms.fivebar import MOTORS, forward_points
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.plant import RobotLayout
@@ -138,7 +139,7 @@ def run_events(sig: Signals, legs):
                          legs)
 
 
-def write_recording(path: Path, sig: Signals, record: SimulationRecord, summary: dict,
+def write_recording(path: Path, sig: Signals, record: SimulationRecord, summary: Summary,
                     name: str = "") -> Path:
     """Write the run's .rrd file atomically (complete with its footer, then renamed into place)
     from its signals (signals.signals), its record (the 3-D poses come from the recorded plant
@@ -200,7 +201,7 @@ def _log_scene(rec, sig: Signals, record: SimulationRecord):
                                                                radii=0.002), static=True)
 
 
-def _log_series(rec, sig: Signals, legs, params: Params, summary: dict):
+def _log_series(rec, sig: Signals, legs, params: Params, summary: Summary):
     limit = params.motor.peak_torque_Nm
     ends = sig.t[[0, -1]]
     start, end = summary["window_s"]

@@ -10,7 +10,8 @@ import pytest
 from fivebar_drake.pipeline import run_simulation, summarize_run
 from fivebar_drake.robots.quadruped.config import check_path, load_params, with_changes
 from fivebar_drake.simulation.scenario import load_scenario
-from fivebar_drake.simulation.summary import LIMIT_REACHED, markdown
+from fivebar_drake.simulation.run_statistics import LIMIT_REACHED
+from fivebar_drake.simulation.summary_text import markdown
 
 # 0.2 s standing, 0.3 s ramp, one whole trot cycle
 SHORT = dict(duration_s=1.5, stand_s=0.2, ramp_s=0.3)

@@ -16,7 +16,9 @@ from fivebar_drake.core.checks import (Checks, at_limit, demand_unmet, limit_sha
 from fivebar_drake.pipeline import run_simulation, run_step_check, summarize_run
 from fivebar_drake.simulation.scenario import load_scenario
 from fivebar_drake.simulation.signals import signals
-from fivebar_drake.simulation.summary import apply_step_check, cycle_window, extrapolated
+from fivebar_drake.core.verdicts import extrapolated
+from fivebar_drake.simulation.run_statistics import cycle_window
+from fivebar_drake.simulation.summary import apply_step_check
 
 DURATION_S = 4.5
 CHECKS = Checks(sf_pass=2.0, sf_warn=1.5)

@@ -1,16 +1,17 @@
 """What the command line says about the 5-bar leg's jobs (their files are written by
-fivebar_drake.pipeline: analysis/report.py, simulation/summary.py)."""
+fivebar_drake.pipeline: analysis/report.py, simulation/summary_text.py)."""
 
 from __future__ import annotations
 
 import shlex
 from pathlib import Path
 
+from fivebar_drake.core.summary_schema import Summary
 from fivebar_drake.pipeline import AnalysisRecord
 from fivebar_drake.robots.quadruped.config import sampling_error
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.simulation.runner import SimulationRecord
-from fivebar_drake.simulation.summary import limits_text
+from fivebar_drake.simulation.summary_text import limits_text
 
 
 def analysis_lines(record: AnalysisRecord) -> list[str]:
@@ -30,7 +31,7 @@ def analysis_lines(record: AnalysisRecord) -> list[str]:
     return lines
 
 
-def simulation_lines(summary: dict) -> list[str]:
+def simulation_lines(summary: Summary) -> list[str]:
     """The run in one line, each leg's motors, the verdict, the step check, the answer."""
     s = summary
     lines = [f"{s['gait']} gait, {s['closure']} closure: {s['duration_s']:.2f} s simulated, "
@@ -70,7 +71,7 @@ def simulation_warnings(params: Params) -> list[str]:
     return [f"warning: the seed's reference figures: {warning}"] if warning else []
 
 
-def failure(record: SimulationRecord, summary: dict) -> str:
+def failure(record: SimulationRecord, summary: Summary) -> str:
     """Why the run failed (exit 1), or "": it stopped early, has no verdict or did not achieve
     its motion."""
     if record.error:

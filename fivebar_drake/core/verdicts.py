@@ -1,0 +1,195 @@
+"""The verdict policy of a simulated run, beside the checks of one motor (checks.py): whether the
+run did its motion (achievement) and each motor its part (motor_achieved, judge), which motor
+decides the run's verdict and in what order motors rank (badness, run_verdict), and the step
+check: the run against itself at half the plant step (extrapolated, step_check,
+step_checked_verdict). Plain data in and out (the summary's dictionaries: summary_schema), no
+pydrake, no simulation: simulation/summary.py applies it to a run's statistics."""
+
+from __future__ import annotations
+
+import math
+
+from fivebar_drake.core.checks import (CHECK_ORDER, SEVERITY, Checks, limit_shares_text,
+                                       verdict)
+from fivebar_drake.core.summary_schema import (AchievedCheck, MotorSummary, StepCheck,
+                                               StepCheckMotor, Summary)
+
+STEP_ORDER = 1   # the discrete plant's time stepping is first order in the step: a figure's
+#                  error at step h is about (f(h) - f(h/2)) / (2^p - 1) (measured on the default
+#                  trot's worst SF: 1.505, 1.457, 1.416, 1.405 at 2, 1, 0.5, 0.25 ms)
+NO_STEP_CHECK_VERDICTS = ("insufficient", "not_achieved")   # the step check leaves these
+
+
+def achievement(checks: Checks, speed: float, gait_speed: float, max_tilt: float,
+                goal: str = "speed", end_height: float = math.nan,
+                standing_m: float = math.nan, maneuver: dict | None = None) -> str:
+    """Why the run did not do its motion ("" if it did), by the foot path's goal: "speed" (a
+    gait): the mean forward speed against checks.achieved_speed_fraction of the gait's; "stand"
+    (a stand-up, a drop): the body ends within checks.achieved_height_tolerance_m of its
+    standing height standing_m (m); "jump": all feet left the ground, and it ends standing;
+    a landing whose legs gave way (maneuver: maneuver_figures' dictionary, its phase_figures);
+    always the tilt against achieved_max_tilt_deg."""
+    c, why = checks, []
+    if goal == "jump" and (maneuver is None or maneuver["jump"] is None):
+        why.append("no foot left the ground" + (f" ({maneuver['why_grounded']})"
+                                                if maneuver else ""))
+    if goal in ("stand", "jump") and not abs(end_height - standing_m) <= \
+            c.achieved_height_tolerance_m:
+        why.append(f"it ended with the body at {end_height * 1e3:.0f} mm, not within "
+                   f"{c.achieved_height_tolerance_m * 1e3:g} mm of its standing height "
+                   f"{standing_m * 1e3:.0f} mm")
+    if goal == "speed" and gait_speed > 0 and not speed >= c.achieved_speed_fraction * gait_speed:
+        why.append(f"it walked {speed:.3f} m/s, less than {c.achieved_speed_fraction:.0%} of the "
+                   f"gait's {gait_speed:.3f} m/s")
+    landing = ((maneuver or {}).get("phases") or {}).get("landing")
+    if landing and landing["gives_way"]:
+        why.append(f"the legs gave way at the landing: the motors were asked to brake beyond "
+                   f"their braking limit for {landing['braking_beyond_limit_s'] * 1e3:.0f} ms")
+    if not max_tilt <= c.achieved_max_tilt_deg:
+        why.append(f"the body tilted {max_tilt:.1f} deg, beyond {c.achieved_max_tilt_deg:g} deg")
+    return "; ".join(why)
+
+
+def motor_achieved(checks: Checks, m: MotorSummary, run_why: str) -> AchievedCheck:
+    """The motor's achieved check: the run followed its gait (run_why == "") and the motor sat
+    at its limits (either quadrant, torque or voltage) at most
+    checks.achieved_max_limit_fraction of the time."""
+    why = [run_why] if run_why else []
+    limit = checks.achieved_max_limit_fraction
+    if m["saturated_fraction"] > limit:
+        why.append(f"the motor sat at {limit_shares_text(m['limit_shares'])} ("
+                   f"{m['saturated_fraction']:.1%} in all, more than {limit:.0%})")
+    return {"verdict": "not_achieved" if why else "pass", "why": "; ".join(why),
+            "at_limit_fraction": m["saturated_fraction"]}
+
+
+def judge(legs: dict[str, dict[str, MotorSummary]], checks: Checks, run_why: str) -> None:
+    """Give every motor with checks its achieved check (motor_achieved; run_why: achievement);
+    a motor whose motion was not achieved gets the verdict not_achieved, decided by it."""
+    for ms in legs.values():
+        for m in ms.values():
+            if m["checks"] is not None:
+                m["checks"]["achieved"] = motor_achieved(checks, m, run_why)
+                if m["checks"]["achieved"]["verdict"] == "not_achieved":
+                    m["verdict"], m["deciding_check"] = "not_achieved", "achieved"
+
+
+def badness(m: MotorSummary) -> tuple:
+    """Order of motors, worst last: not achieved; then by verdict; among equal verdicts the
+    deciding check (torque before speed before thermal), then its figure (the lower the safety
+    factor, then the longer at the motor's limits; the larger the share outside the envelope or
+    the lower its margin, the worse). m: a motor's summary, or any dictionary with its checks,
+    verdict, deciding_check and saturated_fraction (an envelope's motor row)."""
+    if m["checks"] is None:
+        return (-1,)
+    if m["verdict"] == "not_achieved":
+        return (3, 0, m["saturated_fraction"], 0.0)
+    c, deciding = m["checks"], m["deciding_check"]
+    big = math.inf
+    figure = {"torque": (-(c["torque"]["sf"] or big), c["torque"].get("at_limit_fraction", 0.0)),
+              "speed": (c["speed"]["outside_fraction"], -(c["speed"]["least_margin"] or big)),
+              "thermal": (0.0, -(c["thermal"]["margin"] or big))}[deciding]
+    return (SEVERITY[m["verdict"]], -CHECK_ORDER.index(deciding), *figure)
+
+
+def run_verdict(legs: dict[str, dict[str, MotorSummary]], sufficient: bool) -> dict:
+    """The run's verdict, deciding_check and worst_motor ("<leg> <motor>", the last in badness
+    order): the worst motor's verdict and check; "insufficient" and None where the run is not
+    sufficient (too few whole cycles, or it stopped early)."""
+    leg, name, worst = max(((leg, name, m) for leg, ms in legs.items() for name, m in ms.items()),
+                           key=lambda x: badness(x[2]))
+    return {"verdict": worst["verdict"] if sufficient else "insufficient",
+            "deciding_check": worst["deciding_check"] if sufficient else None,
+            "worst_motor": f"{leg} {name}"}
+
+
+def extrapolated(at_step: float, at_half: float) -> tuple[float, float]:
+    """Richardson's estimate of a figure at step 0 from its values at steps h and h/2 (order
+    STEP_ORDER) and its error: (f(h/2) + d, |d|), d = (f(h/2) - f(h)) / (2^p - 1)."""
+    d = (at_half - at_step) / (2.0 ** STEP_ORDER - 1.0)
+    return at_half + d, abs(d)
+
+
+def _change(new: float, old: float) -> float:
+    """The relative change from old to new (NaN from 0)."""
+    return (new / old if old else math.nan) - 1.0
+
+
+def _step_motors(summary: Summary, half: Summary) -> dict[str, StepCheckMotor]:
+    """Per motor ("<leg> <motor>") the change at half the step and its converged safety
+    factor (extrapolated) with its error."""
+    motors = {}
+    for leg, ms in summary["legs"].items():
+        for name, m in ms.items():
+            h = half["legs"][leg][name]
+            estimate, error = extrapolated(m["safety_factor"], h["safety_factor"])
+            motors[f"{leg} {name}"] = {
+                "demand_p99_change": _change(h["demand_p99_Nm"], m["demand_p99_Nm"]),
+                "rms_change": _change(h["rms_torque_Nm"], m["rms_torque_Nm"]),
+                "sf_change": h["safety_factor"] - m["safety_factor"],
+                "sf_at_half_step": h["safety_factor"], "sf_converged": estimate,
+                "sf_error": error, "verdict_at_half_step": h["verdict"]}
+    return motors
+
+
+def _step_events(summary: Summary, half: Summary) -> dict:
+    """A maneuver's event figures (jump, landing: every float) at half the step and their
+    converged estimates (extrapolated)."""
+    events = {}
+    for group in ("jump", "landing"):
+        if summary.get(group) and half.get(group):
+            events[group] = {key: dict(zip(("at_half_step", "converged", "error"),
+                                           (half[group][key],
+                                            *extrapolated(value, half[group][key]))))
+                             for key, value in summary[group].items()
+                             if isinstance(value, float) and isinstance(half[group].get(key),
+                                                                        float)}
+    return events
+
+
+def step_check(summary: Summary, half: Summary, checks: Checks) -> StepCheck:
+    """The step check of a run (its summary) from the summary of the same run at half the
+    plant step: per motor the relative change of the demand p99 and RMS, the safety factor at
+    half the step and its converged estimate with its error (extrapolated); the worst motor's
+    converged safety factor decides: the run is marginal when its error band reaches a
+    threshold (checks.sf_pass, sf_warn) or its torque verdict differs from the run's, where the
+    torque check decides the verdict or would make it worse; or when the verdict at half the
+    step differs (step_checked_verdict). A maneuver's event figures (jump, landing) get their
+    value at half the step and their converged estimate too."""
+    motors = _step_motors(summary, half)
+    worst = min(((k, v["sf_converged"], v["sf_error"]) for k, v in motors.items()
+                 if math.isfinite(v["sf_converged"])), key=lambda x: x[1], default=None)
+    thresholds = (checks.sf_pass, checks.sf_warn)
+    near = [t for t in thresholds if worst and abs(worst[1] - t) <= worst[2]]
+    converged = verdict(checks, worst[1]) if worst else None
+    torque_now = verdict(checks, min(m["safety_factor"] for ms in summary["legs"].values()
+                                     for m in ms.values()))
+    moved = converged is not None and converged != torque_now
+    changed = half["verdict"] != summary["verdict"]
+    # the torque figure's step error matters where the torque check decides, or would
+    if not (summary.get("deciding_check") == "torque" or converged is not None and
+            SEVERITY.get(converged, 0) > SEVERITY.get(summary["verdict"], 0)):
+        near, moved = [], False
+    return {"time_step_s": summary["time_step_s"], "half_time_step_s": half["time_step_s"],
+            "order": STEP_ORDER, "motors": motors,
+            "worst_sf_change": max((abs(v["sf_change"]) for v in motors.values()
+                                    if math.isfinite(v["sf_change"])), default=0.0),
+            "worst_demand_p99_change": max((abs(v["demand_p99_change"]) for v in
+                                            motors.values()), default=math.nan),
+            "converged_worst_motor": worst[0] if worst else None,
+            "converged_sf": worst[1] if worst else None,
+            "converged_sf_error": worst[2] if worst else None,
+            "torque_verdict_converged": converged, "events": _step_events(summary, half),
+            "verdict_at_half_step": half["verdict"],
+            "marginal": bool(near or changed or moved),
+            "why": (f"the converged worst safety factor {worst[1]:.3f} ± {worst[2]:.3f} "
+                    f"({worst[0]}) reaches {near[0]:g}" if near else
+                    f"the converged worst safety factor {worst[1]:.3f} ({worst[0]}) gives "
+                    f"{converged}, the run {torque_now}" if moved else
+                    f"the verdict at half the step is {half['verdict']}" if changed else "")}
+
+
+def step_checked_verdict(current: str, check: StepCheck) -> str:
+    """The run's verdict (current) after its step check: "marginal" where the check is
+    marginal, unless the run has no verdict or did not do its motion (NO_STEP_CHECK_VERDICTS)."""
+    return "marginal" if check["marginal"] and current not in NO_STEP_CHECK_VERDICTS else current

@@ -1,0 +1,248 @@
+"""The summary of a simulated run in words: the answer in one sentence (answer: how much torque
+the motion needs, naming the check that decided the verdict), each check in a phrase
+(check_text), the limits reached (limits_text), summary.md (markdown: what ran, the motion, the
+maneuver's figures beside their plan, the limits, the per-motor tables) and the writer of
+summary.md and summary.json (write_summary). The figures are the summary's
+(core/summary_schema.Summary): statistics from simulation/run_statistics.py, the verdict from
+core/verdicts.py; nothing here computes one."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from fivebar_drake.core.checks import CHECK_ORDER, demand_unmet, limit_shares_text
+from fivebar_drake.core.files import json_ready, write_atomic
+from fivebar_drake.core.summary_schema import (JumpFigures, LandingFigures, LimitReport,
+                                               MotorSummary, Ran, SpeedCheck, Summary,
+                                               ThermalCheck, TorqueCheck)
+from fivebar_drake.robots.quadruped.params import Params
+from fivebar_drake.simulation.run_statistics import MIN_CYCLES, PERCENTILE
+
+SUMMARY_FILES = ("summary.md", "summary.json")   # summary.json last: its presence means complete
+
+
+def limits_text(report: LimitReport) -> str:
+    """The limit report (limit_report) in one line."""
+    if not report["set"]:
+        return "limits: none set ([limits] of the parameter file)"
+    if not report["hits"]:
+        return f"limits: none reached ({len(report['set'])} set in [limits])"
+    return "limits reached: " + "; ".join(
+        f"{h['leg']} {h['limit']} first at t = {h['first_t_s']:.3f} s, {h['share_of_time']:.1%} "
+        f"of the time, worst {h['worst_value']:.4g} {h['unit']} (bound {h['bound']:.4g} "
+        f"{h['unit']}, {h['field']})" for h in report["hits"])
+
+
+def seed_analysis_load(params: Params) -> str:
+    """The seed's load model in words (its figure is on the seed's own path)."""
+    return (f"the seed's model on the seed's ellipse: G(q) with its weight share "
+            f"{params.robot.weight_share_kg:.3f} kg at every foot all cycle, swing included")
+
+
+def answer(s: Summary, params: Params) -> str:
+    """The plain sentence that answers 'how much torque does the gait need?' for this run,
+    naming the check that decided the verdict; the static torque on the same poses with the
+    same load schedule beside it, and the seed's own figure separately with its load model."""
+    if s["verdict"] == "insufficient":
+        if not s["completed"] and not s["interrupted"]:
+            return (f"No verdict: the run stopped early ({s['error']}): the gait, the "
+                    "controller or the motors could not carry the robot through it.")
+        why = (f"the run stopped early ({s['error']})" if not s["completed"] else
+               f"it covered {s['cycles_in_window']} whole gait cycles after the ramp, fewer than "
+               f"{MIN_CYCLES}")
+        return (f"No verdict: {why}; run at least {MIN_CYCLES} whole cycles after the "
+                f"{s['window_s'][0]:g} s of standing and ramp.")
+    leg, name = s["worst_motor"].split()
+    m = s["legs"][leg][name]
+    c = m["checks"]
+    head = (f"At {s['gait_frequency_hz']:g} Hz with the {s['gait']} gait" if s["periodic"] else
+            f"For the {s['gait']} maneuver")
+    seed = (f"Separately, {seed_analysis_load(params)}, gives {s['seed_peak_torque_Nm']:.2f} N·m "
+            "(its peak).")
+    if s["verdict"] == "not_achieved":
+        why = c["achieved"]["why"]
+        if m["saturated_fraction"] > params.checks.achieved_max_limit_fraction:
+            need = (f"the motors need more than they give (worst motor {leg} {name}, at "
+                    f"{limit_shares_text(m['limit_shares'])}; below its limits its demand p99 is "
+                    f"{m['unsaturated_demand_p99_Nm']:.2f} N·m)")
+        else:
+            need = (f"its demand p99 of {m['demand_p99_Nm']:.2f} N·m (worst motor {leg} {name}) "
+                    "is not a need")
+        return (f"{head} the motion was NOT ACHIEVED ({why}): {need}; the saturated demand is "
+                f"the controller's error growing, not what the gait takes. {seed}")
+    checks = "; ".join(check_text(k, c[k]) for k in CHECK_ORDER)
+    verdict_text = (f"{s['verdict'].upper()}, decided by the {s['deciding_check']} check"
+                    if s["verdict"] != "marginal" else
+                    f"MARGINAL: {s['step_check']['why']} (step check at half the plant step)")
+    static = m["static_trot_Nm"]
+    over = f"over {s['cycles_in_window']} {'cycles' if s['periodic'] else 'maneuver'}"
+    limited = demand_unmet(c)
+    figure = m["p99_torque_Nm"] if limited else m["demand_p99_Nm"]
+    t = c["torque"]
+    if limited:
+        need = (f"the motors worked at their limits (worst motor {leg} {name}, at "
+                f"{limit_shares_text(limited['limits'])}, {over}): they delivered "
+                f"{m['p99_torque_Nm']:.2f} N·m ({PERCENTILE:g}th percentile; against each "
+                f"sample's own quadrant {t['share_of_limit']:.0%} of the {t['quadrant']} limit, "
+                f"{t['limit_Nm']:.2f} N·m), and what the controller asked beyond the limit was "
+                "not needed: the motion was achieved without it (the demand's "
+                f"{PERCENTILE:g}th percentile: {m['demand_p99_Nm']:.2f} N·m)")
+    else:
+        reached = ("it never reached a limit" if not m["saturated_fraction"] else
+                   f"it sat at {limit_shares_text(m['limit_shares'])}")
+        need = (f"the motors need {m['demand_p99_Nm']:.2f} N·m ({PERCENTILE:g}th percentile "
+                f"of the demand {over}, worst motor {leg} {name}; against each sample's own "
+                f"quadrant {t['share_of_limit']:.0%} of the {t['quadrant']} limit, "
+                f"{t['limit_Nm']:.2f} N·m; {reached})")
+    return (f"{head} {need}. "
+            f"Verdict {verdict_text}. Checks: {checks}. On the same poses with the same load schedule "
+            f"(the robot's weight shared by the feet in stance) the static torque is "
+            f"{static:.2f} N·m: the dynamics add {figure / static - 1:+.0%}. {seed}")
+
+
+def check_text(name: str, c: TorqueCheck | SpeedCheck | ThermalCheck) -> str:
+    """One check of a motor (name: "torque", "speed" or "thermal") in a phrase: its figure, its
+    verdict and, at the motor's limits, why."""
+    limit = f" ({c['why']})" if "at_limit_fraction" in c else ""
+    if name == "torque":
+        if c["sf"] is None:
+            return f"torque: no demand, {c['verdict']}"
+        what = " on what it delivered" if "demand_sf" in c else ""
+        return (f"torque: safety factor {c['sf']:.2f}{what} ({c['quadrant']}, against its "
+                f"{c['limit_Nm']:.2f} N·m limit), {c['verdict']}{limit}")
+    if name == "speed":
+        least = "none driving" if c["least_margin"] is None else f"{c['least_margin']:.2f}"
+        return (f"speed: least margin {least}, {c['outside_fraction']:.1%} of the time beyond "
+                f"the envelope, {c['verdict']}{limit}")
+    if c["margin"] is None:
+        return f"thermal: {c.get('why', 'no model')}"
+    return (f"thermal: continuous / RMS current {c['margin']:.2f}, {c['verdict']}")
+
+
+def markdown(s: Summary, params: Params) -> str:
+    """summary.md of the summary s: the answer, what ran, the motion (and a maneuver's figures
+    beside their plan: maneuver_lines), the limits, the torque table and the torque split."""
+    lines = [
+        f"# Simulated {s['gait']} gait: dynamic vs static motor torque", "", s["answer"], "",
+        f"Simulated {s['duration_s']:.2f} s (requested {s['requested_duration_s']:g} s), "
+        f"{s['closure']} closure, time step {s['time_step_s'] * 1e3:.3f} ms, "
+        f"{s['real_time_factor']:.2f}x real time. Statistics over {s['cycles_in_window']} whole "
+        f"gait cycles, t = {s['window_s'][0]:.2f} .. {s['window_s'][1]:.2f} s; every value is a "
+        f"mean over {s['log_period_s'] * 1e3:g} ms of plant steps.",
+    ]
+    lines += ["", ran_text(s["ran"])]
+    if s["error"]:
+        lines += ["", f"**The run stopped early:** {s['error']}"]
+    clear = min(s["swing_clear_fraction"].values())
+    drag = max(s["swing_drag_fraction"].values())
+    lines += [
+        "", f"- walking: {s['mean_forward_speed_m_s']:.3f} m/s against the gait's "
+        f"{s['gait_speed_m_s']:.3f} m/s; largest tilt {s['max_tilt_deg']:.1f} deg; swing feet "
+        f"clear of the ground {clear * 100:.0f} % of scheduled swing, on it {drag * 100:.0f} % of "
+        f"mid-swing (worst legs; the rest is early touchdown); worst loop gap "
+        f"{s['max_loop_gap_m'] * 1e3:.4f} mm", *maneuver_lines(s),
+        f"- {limits_text(s['limits'])}",
+        *([f"- vertical ground force (every plant step, {s['log_period_s'] * 1e3:g} ms means) "
+           f"between {s['vertical_support']['least_share']:.2f} (t = "
+           f"{s['vertical_support']['least_at_s']:.3f} s) and "
+           f"{s['vertical_support']['largest_share']:.2f} (t = "
+           f"{s['vertical_support']['largest_at_s']:.3f} s) of the weight"]
+          if s.get("vertical_support") else []),
+        "", "| leg | motor | demand p99 | demand peak | applied p99 | RMS | seed static | "
+        "trot static | J^T F peak | dyn/seed | dyn/trot | SF | verdict | clipped | p99 speed "
+        "(rad/s) |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for leg, motors in s["legs"].items():
+        for name, m in motors.items():
+            lines.append(
+                f"| {leg} | {name} | {m['demand_p99_Nm']:.2f} | {m['demand_peak_Nm']:.2f} | "
+                f"{m['p99_torque_Nm']:.2f} | {m['rms_torque_Nm']:.2f} | {m['static_seed_Nm']:.2f} | "
+                f"{m['static_trot_Nm']:.2f} | {m['static_contact_Nm']:.2f} | "
+                f"{m['dynamic_to_seed_static']:.2f}x | {m['dynamic_to_trot_static']:.2f}x | "
+                f"{m['safety_factor']:.2f} ({_quadrant(m)}) | {m['verdict'].upper()} | "
+                f"{_clipped(m)} | {m['p99_speed_rad_s']:.2f} |")
+    lines += ["", "Torque split (RMS over the window, N·m): contact -J^T F, links M q'' + c + G, "
+              "rotor N^2 J q'', friction; residual = applied - their sum.", "",
+              "| leg | motor | contact | links | rotor | friction | residual |",
+              "|---|---|---|---|---|---|---|"]
+    for leg, motors in s["legs"].items():
+        for name, m in motors.items():
+            d = m["decomposition_rms_Nm"]
+            lines.append(f"| {leg} | {name} | {d['contact']:.3f} | {d['links']:.3f} | "
+                         f"{d['rotor']:.3f} | {d['friction']:.3f} | {d['residual']:.3f} |")
+    motor = params.motor
+    lines += ["", f"Units N·m unless stated. Motor limits at the output: "
+              f"{motor.peak_torque_Nm:.2f} N·m driving (torque and speed of one sign), "
+              f"{motor.braking_peak_torque_Nm:.2f} braking (opposite signs), both at the peak "
+              f"current, the driving torque falling beyond its corner to zero at the no-load speed "
+              f"{motor.no_load_speed_rad_s:.2f} rad/s, beyond which the back-EMF forces braking. "
+              "Demand = the controller's command before saturation; SF = 1 / the "
+              f"{PERCENTILE:g}th percentile of the demand over the limit of each sample's own "
+              "quadrant (the quadrant of that percentile in brackets), or of the applied torque "
+              f"where the motor sat at its limits more than {100 - PERCENTILE:g} % of the time "
+              "(clipped, with the limit it sat at most: its demand p99 was not met, and is not a "
+              f"need). Seed static: the seed's G(q) with {params.robot.weight_share_kg:.3f} kg at "
+              "the foot. Per-cycle spreads are in summary.json."]
+    return "\n".join(lines) + "\n"
+
+
+def ran_text(ran: Ran) -> str:
+    """What ran in one line: each variant's kind and fields, and the plan's events."""
+    events = ran["planned_events_s"]
+    return ("Ran: " + "; ".join(
+        f"{what} {v['kind']} (" + ", ".join(f"{k} = {x!r}" for k, x in v.items() if k != "kind")
+        + ")" for what, v in ((w, ran[w]) for w in ("gait", "controller", "closure")))
+        + (", planned events " + ", ".join(f"{k} {x:.3f} s" for k, x in events.items())
+           if events else "") + ".")
+
+
+def maneuver_lines(s: Summary) -> list[str]:
+    """A maneuver's measured figures beside their plan (each group's `planned`): the jump and
+    the landing, a line each where it happened."""
+    lines = []
+    if s["jump"]:
+        j = s["jump"]
+        lines.append(f"- jump: apex {_beside(j, 'height_m', 1e3, 'mm', '.1f')} above standing, "
+                     f"takeoff at t = {_beside(j, 'takeoff_s', 1.0, 's', '.3f')} at "
+                     f"{j['takeoff_speed_m_s']:.2f} m/s, apex {j['time_to_apex_s']:.3f} s after "
+                     f"the push-off's onset (agility {j['agility_m_s']:.2f} m/s)")
+    if s["landing"]:
+        ld = s["landing"]
+        lines.append(f"- landing: touchdown at t = {_beside(ld, 'touchdown_s', 1.0, 's', '.3f')} "
+                     f"at {ld['touchdown_speed_m_s']:.2f} m/s, peak ground force "
+                     f"{ld['peak_force_N']:.0f} N, peak motor torque {ld['peak_torque_Nm']:.2f} "
+                     f"N·m, body drop {ld['compression_m'] * 1e3:.1f} mm over "
+                     f"{ld['duration_s'] * 1e3:.0f} ms")
+    return lines
+
+
+def _beside(figures: JumpFigures | LandingFigures, key: str, scale: float, unit: str,
+            spec: str) -> str:
+    """A measured figure (figures[key] x scale, in unit, format spec) with its plan beside it,
+    e.g. "60.7 mm (planned 60.0 mm)"; alone where nothing planned it."""
+    text = f"{figures[key] * scale:{spec}} {unit}"
+    plan = figures["planned"].get(key)
+    return text if plan is None else f"{text} (planned {plan * scale:{spec}} {unit})"
+
+
+def _quadrant(m: MotorSummary) -> str:
+    """The quadrant of a motor's torque figure (summary table)."""
+    c = m["checks"]
+    return c["torque"]["quadrant"] or "—" if c else "—"
+
+
+def _clipped(m: MotorSummary) -> str:
+    """The share of the time a motor was clipped, with the limit it sat at most."""
+    if not m["saturated_fraction"]:
+        return "0.0 %"
+    most = max(m["limit_shares"], key=lambda k: m["limit_shares"][k]).replace("_", " ")
+    return f"{m['saturated_fraction'] * 100:.1f} % ({most} most)"
+
+
+def write_summary(summary: Summary, params: Params, out_dir: Path) -> list[Path]:
+    """Write SUMMARY_FILES into out_dir, each atomically, summary.json last: call it after every
+    other output of the run is written, so a summary.json always describes complete files."""
+    texts = (markdown(summary, params),
+             json.dumps(json_ready(summary), indent=2, allow_nan=False) + "\n")
+    out_dir.mkdir(parents=True, exist_ok=True)
+    return [write_atomic(out_dir / name, text) for name, text in zip(SUMMARY_FILES, texts)]
