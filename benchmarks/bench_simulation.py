@@ -13,7 +13,7 @@ _per_pair), max_loop_gap_m (per closure), rms_torque_agreement (largest per-moto
 difference against `ball`), logging_share (the Rerun recording / the whole simulate job),
 output_share (writing the run's files: plots, recording, summary /
 whole simulate job), step_check_ratio (simulate --step-check over simulate, median of --pairs),
-peak_rss_mb_10s, peak_rss_mb_60s, split_us_per_step."""
+peak_rss_mb_10s, peak_rss_mb_60s, split_us_per_step, python_callbacks_per_step."""
 
 from __future__ import annotations
 
@@ -32,8 +32,8 @@ from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import TrajectorySource
 from pydrake.trajectories import PiecewisePolynomial
 
-from fivebar_drake.core.footpath import GaitSource
-from fivebar_drake.core.motor import MotorModel
+from fivebar_drake.simulation.gait_source import GaitSource
+from fivebar_drake.simulation.motor_model import MotorModel
 from fivebar_drake.pipeline import (run_simulation, run_step_check, summarize_run,
                                     write_simulation)
 from fivebar_drake.robots.quadruped.closure import CLOSURES
@@ -50,9 +50,10 @@ from fivebar_drake.simulation.scenario import load_scenario
 run_simulation(load_scenario(duration_s=float(sys.argv[1])), progress=False)
 print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024)
 """
-PYTHON_BLOCKS = {"gait source": (GaitSource, ("_update",)),   # each block's Python callbacks
+PYTHON_BLOCKS = {"gait source": (GaitSource, ("_calc",)),   # each block's Python callbacks
                  "leg controller": (systems.FootLegController, ("_update",)),
-                 "motor model": (MotorModel, ("_sample", "_remember"))}
+                 "motor model": (MotorModel, ("_sample", "_calc_step", "_calc_applied",
+                                              "_calc_record", "_remember"))}
 
 
 def run_closure(closure: str, duration: float):
@@ -89,18 +90,26 @@ def plant_alone(params, design, actuation, duration: float):
     return duration / (time.perf_counter() - start), plant.GetPositionsAndVelocities(context)
 
 
-def python_time_per_block(duration: float) -> tuple[dict, float, float]:
-    """Seconds spent in each Python block's updates during a default run (timers wrapped around
-    the update methods), the run's wall time and its number of plant steps."""
-    spent = collections.Counter()
+def python_time_per_block(duration: float) -> tuple[dict, dict, float, float]:
+    """Seconds spent in each Python block's callbacks during a default run (timers wrapped
+    around them; a callback inside another of its block counts once), the number of callbacks
+    Drake made into each block, the run's wall time and its number of plant steps."""
+    spent, calls, inside = collections.Counter(), collections.Counter(), set()
     originals = {(cls, m): getattr(cls, m) for cls, methods in PYTHON_BLOCKS.values()
                  for m in methods}
 
     def timed(name, update):
         def wrapper(*args):
+            if name in inside:
+                return update(*args)
+            inside.add(name)
             start = time.perf_counter()
-            update(*args)
-            spent[name] += time.perf_counter() - start
+            try:
+                return update(*args)
+            finally:
+                spent[name] += time.perf_counter() - start
+                calls[name] += 1
+                inside.discard(name)
         return wrapper
 
     for name, (cls, methods) in PYTHON_BLOCKS.items():
@@ -111,7 +120,7 @@ def python_time_per_block(duration: float) -> tuple[dict, float, float]:
     finally:
         for (cls, m), update in originals.items():
             setattr(cls, m, update)
-    return dict(spent), record.wall_s, duration / record.design.time_step_s
+    return dict(spent), dict(calls), record.wall_s, duration / record.design.time_step_s
 
 
 def step_check_ratio(duration: float, pairs: int) -> tuple[float, list[float]]:
@@ -179,9 +188,10 @@ def main():
           f"(median of {args.pairs}); diagram / plant per pair "
           f"{', '.join(f'{r:.2f}' for r in ratios)}, median {ratio:.2f}; replay ends in the "
           f"run's state: {'yes (bit for bit)' if same else 'NO'}")
-    spent, wall, steps = python_time_per_block(args.duration)
+    spent, calls, wall, steps = python_time_per_block(args.duration)
     per_step = {"plant (alone)": args.duration / alone / steps * 1e6}
-    per_step.update({name: t / steps * 1e6 for name, t in spent.items()})
+    per_step.update({f"{name} ({calls.get(name, 0) / steps:.2f} Python callbacks/step)":
+                     t / steps * 1e6 for name, t in spent.items()})
     per_step["rest of the Diagram (Drake dispatch, logs, cache effects)"] = (
         wall / steps * 1e6 - sum(per_step.values()))
     per_step["summary (after the run)"] = post / steps * 1e6
@@ -209,7 +219,8 @@ def main():
                       "step_check_ratio": check,
                       "output_share": share["bushing"], "logging_share": logging["bushing"], "peak_rss_mb_10s": rss10,
                       "peak_rss_mb_60s": rss60,
-                      "split_us_per_step": {k: round(v, 1) for k, v in per_step.items()}}))
+                      "split_us_per_step": {k: round(v, 1) for k, v in per_step.items()},
+                      "python_callbacks_per_step": {k: v / steps for k, v in calls.items()}}))
 
 
 if __name__ == "__main__":

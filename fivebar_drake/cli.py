@@ -22,6 +22,7 @@ from importlib.metadata import version
 from fivebar_drake import catalog
 from fivebar_drake.core.files import check_output_file, prepare_output_dir, say
 from fivebar_drake.core.footpath import PATHS
+from fivebar_drake.core import plugins
 from fivebar_drake.core.interrupts import Interrupted, Signals
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.robots.quadruped.closure import CLOSURES
@@ -60,7 +61,7 @@ def _study(args):
         if flag in study.OPTIONS:
             options[action.dest] = value
         elif value is not None:
-            takers = [m for m in catalog.MECHANISMS if flag in catalog.study(m).OPTIONS]
+            takers = [m for m in catalog.mechanisms() if flag in catalog.study(m).OPTIONS]
             raise ParameterError(f"{flag} = {value}: applies to --mechanism "
                                  f"{', '.join(takers)} only, not to {args.mechanism}", flag,
                                  "command line")
@@ -83,7 +84,7 @@ def _simulate(args, signals) -> int:
     study, options = _study(args)
     if not study.SIMULATION_FILES:
         raise ParameterError(f"--mechanism = {args.mechanism}: has no simulation; simulate "
-                             f"takes {[m for m in catalog.MECHANISMS if catalog.can_simulate(m)]}",
+                             f"takes {[m for m in catalog.mechanisms() if catalog.can_simulate(m)]}",
                              "--mechanism", "command line")
     start = time.perf_counter()
     plan = study.load_simulation(args.config, args.duration, **options)
@@ -241,7 +242,9 @@ def _models(args, signals) -> int:
 
 
 def parser() -> argparse.ArgumentParser:
-    """The command line, every option with its choices and default in --help."""
+    """The command line, every option with its choices and default in --help: the choices of
+    this package and of the plugins (core/plugins.py), loaded first."""
+    plugins.load()
     top = argparse.ArgumentParser(prog="fivebar-drake", description=__doc__, epilog=EXIT_CODES,
                                   formatter_class=argparse.RawDescriptionHelpFormatter)
     top.add_argument("--version", action="version", version=f"%(prog)s "
@@ -256,7 +259,7 @@ def parser() -> argparse.ArgumentParser:
         p.set_defaults(run=run)
         return p
 
-    mechanism = dict(choices=catalog.MECHANISMS, default=catalog.FIVEBAR,
+    mechanism = dict(choices=catalog.mechanisms(), default=catalog.FIVEBAR,
                      help="the mechanism (default: %(default)s, the quadruped's 5-bar leg)")
     p = command("analyze", _analyze, "the seed's torque analysis over one cycle of a foot path "
                 "(5-bar leg), or another mechanism's analysis")
@@ -381,6 +384,9 @@ def main(argv=None) -> int:
         args = parser().parse_args(argv)
     except SystemExit as exit_:             # --help, --version, or a usage error (code 2)
         return int(exit_.code or 0)
+    except ParameterError as err:           # a plugin that cannot be imported
+        _err(f"error: {err}")
+        return 2
     try:
         if getattr(args, "out", None) == "":
             raise ParameterError("--out = '': an empty path; give a folder or file name (or "

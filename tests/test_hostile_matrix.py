@@ -38,7 +38,7 @@ WORDS = {"missing": "not found", "fifo": "not a regular file", "binary": "not UT
          "folder": "is a folder", "not toml": "not valid TOML"}
 
 
-@pytest.mark.parametrize("name", catalog.MECHANISMS)
+@pytest.mark.parametrize("name", catalog.mechanisms())
 @pytest.mark.parametrize("command", ["analyze", "simulate"])
 @pytest.mark.parametrize("kind", CONFIGS)
 def test_bad_parameter_file(name, command, kind, tmp_path, capsys):
@@ -50,7 +50,7 @@ def test_bad_parameter_file(name, command, kind, tmp_path, capsys):
     assert not out.exists()
 
 
-@pytest.mark.parametrize("name", catalog.MECHANISMS)
+@pytest.mark.parametrize("name", catalog.mechanisms())
 @pytest.mark.parametrize("command", ["analyze", "simulate"])
 @pytest.mark.parametrize("out_kind", ["empty", "file", "below a file"])
 def test_bad_output_path(name, command, out_kind, tmp_path, capsys):
@@ -62,7 +62,7 @@ def test_bad_output_path(name, command, out_kind, tmp_path, capsys):
     assert (tmp_path / "afile").read_text() == "keep me"
 
 
-@pytest.mark.parametrize("name", catalog.MECHANISMS)
+@pytest.mark.parametrize("name", catalog.mechanisms())
 @pytest.mark.parametrize("duration", ["nan", "-1", "0", "inf", "1e300"])
 def test_bad_duration(name, duration, tmp_path, capsys):
     out = tmp_path / "out"

@@ -23,7 +23,7 @@ u = (f t + phase / 2 pi) mod 1, u in [0, 1); u = 0 is lift-off at the back of th
 
 Each path is a FootPath registered by its kind in PATHS (register_path): its constants (a
 NamedTuple, as the compiled code takes it), its compiled point function, where its stance starts;
-GaitSource, the Diagram's block, evaluates any of them.
+the Diagram's block simulation/gait_source.GaitSource evaluates any of them (references_kernel).
 """
 
 from __future__ import annotations
@@ -33,7 +33,6 @@ import math
 from dataclasses import dataclass
 from typing import ClassVar, NamedTuple, Optional
 import numpy as np
-from pydrake.systems.framework import LeafSystem
 
 from fivebar_drake.core.compiled import jit, jit_uncached
 from fivebar_drake.core.validation import (MAX_GAIT_FREQUENCY_HZ, MAX_GRAVITY_M_S2,
@@ -142,14 +141,6 @@ class FootPath(Variant):
     def span_s(self, gait: Gait) -> float:
         """Time (s) the path takes: a period."""
         return gait.period_s
-
-    def add_to(self, builder, gait: Gait, phases_rad, start_s: float, ramp_s: float,
-               transfer_s: float, period_s: float) -> GaitSource:
-        """Add this path's GaitSource (named "gait_source") to the DiagramBuilder; start_s: the
-        scenario's standing time (FootPath.start_s), ramp_s its ramp (none for a maneuver)."""
-        return builder.AddNamedSystem("gait_source", GaitSource(
-            gait, self, phases_rad, self.start_s(start_s), ramp_s if self.periodic else 0.0,
-            transfer_s, period_s))
 
 
 class EllipseConstants(NamedTuple):
@@ -766,66 +757,48 @@ def reference_parts(references):
             references[4 * n:6 * n].reshape(n, 2), references[6 * n:])
 
 
-@jit_uncached
-def foot_references(point, constants, frequency, period, stance_start_u, transfer_s, home,
-                    phases, start_s, ramp_s, periodic, t):
-    """The foot references at time t (s) as one vector (reference_parts: targets, velocities
-    and accelerations, stance weights of the legs); the path point(constants, u)
-    (FootPath.point) at frequency (Hz) and period (s); not periodic (a maneuver): u =
-    frequency t, the weights its stance flags."""
-    n = phases.shape[0]
-    out = np.zeros(REFERENCES_PER_LEG * n)
-    targets, vel, acc, weights = reference_parts(out)
-    weights[:] = 1.0
-    tau = t - start_s
-    if tau < 0.0:
-        targets[:, 0], targets[:, 1] = home[0], home[1]
+def references_kernel(point):
+    """The compiled foot references of a path's point function (FootPath.point), compiled once
+    per process and point function (0.2-0.6 s; not cached on disk, compiled_uncached: its index
+    would name the point's module): references(constants, frequency, period, stance_start_u,
+    transfer_s, home, phases, start_s, ramp_s, periodic, t) -> the foot references at time t (s)
+    as one vector (reference_parts: targets, velocities and accelerations, stance weights of the
+    legs); the path point(constants, u) at frequency (Hz) and period (s); not periodic (a
+    maneuver): u = frequency t, the weights its stance flags. The point is a global of the
+    kernel, not an argument: an argument typed as a function costs ~20 us of typing per call."""
+    if point not in _KERNELS:
+        _KERNELS[point] = jit_uncached(_references_of(point))
+    return _KERNELS[point]
+
+
+_KERNELS: dict = {}   # references_kernel's, by point function
+
+
+def _references_of(point):
+    """The references function (references_kernel) with `point` bound, uncompiled."""
+    def references(constants, frequency, period, stance_start_u, transfer_s, home, phases,
+                   start_s, ramp_s, periodic, t):
+        n = phases.shape[0]
+        out = np.zeros(REFERENCES_PER_LEG * n)
+        targets, vel, acc, weights = reference_parts(out)
+        weights[:] = 1.0
+        tau = t - start_s
+        if tau < 0.0:
+            targets[:, 0], targets[:, 1] = home[0], home[1]
+            return out
+        s, ds = (tau / ramp_s, 1.0 / ramp_s) if ramp_s > 0 and tau < ramp_s else (1.0, 0.0)
+        for i in range(n):
+            u = phase_of(frequency, tau, phases[i]) if periodic else frequency * tau
+            x, y, vx, vy, ax, ay, flag = point(constants, u)
+            for j, (rel, v, a) in enumerate(((x - home[0], vx, ax), (y - home[1], vy, ay))):
+                targets[i, j] = home[j] + s * rel
+                vel[i, j] = ds * rel + s * v
+                acc[i, j] = 2.0 * ds * v + s * a
+            w = (stance_weight_at(u, stance_start_u, period, transfer_s) if periodic
+                 else (1.0 if flag else 0.0))
+            weights[i] = 1.0 - s * (1.0 - w)
         return out
-    s, ds = (tau / ramp_s, 1.0 / ramp_s) if ramp_s > 0 and tau < ramp_s else (1.0, 0.0)
-    for i in range(n):
-        u = phase_of(frequency, tau, phases[i]) if periodic else frequency * tau
-        x, y, vx, vy, ax, ay, flag = point(constants, u)
-        for j, (rel, v, a) in enumerate(((x - home[0], vx, ax), (y - home[1], vy, ay))):
-            targets[i, j] = home[j] + s * rel
-            vel[i, j] = ds * rel + s * v
-            acc[i, j] = 2.0 * ds * v + s * a
-        w = stance_weight_at(u, stance_start_u, period, transfer_s) if periodic else (1.0 if flag else 0.0)
-        weights[i] = 1.0 - s * (1.0 - w)
-    return out
-
-
-class GaitSource(LeafSystem):
-    """Time (s) -> foot targets of all legs in their leg planes and the stance schedule,
-    sampled every period_s (the controller's period).
-
-    Output port "foot_references" (REFERENCES_PER_LEG x legs, reference_parts): foot targets
-    (legs x (x, y), m), velocities (m/s), accelerations (m/s^2), then the stance weights (legs,
-    in [0, 1]).
-    The foot path (FootPath.point) with gait time tau = t - start_s, each leg at its phase
-    (rad), about the home point (x_c, y_home) scaled by s ramping 0 -> 1 over ramp_s; the
-    stance weights blend from all-stance to the schedule with the same s. While standing
-    (t < start_s) the feet rest at home (FootPath.home), all in stance. The path is known ahead, so at each
-    tick t the source stores the values of the next tick: a block sampling it at a tick reads
-    the values at that tick, computed once, with no Python on the output port."""
-
-    def __init__(self, gait: Gait, path: FootPath, phases, start_s: float, ramp_s: float,
-                 transfer_s: float, period_s: float):
-        super().__init__()
-        self._args = (path.point, path.constants(gait), *path.clock(gait),
-                      path.stance_start(gait), float(transfer_s), path.home(gait),
-                      np.asarray(phases, dtype=float), float(start_s), float(ramp_s),
-                      path.periodic)
-        self._period = period_s
-        self._group = self.DeclareDiscreteState(self.references(0.0))
-        self.DeclarePeriodicDiscreteUpdateEvent(period_s, 0.0, self._update)
-        self.DeclareStateOutputPort("foot_references", self._group)
-
-    def references(self, t: float) -> np.ndarray:
-        """The output port's value at time t (s)."""
-        return foot_references(*self._args, float(t))
-
-    def _update(self, context, discrete_state):
-        discrete_state.set_value(self._group, self.references(context.get_time() + self._period))
+    return references
 
 
 @dataclass(frozen=True)

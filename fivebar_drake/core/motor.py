@@ -1,7 +1,7 @@
 """The geared actuator: its parameters (a BLDC motor from motor-side data, BldcMotor, or a plain
 torque-speed line, LineMotor), the output envelope derived from them in one place (the compiled
-law ActuatorLaw / torque_limits), the Drake motor model (MotorModel) and the classification of
-clipped commands.
+law ActuatorLaw / torque_limits), the motor model's step (motor_step; the Drake block is
+simulation/motor_model.MotorModel) and the classification of clipped commands.
 
 Conventions (BldcMotor; see README "The actuator"):
 - k_t (N*m/A) multiplies the q-axis current i of the amplitude-invariant dq transform, which is
@@ -31,8 +31,9 @@ motoring torque falls on a straight line from the stall torque to the no-load sp
 into braking beyond it (as a DC motor's), braking is held at the stall torque below it. It has no
 electrical or thermal model.
 
-The Drake MotorModel applies the law at every plant step at the joint's mean speed over the step
-(held_torque, motor_step: the class docstring says why and how).
+The Drake block (simulation/motor_model.MotorModel) applies the law at every plant step at the
+joint's mean speed over the step (held_torque, motor_step: the block's docstring says why and
+how).
 """
 
 from __future__ import annotations
@@ -43,7 +44,6 @@ from dataclasses import dataclass
 from typing import NamedTuple
 
 import numpy as np
-from pydrake.systems.framework import LeafSystem
 
 from fivebar_drake.core.compiled import jit
 from fivebar_drake.core.parameter_files import build_section
@@ -760,89 +760,6 @@ def motor_step(law, command, speed, memory, time, cap, out, remembered):
         remembered[j + 3], remembered[j + 4], remembered[j + 5] = now, pushed, response
         remembered[j + 6] = speed[k] + drift + rate * out[2 * n + k] if rate > 0.0 else np.nan
     remembered[MEMORY * n] = time
-
-
-class MotorModel(LeafSystem):
-    """Commanded torque and joint speed -> torque at the joints, one actuator per joint, values
-    at the gearbox output, SI.
-
-    Input ports: "torque_command" (n) N*m, "plant_state" (nx). Every period_s the command is
-    sampled and held (zero-order hold, the drive's command rate). The torque of each plant step
-    is evaluated from the joint speeds at the step's start (a direct feedthrough of the plant's
-    state, which must not depend on its actuation: a discrete plant with unsampled output
-    ports; a real drive's current loop sees the speed at once): the command clamped to the
-    actuator's envelope (torque_limits: current and voltage limits through the gearbox, both
-    quadrants, with the regenerative braking the back-EMF forces beyond the no-load speed), less
-    friction (Coulomb, regularised over |w| < FRICTION_SMOOTHING_RAD_S, and viscous), both at
-    the joint's mean speed over the step (held_torque), which follows from its response to its
-    torque and its load, measured over the steps before (motor_step; a per-step update keeps
-    what it needs). Why: a leg in the air (about 5e-4 kg m^2 at a hip here) gains 10 rad/s in a
-    1 ms step at 5 N m, while the voltage limit's time constant, J R / (N^2 eta k_t k_e), is
-    0.6 ms: the limit taken at a speed from before the step let the joint overshoot the no-load
-    speed while still driving (the jump's RL A: 20.8 rad/s at +5 N m), and the braking the
-    back-EMF forces beyond it, taken explicitly, oscillates; a loaded leg hardly responds within
-    a step and gets the envelope at its speed. Measured on a single joint against the
-    continuous law (tests/core/test_motor.py): the step's mean speed follows the continuous
-    solution more closely than its end speed, whose lag a loaded joint feels. Output ports:
-    "applied_torque" (n) N*m at the joints (delivered - friction, within
-    +-Motor.max_applied_torque_Nm, the plant's effort limit); "motor_record" (3 n): the held
-    command, the delivered torque and the applied torque (N*m) of the plant step that starts
-    now (clip_flags classifies the clipping). A recorder sampling it every period_s sees each
-    motor period's first plant step. The rotor's reflected inertia N^2 J_rotor is in the plant
-    (<drake:rotor_inertia>, <drake:gear_ratio>), not here."""
-
-    def __init__(self, motor: Motor, v_index_in_state, nx: int, period_s: float):
-        super().__init__()
-        self._law = motor.law
-        self._cap = float(motor.max_applied_torque_Nm)
-        self._v_index = np.asarray(v_index_in_state, dtype=np.int64)
-        n = self._n = self._v_index.size
-        self._command = self.DeclareVectorInputPort("torque_command", n)
-        self._state = self.DeclareVectorInputPort("plant_state", nx)
-        self._held = self.DeclareDiscreteState(n)
-        memory = np.zeros(MEMORY * n + 1)
-        memory[3::MEMORY] = np.nan
-        memory[6::MEMORY] = np.nan
-        memory[-1] = np.nan
-        self._memory = self.DeclareDiscreteState(memory)
-        self.DeclarePeriodicDiscreteUpdateEvent(period_s, 0.0, self._sample)
-        self.DeclarePerStepDiscreteUpdateEvent(self._remember)
-        depends = {self.input_port_ticket(self._state.get_index()), self.xd_ticket(),
-                   self.time_ticket()}
-        self.DeclareVectorOutputPort("applied_torque", n, self._calc_applied, depends)
-        self.DeclareVectorOutputPort("motor_record", 3 * n, self._calc_record, depends)
-        self._out, self._remembered = np.zeros(3 * n), np.zeros(MEMORY * n + 1)
-        self._key = None
-
-    def _step(self, context) -> None:
-        """motor_step on the context (self._out, self._remembered filled), once per set of
-        inputs: the plant's actuation, the recorder and the per-step update ask for one step's
-        values with the same context."""
-        held = context.get_discrete_state(self._held).get_value()
-        speed = self._state.Eval(context)[self._v_index]
-        memory = context.get_discrete_state(self._memory).get_value()
-        key = (context.get_time(), speed.tobytes(), held.tobytes(), memory.tobytes())
-        if key != self._key:
-            motor_step(self._law, held, speed, memory, key[0], self._cap, self._out,
-                       self._remembered)
-            self._key = key
-
-    def _calc_applied(self, context, output):
-        self._step(context)
-        output.SetFromVector(self._out[2 * self._n:])
-
-    def _calc_record(self, context, output):
-        self._step(context)
-        output.SetFromVector(self._out)
-
-    def _sample(self, context, discrete_state):
-        discrete_state.set_value(self._held, self._command.Eval(context))
-
-    def _remember(self, context, discrete_state):
-        """With every plant step (Drake runs the per-step update with the plant's, on the state
-        the step starts from): what motor_step measures for the next."""
-        self._step(context)
-        discrete_state.set_value(self._memory, self._remembered)
 
 
 def clip_flags(motor: Motor, command, delivered, speed=None) -> tuple[np.ndarray, np.ndarray]:

@@ -1,11 +1,15 @@
-"""Typed variants: a gait, a controller or a loop closure is a small frozen dataclass registered by
-its kind in its registry (a dict kind -> class), loaded from the scenario by name (its defaults)
-or as a mapping {kind: KIND, field: value, ...} (simulation/scenario.py)."""
+"""Typed variants: a gait, a controller, a stance law or a loop closure is a small frozen
+dataclass registered by its kind in its registry (a dict kind -> class) with the registry's
+decorator (registrar), loaded from the scenario by name (its defaults) or as a mapping {kind:
+KIND, field: value, ...} (simulation/scenario.py). One in another package registers the same
+way, its module named by an entry point (core/plugins.py)."""
 
 from __future__ import annotations
 
 import dataclasses
 from typing import ClassVar
+
+from fivebar_drake.core import plugins
 
 
 class Variant:
@@ -45,9 +49,16 @@ def by_kind(registry: dict, value, what: str) -> Variant:
     (ValueError naming `what` and the kinds)."""
     if isinstance(value, Variant):
         return value
-    if value not in registry:
+    if not known(registry, value):
         raise ValueError(f"{what} = {value!r}: allowed {list(registry)}")
     return registry[value]()
+
+
+def known(registry: dict, kind) -> bool:
+    """Whether kind is registered, after loading the plugins (core/plugins.py) if it is not."""
+    if kind not in registry:
+        plugins.load()
+    return kind in registry
 
 
 def registrar(registry: dict):

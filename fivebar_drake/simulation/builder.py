@@ -8,16 +8,18 @@ from dataclasses import dataclass
 import numpy as np
 from pydrake.multibody.plant import ApplyMultibodyPlantConfig, MultibodyPlant
 from pydrake.systems.framework import DiagramBuilder, TriggerType, LeafSystem
-from pydrake.systems.primitives import DiscreteTimeIntegrator, Multiplexer, VectorLogSink
+from pydrake.systems.primitives import (DiscreteTimeDelay, DiscreteTimeIntegrator, Multiplexer,
+                                        VectorLogSink)
 
 from fivebar_drake.core.drake_configs import check_plant_config_values, config_with
-from fivebar_drake.core.motor import MotorModel
 from fivebar_drake.core.validation import ParameterError, check_number, require
 from fivebar_drake.mechanisms.fivebar import UnreachableError
 from fivebar_drake.robots.quadruped.closure import design_closure
 from fivebar_drake.robots.quadruped.config import check_path
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.plant import ClosureDesign, Modifiers, RobotLayout, add_robot
+from fivebar_drake.simulation.gait_source import GaitSource
+from fivebar_drake.simulation.motor_model import MotorModel
 from fivebar_drake.simulation.scenario import Scenario
 
 
@@ -165,28 +167,35 @@ def add_contact_integral(builder: DiagramBuilder, plant, instance, layout: Robot
 
 
 def add_controller(builder: DiagramBuilder, scenario: Scenario, params: Params, plant,
-                   instance, layout: RobotLayout,
-                   contact: DiscreteTimeIntegrator) -> tuple[LeafSystem, MotorModel]:
-    """Add gait source -> leg controller -> motor model -> the plant's actuation (each variant
-    adds its own block: FootPath.add_to, Controller.add_to), the controller and the motor model
-    sampling the plant state, the controller the contact integral if it has that input;
+                   instance, layout: RobotLayout, contact: DiscreteTimeIntegrator,
+                   time_step: float) -> tuple[LeafSystem, MotorModel]:
+    """Add gait source -> leg controller (-> Drake's DiscreteTimeDelay of its
+    control_delay_periods) -> motor model -> the plant's actuation (the controller variant adds
+    its own block: Controller.add_to), the controller and the motor model
+    sampling the plant state, the controller the contact integral if it has that input, the
+    motor model keeping its memory at every plant step of time_step (s);
     returns (controller, motor model)."""
-    gait = scenario.gait.add_to(builder, params.gait, scenario.phases_rad, scenario.stand_s,
-                                scenario.ramp_s, scenario.load_transfer_s,
-                                scenario.controller.control_period_s)
+    gait = GaitSource.add_to(builder, params.gait, scenario.gait, scenario.phases_rad,
+                             scenario.stand_s, scenario.ramp_s, scenario.load_transfer_s)
     controller = scenario.controller.add_to(builder, params, layout, scenario.load_transfer_s)
     speed_index = np.zeros(layout.state.actuators.size, dtype=int)    # joint speed of each actuator
     speed_index[layout.state.actuators.ravel()] = layout.state.v_index.ravel() + layout.state.nq
     motor = builder.AddNamedSystem("motor_model", MotorModel(
-        params.motor, speed_index, layout.nx, scenario.motor_period_s))
+        params.motor, speed_index, layout.nx, scenario.motor_period_s, time_step))
     state = plant.get_state_output_port(instance)
     builder.Connect(gait.GetOutputPort("foot_references"),
                     controller.GetInputPort("foot_references"))
     builder.Connect(state, controller.GetInputPort("plant_state"))
     if controller.HasInputPort("contact_impulse"):
         builder.Connect(contact.get_output_port(), controller.GetInputPort("contact_impulse"))
-    builder.Connect(controller.GetOutputPort("torque_command"),
-                    motor.GetInputPort("torque_command"))
+    command = controller.GetOutputPort("torque_command")
+    delay = scenario.controller.control_delay_periods
+    if delay:   # its sample at a tick is the command of the tick before: one period already
+        held = builder.AddNamedSystem("control_delay", DiscreteTimeDelay(
+            scenario.controller.control_period_s, delay - 1, command.size()))
+        builder.Connect(command, held.get_input_port())
+        command = held.get_output_port()
+    builder.Connect(command, motor.GetInputPort("torque_command"))
     builder.Connect(state, motor.GetInputPort("plant_state"))
     builder.Connect(motor.GetOutputPort("applied_torque"), plant.get_actuation_input_port())
     return controller, motor
@@ -230,7 +239,7 @@ def build_diagram(scenario: Scenario, params: Params, design: ClosureDesign,
                                                   math.radians(scenario.slope_deg)))
     contact = add_contact_integral(builder, plant, instance, layout, design.time_step_s)
     controller, motor = add_controller(builder, scenario, params, plant, instance, layout,
-                                       contact)
+                                       contact, design.time_step_s)
     recorder, motor_log, per_row, step_log = add_recorders(
         builder, scenario, plant, instance, layout, motor, design.time_step_s, contact)
     actuation_log = None

@@ -24,6 +24,7 @@ from pydrake.systems.analysis import SimulatorConfig
 
 from fivebar_drake.core.drake_configs import check_simulator_config, config_fields
 from fivebar_drake.core.files import read_input_text
+from fivebar_drake.core.variants import known
 from fivebar_drake.core.footpath import PATHS, FootPath, Trot
 from fivebar_drake.core.validation import (MAX_LENGTH_M, MAX_MASS_KG, ParameterError,
                                            check_number, require)
@@ -256,16 +257,17 @@ def _variant(name: str, base: type, value):
     """The variant (core/variants.py) of a field of type base, checked (Variant.check): value is
     a variant, a kind of its registry (REGISTRIES) or a mapping {kind: KIND, FIELD: value, ...}
     (each field typed as in _typed)."""
-    prefix = "scenario" if base is Controller else name        # its fields are also top-level
     if isinstance(value, base):
-        value.check(prefix)
+        value.check(_prefix(name, type(value)))
         return value
     registry = REGISTRIES[base]
     fields = value if isinstance(value, dict) else {"kind": value}
     require("kind" in fields, name, value, f"a mapping needs the kind, one of {list(registry)}")
     kind = fields["kind"]
-    require(isinstance(kind, str) and kind in registry, name, kind, f"allowed {list(registry)}")
+    require(isinstance(kind, str) and known(registry, kind), name, kind,
+            f"allowed {list(registry)}")
     cls = registry[kind]
+    prefix = _prefix(name, cls)
     names, hints = [f.name for f in dataclasses.fields(cls)], typing.get_type_hints(cls)
     for key in fields:
         require(key == "kind" or key in names, f"{prefix}.{key}", fields[key],
@@ -274,6 +276,14 @@ def _variant(name: str, base: type, value):
                      for key, item in fields.items() if key != "kind"})
     variant.check(prefix)
     return variant
+
+
+def _prefix(name: str, cls: type) -> str:
+    """What a variant's field errors name it by: "scenario" for a controller whose fields are
+    all flat scenario fields (ALIASES: the default controller's), else the field itself (e.g.
+    scenario.controller: a new controller's knob can only be given in its mapping)."""
+    flat = issubclass(cls, Controller) and {f.name for f in dataclasses.fields(cls)} <= set(ALIASES)
+    return "scenario" if flat else name
 
 
 def _typed(name: str, kind, value):

@@ -1,6 +1,6 @@
 """The leg controllers as variants (Controller, registered by kind in CONTROLLERS) and the foot/leg
-controller's block; the gait source is core/footpath.GaitSource, the motor model
-core/motor.MotorModel.
+controller's block; the gait source is simulation/gait_source.GaitSource, the motor model
+simulation/motor_model.MotorModel.
 
 Legs are ordered FL, FR, RL, RR; per leg the motors A, B and foot coordinates (x, y) in the leg
 plane (m). Torque vectors (8) are in the plant's actuation order (LegIndices.actuators).
@@ -15,12 +15,14 @@ import numpy as np
 from pydrake.systems.framework import LeafSystem
 
 from fivebar_drake.core.footpath import REFERENCES_PER_LEG
-from fivebar_drake.core.validation import check_number
-from fivebar_drake.core.variants import Variant, documented, registrar
-from fivebar_drake.mechanisms.fivebar import (LINK_NAMES, com_fractions, physical_izz)
+from fivebar_drake.core.validation import check_number, require
+from fivebar_drake.core.variants import Variant, documented, known, registrar
+from fivebar_drake.mechanisms.fivebar import LINK_NAMES, com_fractions, physical_izz
 from fivebar_drake.robots.quadruped.control_law import (CONTACT_LOAD_SHARE, FOREVER_S,
                                                         SUPPORT_FIELDS, ControlGains,
-                                                        LawConstants, foot_loads, leg_command)
+                                                        LawConstants, foot_loads, leg_plan,
+                                                        leg_torques)
+from fivebar_drake.robots.quadruped.stance_laws import STANCE_LAWS
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.plant import RobotLayout
 from fivebar_drake.robots.quadruped.legs import plane_rotation
@@ -49,13 +51,20 @@ class Controller(Variant):
     (8, N*m, actuation order), updated every control_period_s (s; the gait source samples at the
     same period), optionally the input port "contact_impulse" (nv, the integral of the plant's
     generalized contact forces: connected when the block has it), and optionally the attribute
-    `gains` (a NamedTuple, summary.json's controller_gains; null without it). Its fields are also
-    scenario fields (the scenario's flat names)."""
+    `gains` (a NamedTuple, summary.json's controller_gains; null without it). The builder
+    puts Drake's DiscreteTimeDelay of control_delay_periods ticks between the block and the
+    motor model. The default controller's fields are also scenario fields (the scenario's flat
+    names); another's are given in its mapping (scenario.controller)."""
 
     control_period_s: float = documented(0.002, "update period of the leg controller")
+    control_delay_periods: int = documented(0, "extra controller periods before a command is "
+                                               "released (0: it reaches the motor model's next "
+                                               "sample)")
 
     def check(self, field: str) -> None:
         check_number(f"{field}.control_period_s", self.control_period_s, MIN_TIME_STEP_S)
+        check_number(f"{field}.control_delay_periods", self.control_delay_periods, 0,
+                     integer=True)
 
     def add_to(self, builder, params: Params, layout: RobotLayout,
                transfer_s: float) -> LeafSystem:
@@ -83,15 +92,16 @@ class FootLegController(LeafSystem):
 
     Input ports: "foot_references" (GaitSource), "plant_state" (nx). Output port:
     "torque_command" (8) N*m in actuation order. Every knobs.control_period_s the controller
-    samples its inputs and computes a command that it releases knobs.control_delay_periods ticks
-    later (0: at once), held in between. Input port "contact_impulse" (nv): the integral of the
+    samples its inputs and computes a command, held until the next tick (a delay is Drake's
+    block after it, Controller). Input port "contact_impulse" (nv): the integral of the
     plant's generalized contact forces over every plant step; its change over a controller
     period is the feet's mean ground force in that period (what a foot-force sensor measures).
 
     - Swing (weight 1 - w per leg): joint PD to the closed-form IK of the target (knees out) with
       the full model's inverse dynamics (M q'' + c + G of the links, reflected rotor inertia) of
       the target's motion as feed-forward.
-    - Stance (weight w): the links' weight at the measured pose, and a virtual-model
+    - Stance (weight w): the links' weight at the measured pose, and the stance law
+      (knobs.stance_law, robots/quadruped/stance_laws.py); the default is a virtual-model
       controller. The body's targets follow from the stance feet's targets: height z = foot
       radius - hip z - y, vertical speed -y', forward speed the feet's x' (leg-plane x points
       backwards). The wrench on the body, in the body frame,
@@ -139,21 +149,19 @@ class FootLegController(LeafSystem):
             transfer_s=float(transfer_s))
         n = layout.state.q_index.size
         self._period = knobs.control_period_s
+        self._forces = STANCE_LAWS[knobs.stance_law].forces
         self._references = self.DeclareVectorInputPort(
             "foot_references", REFERENCES_PER_LEG * layout.state.q_index.shape[0])
         self._state = self.DeclareVectorInputPort("plant_state", layout.nx)
         self._impulse = self.DeclareVectorInputPort("contact_impulse", layout.nv)
-        # the released command (the output) and the delay_periods commands after it, oldest first
-        self._released = self.DeclareDiscreteState(n)
-        self._queue = self.DeclareDiscreteState(knobs.control_delay_periods * n)
-        self._delayed = knobs.control_delay_periods > 0
+        self._command = self.DeclareDiscreteState(n)         # the output, held between ticks
         # the tick's memory, one group: the feet's support (control_law.support_weights), every
         # foot standing before the run, then the contact impulse at the last tick
         support = self.standing_support().ravel()
         self._support_size = support.size
         self._memory = self.DeclareDiscreteState(np.concatenate([support, np.zeros(layout.nv)]))
         self.DeclarePeriodicDiscreteUpdateEvent(knobs.control_period_s, 0.0, self._update)
-        self.DeclareStateOutputPort("torque_command", self._released)
+        self.DeclareStateOutputPort("torque_command", self._command)
 
     @property
     def gains(self) -> ControlGains:
@@ -172,15 +180,19 @@ class FootLegController(LeafSystem):
         (GaitSource), the plant state vector (nx,), the feet's measured normal forces (legs,)
         in N (default: every foot on the ground) and their support memory (legs,
         SUPPORT_FIELDS; default: standing_support; updated in place)
-        (control_law.leg_command). Raises UnreachableError naming the target or pose where the
+        (control_law.leg_plan, the stance law's forces, control_law.leg_torques). Raises UnreachableError naming the target or pose where the
         legs cannot close."""
         memory = self.standing_support() if support is None else support
         n = memory.shape[0]
         loads = np.full(n, np.inf) if loads_N is None else np.asarray(loads_N, dtype=float)
-        out, goal, finite = leg_command(self.constants, np.asarray(references, dtype=float),
-                                        np.asarray(state, dtype=float), loads, memory, float(t))
+        state = np.asarray(state, dtype=float)
+        k = self.constants
+        plan = leg_plan(k, np.asarray(references, dtype=float), state, loads, memory, float(t))
+        forces = self._forces(k, plan.body, plan.weights, plan.share, plan.fx, plan.fy, state,
+                              plan.r_wb)
+        out, finite = leg_torques(k.state.actuators, plan.base, plan.jf, forces)
         if not finite:                        # name the reason, if it is a reach
-            self._mechanism.inverse(goal)
+            self._mechanism.inverse(plan.goal)
             self._mechanism.forward(state[self._layout.state.q_index])
         return out
 
@@ -205,11 +217,7 @@ class FootLegController(LeafSystem):
         references, state, loads, memory, t, impulse = self._tick(context)
         new = self.command(references, state, loads, memory, t)
         discrete_state.set_value(self._memory, np.concatenate([memory.ravel(), impulse]))
-        if self._delayed:
-            queue = np.concatenate([context.get_discrete_state(self._queue).get_value(), new])
-            new = queue[:new.size]
-            discrete_state.set_value(self._queue, queue[new.size:])
-        discrete_state.set_value(self._released, new)
+        discrete_state.set_value(self._command, new)
 
 
 @register_controller
@@ -219,9 +227,6 @@ class FootLeg(Controller):
     numbers (gains)."""
 
     kind: ClassVar[str] = "foot_leg"
-    control_delay_periods: int = documented(0, "extra controller periods before a command is "
-                                               "released (0: it reaches the motor model's next "
-                                               "sample)")
     swing_bandwidth_hz: float = documented(15.0, "swing legs' joint PD bandwidth")
     body_bandwidth_hz: float = documented(3.0, "stance legs' body (height, speed, attitude) "
                                                "bandwidth")
@@ -233,6 +238,9 @@ class FootLeg(Controller):
     touchdown_detection: bool = documented(True, "a swing foot in the air that is measured on "
                                                  "the ground early (on its way down) joins the "
                                                  "support")
+    stance_law: str = documented("virtual_model", "the stance feet's ground-force law, a "
+                                                  "registered kind (robots/quadruped/"
+                                                  "stance_laws.py)")
 
     def check(self, field: str) -> None:
         number = check_number
@@ -253,6 +261,8 @@ class FootLeg(Controller):
                low_open=True)
         number(f"{field}.catch_gain", self.catch_gain, 0.0, MAX_CATCH_GAIN)
         number(f"{field}.catch_rate_s", self.catch_rate_s, 0.0, MAX_CATCH_RATE_S)
+        require(known(STANCE_LAWS, self.stance_law), f"{field}.stance_law", self.stance_law,
+                f"allowed {list(STANCE_LAWS)}")
 
     def gains(self, params: Params, layout: RobotLayout) -> ControlGains:
         """Gains from the robot's numbers: the swing joint's inertia is the largest diagonal

@@ -1,6 +1,6 @@
 """The contract every study keeps: one mechanism end to end, analysed and simulated.
 
-A study is a package `fivebar_drake/studies/<name>/` named in catalog.py. Its `__init__.py` is
+A study is a package `fivebar_drake/studies/<name>/` named in catalog.STUDIES. Its `__init__.py` is
 the contract (the module satisfies `Study`); the work sits in files of the same names in every
 study, each only where the study has it:
 

@@ -37,6 +37,7 @@ import numpy as np
 
 from fivebar_drake.analysis.design_points import MODELS
 from fivebar_drake.core.footpath import PATHS
+from fivebar_drake.core.variants import known
 from fivebar_drake.core.files import read_input_text
 from fivebar_drake.core.validation import check_number, require
 from fivebar_drake.core.yaml_files import load_spec_file
@@ -169,7 +170,7 @@ def spec_from_dict(data, folder: Path, source: str = "") -> SweepSpec:
     seed = data.get("seed", 0)
     check_number("seed", seed, 0, 2**32 - 1, integer=True)
     gait = data.get("gait", "seed_ellipse")
-    require(gait in PATHS, "gait", gait, f"must be one of {list(PATHS)}")
+    require(known(PATHS, gait), "gait", gait, f"must be one of {list(PATHS)}")
     model = data.get("model", MODELS[0])
     require(model in MODELS, "model", model, f"must be one of {list(MODELS)}")
     require(fidelity == "analysis" or "model" not in data, "model", model,

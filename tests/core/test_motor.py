@@ -14,9 +14,10 @@ from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import ConstantVectorSource, VectorLogSink
 
-from fivebar_drake.core.motor import (BldcMotor, LineMotor, MotorModel, build_motor, clip_flags,
+from fivebar_drake.core.motor import (BldcMotor, LineMotor, build_motor, clip_flags,
                                       with_gear)
 from fivebar_drake.core.validation import ParameterError
+from fivebar_drake.simulation.motor_model import MotorModel
 
 
 @pytest.fixture()
@@ -36,7 +37,7 @@ def motor_outputs(motor, command, speed):
     its first sample."""
     command, speed = np.atleast_1d(command).astype(float), np.atleast_1d(speed).astype(float)
     n = command.size
-    model = MotorModel(motor, np.arange(n), n, period_s=1e-3)
+    model = MotorModel(motor, np.arange(n), n, period_s=1e-3, step_s=1e-3)
     simulator = Simulator(model)
     context = simulator.get_mutable_context()
     model.GetInputPort("torque_command").FixValue(context, command)
@@ -175,7 +176,7 @@ def spin(motor, inertia, command, external=0.0, duration=0.04, step=1e-3):
                                                              body.body_frame(), [0, 0, 1])))
     plant.mutable_gravity_field().set_gravity_vector([0, 0, 0])
     plant.Finalize()
-    model = builder.AddSystem(MotorModel(motor, [1], 2, step))
+    model = builder.AddSystem(MotorModel(motor, [1], 2, step, step))
     builder.Connect(builder.AddSystem(ConstantVectorSource([command])).get_output_port(),
                     model.GetInputPort("torque_command"))
     builder.Connect(builder.AddSystem(ConstantVectorSource([external])).get_output_port(),

@@ -22,6 +22,7 @@ from fivebar_drake.robots.quadruped.plant import standing_height
 from fivebar_drake.simulation.builder import check_run
 from fivebar_drake.robots.quadruped.closure import Ball
 from fivebar_drake.simulation.scenario import load_scenario
+from fivebar_drake.simulation.gait_source import GaitSource
 from fivebar_drake.simulation.systems import FootLeg
 
 BEFORE = np.load(Path(__file__).parent.parent / "data" / "before_variants.npz")
@@ -35,9 +36,8 @@ ACROSS_MACHINES = dict(rtol=1e-10, atol=1e-9)
 
 def gait_source(scenario, params):
     """The scenario's gait source, added to a fresh builder as the simulation adds it."""
-    return scenario.gait.add_to(DiagramBuilder(), params.gait, scenario.phases_rad,
-                                scenario.stand_s, scenario.ramp_s, scenario.load_transfer_s,
-                                scenario.controller.control_period_s)
+    return GaitSource.add_to(DiagramBuilder(), params.gait, scenario.gait, scenario.phases_rad,
+                             scenario.stand_s, scenario.ramp_s, scenario.load_transfer_s)
 
 
 @pytest.mark.parametrize("gait", ["trot", "seed_ellipse"])
@@ -195,55 +195,3 @@ def test_a_gait_out_of_reach_breaks_only_its_own_runs(far_away, tmp_path):
     assert err.value.source == "command line (--gait far_away)"
     with pytest.raises(ParameterError, match="out of|outside|reach"):
         check_run(load_scenario(gait="far_away"), load_params())
-
-
-def test_a_controller_without_gains_runs_through_the_pipeline():
-    """The README's controller template: a block with the named ports and no `gains` (a joint
-    hold about the start pose, registered for the test alone) runs through the pipeline; the
-    summary says what ran and has no controller gains."""
-    from pydrake.systems.framework import LeafSystem
-
-    from fivebar_drake.core.variants import documented
-    from fivebar_drake.pipeline import summarize_run
-    from fivebar_drake.simulation.systems import CONTROLLERS, Controller, register_controller
-
-    class HoldController(LeafSystem):
-        def __init__(self, layout, stiffness):
-            super().__init__()
-            self._q, self._v = layout.state.q_index, layout.state.nq + layout.state.v_index
-            self._act, self._k = layout.state.actuators, stiffness
-            self.DeclareVectorInputPort("foot_references", 28)
-            self._state = self.DeclareVectorInputPort("plant_state", layout.nx)
-            self.DeclareVectorOutputPort("torque_command", layout.state.actuators.size,
-                                         self._command)
-            self._start = None
-
-        def _command(self, context, output):
-            x = self._state.Eval(context)
-            if self._start is None:
-                self._start = x[self._q].copy()
-            out = np.zeros(self._act.size)
-            out[self._act] = self._k * (self._start - x[self._q]) - 0.1 * x[self._v]
-            output.SetFromVector(out)
-
-    @register_controller
-    @dataclass(frozen=True)
-    class Hold(Controller):
-        kind: ClassVar[str] = "hold"
-        stiffness_Nm_rad: float = documented(20.0, "joint stiffness about the start pose")
-
-        def add_to(self, builder, params, layout, transfer_s):
-            return builder.AddNamedSystem("leg_controller",
-                                          HoldController(layout, self.stiffness_Nm_rad))
-
-    try:
-        scenario = load_scenario(duration_s=0.3, closure="ball")
-        scenario.controller = Hold()
-        record = run_simulation(scenario, progress=False)
-        summary = summarize_run(record)
-    finally:
-        del CONTROLLERS["hold"]
-    assert record.table["t"][-1] > 0.1 and record.gains is None
-    assert summary["controller_gains"] is None
-    assert summary["ran"]["controller"] == {"kind": "hold", "control_period_s": 0.002,
-                                            "stiffness_Nm_rad": 20.0}

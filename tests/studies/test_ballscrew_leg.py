@@ -69,7 +69,7 @@ def test_squat_rig_carries_the_load_through_the_pinned_foot(bs_params):
 
 
 def test_catalog_knows_the_study():
-    assert "ballscrew_leg" in catalog.MECHANISMS and catalog.can_simulate("ballscrew_leg")
+    assert "ballscrew_leg" in catalog.mechanisms() and catalog.can_simulate("ballscrew_leg")
 
 
 def test_analyze_end_to_end(tmp_path):

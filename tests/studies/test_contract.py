@@ -14,7 +14,7 @@ OWN = [("analyze", "--gait", "trot"), ("analyze", "--set", "motor.gear_ratio=11.
        ("simulate", "--step-check", None)]
 
 
-@pytest.mark.parametrize("name", catalog.MECHANISMS)
+@pytest.mark.parametrize("name", catalog.mechanisms())
 def test_every_mechanism_is_a_study(name):
     study = catalog.study(name)
     assert isinstance(study, Study)
@@ -23,7 +23,7 @@ def test_every_mechanism_is_a_study(name):
     assert catalog.default_out(name, "analyze") != catalog.default_out(name, "simulate")
 
 
-@pytest.mark.parametrize("name", [m for m in catalog.MECHANISMS if m != catalog.FIVEBAR])
+@pytest.mark.parametrize("name", [m for m in catalog.mechanisms() if m != catalog.FIVEBAR])
 @pytest.mark.parametrize("command, option, value", OWN)
 def test_an_option_of_another_study_is_refused(name, command, option, value, tmp_path, capsys):
     assert option not in catalog.study(name).OPTIONS
@@ -36,7 +36,7 @@ def test_an_option_of_another_study_is_refused(name, command, option, value, tmp
     assert not out.exists()
 
 
-@pytest.mark.parametrize("name", [m for m in catalog.MECHANISMS if m != catalog.FIVEBAR])
+@pytest.mark.parametrize("name", [m for m in catalog.mechanisms() if m != catalog.FIVEBAR])
 def test_a_stop_request_ends_every_run_early_and_its_files_are_written(name, tmp_path):
     """A signal during another mechanism's simulation stops the stepping within a slice
     (core.interrupts.advance): what was simulated is written and said so (exit 130/143)."""

@@ -16,6 +16,10 @@ systems.FootLegController for the whole description):
   its weight w rises from that contact over the load transfer time, never before it;
   a swing foot that has been in the air and lands before its schedule joins the support the
   same way (early touchdown), and its swing target never enters the body's targets;
+- the stance feet's ground forces F come from a stage, the stance law (stance_laws.py; the
+  default, ground_forces, is the virtual model above): the law is compiled in its own module and
+  called between the plan (leg_plan) and the torques (leg_torques), so swapping it recompiles
+  nothing and every kernel stays cached on disk;
 - each leg blends the swing command and the links' weight with its weight w and adds the push
   -J_F^T F in full: the ground forces' least-squares split is already weighted by w (a foot
   with w -> 0 gets none), so the feet on the ground deliver the whole wrench at every w
@@ -127,7 +131,7 @@ def catch_offset(k, state, r_wb):
     rotation sinks at dz' (m/s) reaches catch_gain catch_rate dz' further down (up under a rising
     hip), limited to the step height, so the foot on the side the body falls to lands a little
     early and catches it. The hip's drop itself needs no reflex: every target is put on the
-    ground as it is (leg_command)."""
+    ground as it is (leg_plan)."""
     out = np.zeros((k.hips_m.shape[0], 2))
     if k.catch_gain == 0.0:
         return out
@@ -249,8 +253,8 @@ def body_targets(k, guides, targets, velocities, accelerations, state, r_wb):
 
 @jit
 def ground_forces(k, body, weights, share, fx, fy, state, r_wb):
-    """Ground forces on the feet (legs, 2) in N, leg-plane (x, y), from the body wrench in the
-    body frame: F_x = m dx (v_x* - v_x), F_z = m (g + z*'') + kz (z* - z) + dz (z*' - z') (and
+    """The virtual-model stance law (stance_laws.VirtualModel): ground forces on the feet
+    (legs, 2) in N, leg-plane (x, y), from the body wrench in the body frame: F_x = m dx (v_x* - v_x), F_z = m (g + z*'') + kz (z* - z) + dz (z*' - z') (and
     m g's components along the slope: support), M_roll,pitch = -k_att angle - d_att rate, with
     the body's targets body = (z*, z*', z*'', v_x*) (body_targets), split over the feet by their
     weights (legs,), share (0 .. 1) of it."""
@@ -295,10 +299,29 @@ def ground_forces(k, body, weights, share, fx, fy, state, r_wb):
     return out
 
 
+class LegPlan(NamedTuple):
+    """A tick's plan (leg_plan) before the stance feet's ground forces: base (8) N*m in
+    actuation order, each leg's swing command and links' weight blended by its weight w; goal
+    (legs, 2) m the swing IK targets; what a stance law takes (StanceLaw.forces): body (4,) the
+    body's targets (body_targets: z* m, z*' m/s, z*'' m/s^2, v_x* m/s), weights (legs,) the
+    feet's support, share (0 .. 1) of the wrench they deliver, fx, fy (legs,) m the measured
+    leg-plane feet, r_wb (3, 3) the body's rotation; jf (legs, 2, 2) the foot Jacobians at the
+    measured poses (leg_torques)."""
+
+    base: np.ndarray
+    goal: np.ndarray
+    body: tuple
+    weights: np.ndarray
+    share: float
+    fx: np.ndarray
+    fy: np.ndarray
+    r_wb: np.ndarray
+    jf: np.ndarray
+
+
 @jit
-def leg_command(k, references, state, loads, memory, t):
-    """(torque command (8) in actuation order, swing IK targets (legs, 2) in m, whether the
-    command is finite) at time t (s) from the foot references (footpath.foot_references:
+def leg_plan(k, references, state, loads, memory, t):
+    """The tick's LegPlan at time t (s) from the foot references (footpath.reference_parts:
     targets, velocities, accelerations (legs, 2) each, scheduled stance weights (legs,)), the
     plant state (nx,) and the feet's measured normal forces (legs,) in N (foot_loads); memory
     (legs, SUPPORT_FIELDS): the feet's support (support_weights), updated in place. A foot due
@@ -368,11 +391,23 @@ def leg_command(k, references, state, loads, memory, t):
     # first feet down after a flight or at a landing take it up as their weights rise
     expected = min(scheduled.sum(), 1.0)
     share = min(weights.sum() / expected, 1.0) if expected > 0.0 else min(weights.sum(), 1.0)
-    forces = ground_forces(k, body, weights, share, fx, fy, state, r_wb)
-    out = np.zeros(2 * n)
+    base = np.zeros(2 * n)
     for i in range(n):
-        w = weights[i]
         for j in range(2):
-            push = jf_now[i, 0, j] * forces[i, 0] + jf_now[i, 1, j] * forces[i, 1]
-            out[k.state.actuators[i, j]] = w * stance[i, j] + (1.0 - w) * swing[i, j] - push
-    return out, goal, np.all(np.isfinite(out))
+            base[k.state.actuators[i, j]] = (weights[i] * stance[i, j]
+                                             + (1.0 - weights[i]) * swing[i, j])
+    return LegPlan(base, goal, body, weights, share, fx, fy, r_wb, jf_now)
+
+
+@jit
+def leg_torques(actuators, base, jf, forces):
+    """(torque command (8) N*m in actuation order, whether it is finite): the plan's base
+    (LegPlan) less -J_F^T F of each leg's ground force F (legs, 2) N, in full: the stance law's
+    split already gives each foot its share (none at w = 0), so the feet deliver the whole
+    wrench while a foot takes up or gives off its load. actuators (legs, 2): the motors'
+    indices in actuation order."""
+    out = base.copy()
+    for i in range(jf.shape[0]):
+        for j in range(2):
+            out[actuators[i, j]] -= jf[i, 0, j] * forces[i, 0] + jf[i, 1, j] * forces[i, 1]
+    return out, np.all(np.isfinite(out))

@@ -24,7 +24,8 @@ from pydrake.trajectories import PiecewisePolynomial
 
 from fivebar_drake.core.interrupts import advance
 from fivebar_drake.studies.base import duration_limits as base_limits
-from fivebar_drake.core.motor import MotorModel, clip_flags
+from fivebar_drake.core.motor import clip_flags
+from fivebar_drake.simulation.motor_model import MotorModel
 from fivebar_drake.mechanisms.ballscrew_leg import TREE_JOINTS, Params, ball_screw_leg
 from fivebar_drake.studies.ballscrew_leg.model import LegModel, build_model
 
@@ -111,7 +112,7 @@ def run_squat(params: Params, duration_s: float | None = None, stop=None) -> Squ
     pd = builder.AddNamedSystem("pd", PidController(select, [kp], [0.0], [kd]))
     total = builder.AddNamedSystem("command", Adder(2, 1))
     motor = builder.AddNamedSystem("motor", MotorModel(
-        params.motor, [plant.num_positions() + screw_v], nx, s.motor_period_s))
+        params.motor, [plant.num_positions() + screw_v], nx, s.motor_period_s, s.time_step_s))
     builder.Connect(plant.get_state_output_port(), pd.get_input_port_estimated_state())
     builder.Connect(desired.get_output_port(), pd.get_input_port_desired_state())
     builder.Connect(pd.get_output_port_control(), total.get_input_port(0))

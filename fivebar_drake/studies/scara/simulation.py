@@ -19,7 +19,8 @@ from pydrake.trajectories import PiecewisePolynomial
 from fivebar_drake.core.files import say
 from fivebar_drake.core.interrupts import advance
 from fivebar_drake.studies.base import duration_limits as base_limits
-from fivebar_drake.core.motor import LineMotor, MotorModel, clip_flags
+from fivebar_drake.core.motor import LineMotor, clip_flags
+from fivebar_drake.simulation.motor_model import MotorModel
 from fivebar_drake.mechanisms.scara import Dynamics, Scara, ScaraParams, seed_inertia
 from fivebar_drake.mechanisms.scara.params import MAX_DURATION_S
 from fivebar_drake.mechanisms.scara import sizing as sz
@@ -107,7 +108,7 @@ def run(params: ScaraParams, duration_s: float | None = None, progress: bool = F
     records = []
     for i, motor in enumerate(motors):
         block = builder.AddNamedSystem(f"motor_q{i + 1}", MotorModel(
-            motor, [nq + iv[i]], nx, sim.time_step_s))
+            motor, [nq + iv[i]], nx, sim.time_step_s, sim.time_step_s))
         builder.Connect(split.get_output_port(int(iv[i])), block.get_input_port(0))
         builder.Connect(plant.get_state_output_port(), block.GetInputPort("plant_state"))
         builder.Connect(block.GetOutputPort("applied_torque"), joined.get_input_port(i))
