@@ -34,6 +34,7 @@ from dataclasses import dataclass
 from typing import ClassVar, NamedTuple, Optional
 import numpy as np
 
+from fivebar_drake.core.checks import Checks
 from fivebar_drake.core.compiled import jit, jit_uncached
 from fivebar_drake.core.validation import (MAX_GAIT_FREQUENCY_HZ, MAX_GRAVITY_M_S2,
                                            MAX_LENGTH_M, MAX_SAMPLES,
@@ -77,6 +78,30 @@ def phase_of(frequency_hz, t, phase_rad):
     return np.mod(frequency_hz * t + phase_rad / (2.0 * np.pi), 1.0)
 
 
+class Events(NamedTuple):
+    """A maneuver's planned key times (s from its start; nan: not in its plan): the push-off's
+    onset, the takeoff and the touchdown (FootPath.events)."""
+
+    onset: float = math.nan
+    takeoff: float = math.nan
+    touchdown: float = math.nan
+
+    def planned(self) -> dict[str, float]:
+        """The times the plan has, by name."""
+        return {name: t for name, t in self._asdict().items() if not math.isnan(t)}
+
+
+class Outcome(NamedTuple):
+    """What a run did, as its path's achievement sees it (FootPath.shortfalls): the mean forward
+    speed (m/s), the body's height at the end and standing (m), and a maneuver's figures
+    (simulation/maneuver_figures' dictionary; None for a gait)."""
+
+    speed_m_s: float
+    end_height_m: float
+    standing_m: float
+    maneuver: Optional[dict]
+
+
 @dataclass(frozen=True)
 class FootPath(Variant):
     """A foot path of the gait parameters (Gait): subclasses set `kind`, `point` (a compiled
@@ -87,13 +112,22 @@ class FootPath(Variant):
     point: ClassVar = None
     title: ClassVar[str] = ""          # the path in a few words, e.g. "trot foot path"
     periodic: ClassVar[bool] = True    # False: a one-shot maneuver (Maneuver)
-    goal: ClassVar[str] = "speed"      # what "achieved" means (simulation/summary.achievement)
     gait_defaults: ClassVar[dict] = {}  # gait fields (m, Hz) this path takes unless the scenario
     #                                     sets them (scenario.gait_*)
 
     def text(self, gait: Gait) -> str:
         """The path in words with its numbers (mm, m/s), for the analysis report."""
         return self.title
+
+    def shortfalls(self, gait: Gait, outcome: Outcome, checks: Checks) -> list[str]:
+        """Why a run did not do this path's motion (none if it did; core/verdicts.achievement
+        adds what every run is held to): a gait walks at least checks.achieved_speed_fraction
+        of its stance speed (none asked: nothing to miss)."""
+        asked = self.stance_speed(gait)
+        if asked > 0 and not outcome.speed_m_s >= checks.achieved_speed_fraction * asked:
+            return [f"it walked {outcome.speed_m_s:.3f} m/s, less than "
+                    f"{checks.achieved_speed_fraction:.0%} of the gait's {asked:.3f} m/s"]
+        return []
 
     def leg_phase(self, leg: str) -> float:
         """The gait phase (rad) of a quadruped leg named front/rear then left/right ("FL",
@@ -133,10 +167,9 @@ class FootPath(Variant):
         """When the path starts (s): after the scenario's standing time."""
         return stand_s
 
-    def events(self, gait: Gait) -> dict[str, float]:
-        """The plan's key times (s from the maneuver's start), e.g. onset, takeoff, touchdown;
-        none for a periodic path."""
-        return {}
+    def events(self, gait: Gait) -> Events:
+        """The plan's key times (s from the maneuver's start); none for a periodic path."""
+        return Events()
 
     def span_s(self, gait: Gait) -> float:
         """Time (s) the path takes: a period."""
@@ -477,6 +510,15 @@ class Maneuver(FootPath):
     point: ClassVar = staticmethod(maneuver_point)
     stand_first: ClassVar[bool] = True
 
+    def shortfalls(self, gait: Gait, outcome: Outcome, checks: Checks) -> list[str]:
+        """A maneuver ends standing: the body within checks.achieved_height_tolerance_m of its
+        standing height."""
+        tolerance = checks.achieved_height_tolerance_m
+        if abs(outcome.end_height_m - outcome.standing_m) <= tolerance:
+            return []
+        return [f"it ended with the body at {outcome.end_height_m * 1e3:.0f} mm, not within "
+                f"{tolerance * 1e3:g} mm of its standing height {outcome.standing_m * 1e3:.0f} mm"]
+
     def leg_phase(self, leg: str) -> float:
         return 0.0
 
@@ -567,7 +609,13 @@ class Jump(Landing):
 
     kind: ClassVar[str] = "jump"
     title: ClassVar[str] = "vertical jump"
-    goal: ClassVar[str] = "jump"
+
+    def shortfalls(self, gait: Gait, outcome: Outcome, checks: Checks) -> list[str]:
+        """A jump leaves the ground with every foot, and ends standing (Maneuver)."""
+        m = outcome.maneuver
+        grounded = [] if m is not None and m["jump"] is not None else [
+            "no foot left the ground" + (f" ({m['why_grounded']})" if m else "")]
+        return grounded + super().shortfalls(gait, outcome, checks)
     height_m: float = 0.06
     crouch_m: float = 0.06
     crouch_s: float = 0.4
@@ -605,7 +653,7 @@ class Jump(Landing):
     def events(self, gait: Gait) -> dict[str, float]:
         push, flight, _ = self.timing(gait)
         onset = self.crouch_s + self.hold_s
-        return {"onset": onset, "takeoff": onset + push, "touchdown": onset + push + flight}
+        return Events(onset=onset, takeoff=onset + push, touchdown=onset + push + flight)
 
 
 @register_path
@@ -616,7 +664,6 @@ class Drop(Landing):
 
     kind: ClassVar[str] = "drop"
     title: ClassVar[str] = "drop onto the feet"
-    goal: ClassVar[str] = "stand"
     stand_first: ClassVar[bool] = False
     height_m: float = 0.1
     extension_m: float = 0.04
@@ -632,7 +679,7 @@ class Drop(Landing):
                 + self.landing(gait, math.sqrt(2.0 * g * self.height_m)))
 
     def events(self, gait: Gait) -> dict[str, float]:
-        return {"touchdown": math.sqrt(2.0 * self.height_m / gait.gravity_m_s2)}
+        return Events(touchdown=math.sqrt(2.0 * self.height_m / gait.gravity_m_s2))
 
 
 @register_path
@@ -645,7 +692,6 @@ class StandUp(Maneuver):
 
     kind: ClassVar[str] = "stand_up"
     title: ClassVar[str] = "stand up from lying"
-    goal: ClassVar[str] = "stand"
     fold_x_m: float = 0.15
     fold_y_m: float = -0.028
     rise_s: float = 1.5

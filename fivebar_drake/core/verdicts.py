@@ -20,33 +20,20 @@ STEP_ORDER = 1   # the discrete plant's time stepping is first order in the step
 NO_STEP_CHECK_VERDICTS = ("insufficient", "not_achieved")   # the step check leaves these
 
 
-def achievement(checks: Checks, speed: float, gait_speed: float, max_tilt: float,
-                goal: str = "speed", end_height: float = math.nan,
-                standing_m: float = math.nan, maneuver: dict | None = None) -> str:
-    """Why the run did not do its motion ("" if it did), by the foot path's goal: "speed" (a
-    gait): the mean forward speed against checks.achieved_speed_fraction of the gait's; "stand"
-    (a stand-up, a drop): the body ends within checks.achieved_height_tolerance_m of its
-    standing height standing_m (m); "jump": all feet left the ground, and it ends standing;
-    a landing whose legs gave way (maneuver: maneuver_figures' dictionary, its phase_figures);
-    always the tilt against achieved_max_tilt_deg."""
-    c, why = checks, []
-    if goal == "jump" and (maneuver is None or maneuver["jump"] is None):
-        why.append("no foot left the ground" + (f" ({maneuver['why_grounded']})"
-                                                if maneuver else ""))
-    if goal in ("stand", "jump") and not abs(end_height - standing_m) <= \
-            c.achieved_height_tolerance_m:
-        why.append(f"it ended with the body at {end_height * 1e3:.0f} mm, not within "
-                   f"{c.achieved_height_tolerance_m * 1e3:g} mm of its standing height "
-                   f"{standing_m * 1e3:.0f} mm")
-    if goal == "speed" and gait_speed > 0 and not speed >= c.achieved_speed_fraction * gait_speed:
-        why.append(f"it walked {speed:.3f} m/s, less than {c.achieved_speed_fraction:.0%} of the "
-                   f"gait's {gait_speed:.3f} m/s")
+def achievement(checks: Checks, missed: list[str], max_tilt: float,
+                maneuver: dict | None = None) -> str:
+    """Why the run did not do its motion ("" if it did): what its path says it missed
+    (FootPath.shortfalls: a gait's speed, a maneuver's end pose, a jump's flight), a landing
+    whose legs gave way (maneuver: maneuver_figures' dictionary, its phase_figures), and the
+    tilt against checks.achieved_max_tilt_deg."""
+    why = list(missed)
     landing = ((maneuver or {}).get("phases") or {}).get("landing")
     if landing and landing["gives_way"]:
         why.append(f"the legs gave way at the landing: the motors were asked to brake beyond "
                    f"their braking limit for {landing['braking_beyond_limit_s'] * 1e3:.0f} ms")
-    if not max_tilt <= c.achieved_max_tilt_deg:
-        why.append(f"the body tilted {max_tilt:.1f} deg, beyond {c.achieved_max_tilt_deg:g} deg")
+    if not max_tilt <= checks.achieved_max_tilt_deg:
+        why.append(f"the body tilted {max_tilt:.1f} deg, beyond {checks.achieved_max_tilt_deg:g} "
+                   "deg")
     return "; ".join(why)
 
 

@@ -65,7 +65,7 @@ def maneuver_figures(record: SimulationRecord, start: float, steps: StepSignals)
       plans (planned: a jump's height_m, onset_s and takeoff_s, a landing's touchdown_s).
     None where the event did not happen (why_grounded says why no foot left)."""
     scenario, params, lay = record.scenario, record.params, record.layout
-    events = {k: start + v for k, v in scenario.gait.events(params.gait).items()}
+    events = {k: start + v for k, v in scenario.gait.events(params.gait).planned().items()}
     mass, g = lay.mass_kg, params.robot.gravity_m_s2
     fz, t = steps.ground_force[:, 2], steps.t
     dt = np.diff(t, prepend=t[0] - record.design.time_step_s)

@@ -20,6 +20,7 @@ import math
 
 import numpy as np
 
+from fivebar_drake.core.footpath import Outcome
 from fivebar_drake.core.summary_schema import StepCheck, Summary
 from fivebar_drake.core.verdicts import (achievement, judge, run_verdict, step_check,
                                          step_checked_verdict)
@@ -32,12 +33,8 @@ from fivebar_drake.simulation.run_statistics import (MIN_CYCLES, Window, end_hei
                                                      motion_statistics, statistics_window)
 from fivebar_drake.simulation.runner import SimulationRecord
 from fivebar_drake.simulation.signals import Signals, StepSignals
-from fivebar_drake.simulation.summary_text import (SUMMARY_FILES, answer, markdown,
-                                                   seed_analysis_load, write_summary)
+from fivebar_drake.simulation.summary_text import answer, seed_analysis_load
 
-# the summary's public face: composed here, worded and written by summary_text
-__all__ = ("summarize", "apply_step_check", "answer", "markdown", "write_summary",
-           "SUMMARY_FILES")
 MANEUVER_KEYS = ("jump", "landing", "phases", "force_capability")
 
 
@@ -55,9 +52,11 @@ def summarize(sig: Signals, record: SimulationRecord, seed_analysis: dict,
     gait_speed = scenario.gait.stance_speed(params.gait)
     maneuver = (None if scenario.gait.periodic else
                 maneuver_figures(record, window.start, steps))
+    outcome = Outcome(motion["mean_forward_speed_m_s"], end_height(sig, window),
+                      standing_height(params), maneuver)
     judge(legs, params.checks, achievement(
-        params.checks, motion["mean_forward_speed_m_s"], gait_speed, motion["max_tilt_deg"],
-        scenario.gait.goal, end_height(sig, window), standing_height(params), maneuver))
+        params.checks, scenario.gait.shortfalls(params.gait, outcome, params.checks),
+        motion["max_tilt_deg"], maneuver))
     sufficient = record.completed and window.cycles >= (MIN_CYCLES if scenario.gait.periodic
                                                         else 1)
     summary = in_schema_order({
@@ -82,7 +81,7 @@ def what_ran(record: SimulationRecord, window: Window) -> dict:
         "ran": {"gait": scenario.gait.fields(), "controller": scenario.controller.fields(),
                 "closure": scenario.closure.fields(),
                 "planned_events_s": {k: window.start + v for k, v in
-                                     scenario.gait.events(params.gait).items()}},
+                                     scenario.gait.events(params.gait).planned().items()}},
         "duration_s": t_end, "requested_duration_s": scenario.duration_s,
         "completed": record.completed, "interrupted": bool(record.interrupted),
         "error": record.error or (f"interrupted by {record.interrupted} at t = {t_end:.2f} s"

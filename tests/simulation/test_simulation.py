@@ -189,7 +189,7 @@ def test_touchdowns_keep_the_body_carried(run):
 @pytest.mark.slow
 def test_summary_text_follows_the_parameters(runs):
     """summary.md and the answer take their figures from the parameters used, none written in."""
-    from fivebar_drake.simulation.summary import answer, markdown
+    from fivebar_drake.simulation.summary_text import answer, markdown
 
     scenario, params, record, sig, summary = runs["ball"]
     other = dataclasses.replace(params, robot=dataclasses.replace(params.robot, structure_kg=2.5),
