@@ -33,7 +33,7 @@ from pydrake.systems.primitives import TrajectorySource
 from pydrake.trajectories import PiecewisePolynomial
 
 from fivebar_drake.simulation.gait_source import GaitSource
-from fivebar_drake.simulation.motor_model import MotorModel
+from fivebar_drake.simulation.motor_model import MotorStep
 from fivebar_drake.pipeline import (run_simulation, run_step_check, summarize_run,
                                     write_simulation)
 from fivebar_drake.robots.quadruped.closure import CLOSURES
@@ -52,8 +52,7 @@ print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024)
 """
 PYTHON_BLOCKS = {"gait source": (GaitSource, ("_calc",)),   # each block's Python callbacks
                  "leg controller": (systems.FootLegController, ("_update",)),
-                 "motor model": (MotorModel, ("_sample", "_calc_step", "_calc_applied",
-                                              "_calc_record", "_remember"))}
+                 "motor model": (MotorStep, ("_calc",))}
 
 
 def run_closure(closure: str, duration: float):

@@ -34,6 +34,7 @@ class GaitSource(LeafSystem):
         self.DeclareVectorOutputPort("foot_references",
                                      BasicVector(REFERENCES_PER_LEG * len(phases)),
                                      self._calc, {self.time_ticket()})
+        self.references(0.0)     # compiled now (references_kernel), not in the first tick
 
     @classmethod
     def add_to(cls, builder, gait: Gait, path: FootPath, phases, start_s: float, ramp_s: float,
