@@ -32,11 +32,14 @@ demo: $(STAMP)
 		--out $(OUT)/gear_comparison.md
 	$(BIN)/fivebar-drake sweep fivebar_drake/data/sweep_example.yaml --out $(OUT)/sweep
 	$(BIN)/fivebar-drake envelope fivebar_drake/data/envelope_demo.yaml --out $(OUT)/envelope
+	$(BIN)/fivebar-drake optimal --out $(OUT)/optimal
 	for m in ballscrew_leg scara parallel4; do \
 		$(BIN)/fivebar-drake analyze --mechanism $$m --out $(OUT)/$$m || exit 1; done
 	for r in doggo minitaur; do \
 		$(BIN)/fivebar-drake analyze --config fivebar_drake/data/$$r.toml --gait trot \
-			--out $(OUT)/robots/$$r || exit 1; done
+			--out $(OUT)/robots/$$r || exit 1; \
+		$(BIN)/fivebar-drake optimal --config fivebar_drake/data/$$r.toml \
+			--out $(OUT)/robots/$$r/optimal || exit 1; done
 
 test: $(STAMP)
 	$(BIN)/pytest
@@ -46,6 +49,7 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_simulation.py
 	$(BIN)/python benchmarks/bench_sweep.py
 	$(BIN)/python benchmarks/bench_envelope.py
+	$(BIN)/python benchmarks/bench_optimal.py
 
 # the picture of a recording in the README: the Rerun web viewer, served locally, in headless
 # Chromium (Debian: apt-get install chromium)

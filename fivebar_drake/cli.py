@@ -7,6 +7,8 @@
                          [--closure {bushing,bushing_rpy,ball}] [--step-check] [--out DIR]
   fivebar-drake sweep    SPEC.yaml [--out DIR] [--workers N] [--scheduler ADDRESS]
   fivebar-drake envelope [SPEC.yaml] [--out DIR] [--workers N] [--scheduler ADDRESS]
+  fivebar-drake optimal  [--config FILE] [--set FIELD=VALUE ...] [--height M] [--payload KG]
+                         [--out DIR]
   fivebar-drake compare  RUN_DIR [RUN_DIR ...] [--out FILE]
   fivebar-drake models   [--scenario FILE] [--config FILE] [--out DIR]"""
 
@@ -215,6 +217,38 @@ def _envelope(args, signals) -> int:
     return 0
 
 
+def _optimal(args, signals) -> int:
+    """What the legs allow for any controller (optimal/jump_report.py): every input checked
+    first (exit 2); exit 1 when the jump asked for is beyond the motors."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from fivebar_drake.core.validation import MAX_MASS_KG, check_number
+    from fivebar_drake.optimal.jump_report import OPTIMAL_FILES, write
+    from fivebar_drake.robots.quadruped.config import load_params
+    from fivebar_drake.studies.fivebar_leg import with_sets
+
+    params = with_sets(load_params(args.config), args.sets)
+    for flag, value, high in (("--height", args.height, 10.0), ("--payload", args.payload,
+                                                                 MAX_MASS_KG)):
+        if value is not None:
+            try:
+                check_number(flag, value, 0.0, high, low_open=flag == "--height")
+            except ParameterError as err:
+                raise err.located("command line") from None
+    out = prepare_output_dir(args.out or "out/optimal", "--out", OPTIMAL_FILES)
+    start = time.perf_counter()
+    result, files = write(params, out, args.height, args.payload or 0.0)
+    say(result["answer"])
+    say(f"wrote {len(files)} files to {out.resolve()} in {time.perf_counter() - start:.1f} s:")
+    for path in files:
+        say(f"  {path}")
+    if result["ceiling"] is None or result["floor"] is None:
+        _err(result["ceiling_why_none"] or result["floor_why_none"])
+        return 1
+    return 0
+
+
 def _compare(args, signals) -> int:
     import matplotlib
 
@@ -327,6 +361,17 @@ def parser() -> argparse.ArgumentParser:
     e.add_argument("--workers", **workers)
     e.add_argument("--scheduler", metavar="ADDRESS", help="run the maneuvers on this Dask "
                    "scheduler (tcp://HOST:PORT) instead of a local cluster")
+    o = command("optimal", _optimal, "what the legs and motors allow for any controller: the "
+                "highest vertical jump (beside a bound by another method) and the least peak "
+                "motor torque of the jump maneuver to a height (5-bar quadruped)")
+    o.add_argument("--config", **config)
+    o.add_argument("--set", **sets)
+    o.add_argument("--height", type=float, metavar="M", help="the jump maneuver's height "
+                   "above standing (m; default: the jump maneuver's, 0.06)")
+    o.add_argument("--payload", type=float, metavar="KG", help="mass added to the body (kg; "
+                   "default 0)")
+    o.add_argument("--out", metavar="DIR", help="output folder: optimal.md, optimal.json, "
+                   "optimal_jump.png (default: out/optimal)")
     c = command("compare", _compare, "simulated runs side by side: each motor's verdict and torques (what a foot path or a design costs)")
     c.add_argument("runs", nargs="+", metavar="RUN_DIR", help="output folders of `simulate` runs")
     c.add_argument("--out", default="out/gait_comparison.md", metavar="FILE",

@@ -1,0 +1,74 @@
+"""Optimal-maneuver benchmark: the vertical jump's ceiling and floor (optimal/vertical_jump.py)
+of the default robot on one core, warm (each computed once before timing), the median of
+--repeats; and the linear program's solve (Drake MathematicalProgram) for the same floor. Prints
+a table, then one JSON object: ceiling_s, floor_s, lp_s, lp_solver, bisection_steps."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import statistics
+import time
+
+from fivebar_drake.core.footpath import Jump as JumpPath
+from fivebar_drake.optimal import vertical_jump as vj
+from fivebar_drake.robots.quadruped.config import load_params
+
+
+def timed(function, repeats: int) -> tuple[float, object]:
+    """(median seconds, the last result) of function() over repeats calls."""
+    times, result = [], None
+    for _ in range(repeats):
+        start = time.perf_counter()
+        result = function()
+        times.append(time.perf_counter() - start)
+    return statistics.median(times), result
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--repeats", type=int, default=5)
+    args = parser.parse_args()
+    params, plan = load_params(None), JumpPath()
+    standing = -params.gait.y_home_m
+    u0, u1 = vj.reach(params)
+
+    def ceiling():
+        return vj.push(vj.stroke(params, u0, u1), standing)
+
+    def maneuver():
+        return vj.stroke(params, standing - plan.crouch_m, standing + plan.extension_m)
+
+    def floor():
+        return vj.torque_floor(maneuver(), standing, plan.height_m)
+
+    steps = 0
+    original = vj.push
+
+    def counting(*a, **k):
+        nonlocal steps
+        steps += 1
+        return original(*a, **k)
+
+    ceiling(), floor()                                   # warm: compiled kernels loaded
+    ceiling_s, jump = timed(ceiling, args.repeats)
+    floor_s, (peak, _) = timed(floor, args.repeats)
+    vj.push = counting
+    floor()
+    vj.push = original
+    stroke = maneuver()
+    lp_s, (lp_peak, solver) = timed(lambda: vj.box_floor_lp(stroke, standing, plan.height_m),
+                                    args.repeats)
+    print(f"vertical jump, default robot, {vj.GRID_POINTS} nodes, median of {args.repeats}:")
+    print(f"  ceiling (highest jump, {jump.com_rise_from_standing_m * 1e3:.1f} mm): "
+          f"{ceiling_s * 1e3:.0f} ms")
+    print(f"  floor of the {plan.height_m * 1e3:.0f} mm jump ({peak:.3f} N m, {steps} pushes "
+          f"by bisection): {floor_s * 1e3:.0f} ms   (target <= 10 s)")
+    print(f"  torque-box floor, Drake linear program ({lp_peak:.3f} N m, {solver}): "
+          f"{lp_s * 1e3:.0f} ms")
+    print(json.dumps({"ceiling_s": ceiling_s, "floor_s": floor_s, "lp_s": lp_s,
+                      "lp_solver": solver, "bisection_steps": steps}))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,190 @@
+"""The vertical jump's ceiling and floor for one design (vertical_jump.py), as optimal.json,
+optimal.md and optimal_jump.png: the answer first, then the figures beside the bound."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+
+from fivebar_drake.core.files import json_ready, save_figure, write_atomic
+from fivebar_drake.core.footpath import Jump as JumpPath
+from fivebar_drake.core.validation import ParameterError, check_number
+from fivebar_drake.mechanisms.fivebar import MOTORS
+from fivebar_drake.optimal.vertical_jump import (Jump, point_mass_bound, push, reach, stroke,
+                                                 torque_floor)
+from fivebar_drake.robots.quadruped.params import Params
+
+OPTIMAL_FILES = ("optimal_jump.png", "optimal.md", "optimal.json")   # the JSON last: complete
+REPRODUCED = 0.15   # a published jump figure is reproduced within this relative difference: the
+#                     presets' own numbers (masses, currents) are estimates to about this
+
+
+def published_jump(params: Params, ceiling: dict | None) -> list[dict]:
+    """The parameter file's published jump figures ([published]: vertical_jump_height_m,
+    vertical_jumping_agility_m_s) beside the ceiling's: the height read both ways (the centre
+    of mass's rise from the crouch, Haldane's and Kau's definition, and from standing; the
+    source's own definition is quoted), reproduced when the crouch reading (the agility) is
+    within REPRODUCED of the value."""
+    rows = []
+    for name, key in (("vertical_jump_height_m", "com_rise_from_crouch_m"),
+                      ("vertical_jumping_agility_m_s", "agility_m_s")):
+        entry = params.published.get(name)
+        if entry is None or ceiling is None:
+            continue
+        ours = ceiling[key]
+        row = {"name": name, "value": entry.value, "source": entry.source,
+               "definition": entry.definition, "computed": ours,
+               "ratio": ours / entry.value, "reproduced": abs(ours / entry.value - 1) <= REPRODUCED}
+        if name == "vertical_jump_height_m":
+            row["computed_from_standing"] = ceiling["com_rise_from_standing_m"]
+        rows.append(row)
+    return rows
+
+
+def _jump_figures(j: Jump, motor) -> dict:
+    """A jump's figures (SI) and each motor's peak delivered torque, speed and share of the
+    envelope's torque at its speed (the most used point)."""
+    upper, lower = motor.limits(j.speed_rad_s)
+    bound = np.where(j.delivered_Nm >= 0.0, upper, -lower)
+    share = np.abs(j.delivered_Nm) / np.maximum(bound, 1e-12)
+    return {
+        "takeoff_speed_m_s": j.v_com,
+        "com_rise_from_standing_m": j.com_rise_from_standing_m,
+        "com_rise_from_crouch_m": j.com_rise_from_crouch_m,
+        "body_apex_above_standing_m": j.body_apex_above_standing_m,
+        "crouch_hip_height_m": float(j.stroke.u[0]),
+        "takeoff_hip_height_m": float(j.stroke.u[j.takeoff]),
+        "stance_s": j.stance_s, "to_apex_s": j.to_apex_s, "agility_m_s": j.agility_m_s,
+        "motors": {m: {"peak_torque_Nm": float(np.abs(j.delivered_Nm[:, i]).max()),
+                       "peak_speed_rad_s": float(np.abs(j.speed_rad_s[:, i]).max()),
+                       "largest_share_of_envelope": float(share[:, i].max())}
+                   for i, m in enumerate(MOTORS)}}
+
+
+def jump_limits(params: Params, height_m: float | None = None,
+                payload_kg: float = 0.0) -> tuple[dict, dict[str, Jump]]:
+    """The design's vertical jump, for any controller: the ceiling (the highest jump over the
+    leg's whole reach within [limits]) beside a bound by another method, and the floor (the
+    least peak motor torque) of the packaged jump maneuver's stroke (crouch and extension of
+    core.footpath.Jump) to height_m above standing (default the maneuver's), or why it is
+    beyond the motors. Returns (the figures, JSON-ready; the jumps by name)."""
+    plan = JumpPath()
+    height = plan.height_m if height_m is None else check_number("--height", height_m, 0.0,
+                                                                  low_open=True)
+    standing = -params.gait.y_home_m
+    u0, u1 = reach(params)
+    ceiling = push(stroke(params, u0, u1, payload_kg), standing)
+    bound_speed, bound_rise = point_mass_bound(params, u0, u1, standing, payload_kg)
+    result = {
+        "model": "one leg of a symmetric vertical jump: a quarter of the robot on the leg's "
+                 "exact 5-bar dynamics (links and reflected rotor inertia), foot fixed, motors "
+                 "within their envelope at their speeds, friction cone (optimal/vertical_jump.py)",
+        "quarter_mass_kg": float((params.robot.total_mass_kg + payload_kg) / params.robot.legs),
+        "payload_kg": payload_kg,
+        "ceiling": None if ceiling is None else _jump_figures(ceiling, params.motor),
+        "ceiling_why_none": "" if ceiling else "the motors cannot lift the crouched robot",
+        "bound": {"takeoff_speed_m_s": bound_speed, "hip_apex_above_standing_m": bound_rise,
+                  "method": "point mass at the hip on a massless leg, the envelope through "
+                            "J_F^T, energy over the same stroke"},
+        "floor": None, "floor_why_none": ""}
+    jumps = {"ceiling": ceiling}
+    crouch, extension = plan.crouch_m, plan.extension_m
+    try:
+        peak, jumps["floor"] = torque_floor(stroke(params, standing - crouch, standing + extension,
+                                         payload_kg), standing, height)
+        result["floor"] = {"height_m": height, "crouch_m": crouch, "extension_m": extension,
+                           "least_peak_torque_Nm": peak,
+                           **_jump_figures(jumps["floor"], params.motor)}
+    except ParameterError as err:
+        result["floor_why_none"] = err.message
+    result["published"] = published_jump(params, result["ceiling"])
+    result["answer"] = answer(result, params)
+    return result, jumps
+
+
+def answer(r: dict, params: Params) -> str:
+    """The result in two sentences: how high the legs can jump, what the packaged jump needs."""
+    c = r["ceiling"]
+    first = ("The motors cannot lift the crouched robot: no jump." if c is None else
+             f"The legs and motors allow a vertical jump of {c['com_rise_from_standing_m'] * 1e3:.0f}"
+             f" mm above standing ({c['com_rise_from_crouch_m'] * 1e3:.0f} mm from the crouch, "
+             f"takeoff at {c['takeoff_speed_m_s']:.2f} m/s, agility "
+             f"{c['agility_m_s']:.2f} m/s), for any controller; a point mass on massless legs "
+             f"with the same motors would reach {r['bound']['hip_apex_above_standing_m'] * 1e3:.0f}"
+             f" mm.")
+    f = r["floor"]
+    second = (f" The jump maneuver: {r['floor_why_none']}." if f is None else
+              f" The jump maneuver to {f['height_m'] * 1e3:.0f} mm needs at least "
+              f"{f['least_peak_torque_Nm']:.2f} N·m at its peak (motor A "
+              f"{f['motors']['A']['peak_torque_Nm']:.2f}, B {f['motors']['B']['peak_torque_Nm']:.2f}"
+              f" N·m) whatever the controller; the motors give "
+              f"{params.motor.peak_torque_Nm:.2f} N·m.")
+    return first + second
+
+
+def markdown(r: dict) -> str:
+    """optimal.md: the answer, then a table per jump."""
+    lines = ["# What the legs allow: the vertical jump", "", r["answer"], "",
+             f"Model: {r['model']}. Quarter mass {r['quarter_mass_kg']:.3f} kg.", ""]
+    rows = [("ceiling (highest jump)", r["ceiling"]), ("floor (jump maneuver)", r["floor"])]
+    lines += ["| | COM above standing (mm) | from crouch (mm) | takeoff (m/s) | stance (s) | "
+              "agility (m/s) | A peak (N·m) | B peak (N·m) |", "|---|---|---|---|---|---|---|---|"]
+    for name, j in rows:
+        if j is None:
+            continue
+        lines.append(f"| {name} | {j['com_rise_from_standing_m'] * 1e3:.1f} | "
+                     f"{j['com_rise_from_crouch_m'] * 1e3:.1f} | {j['takeoff_speed_m_s']:.3f} | "
+                     f"{j['stance_s']:.3f} | {j['agility_m_s']:.2f} | "
+                     f"{j['motors']['A']['peak_torque_Nm']:.2f} | "
+                     f"{j['motors']['B']['peak_torque_Nm']:.2f} |")
+    b = r["bound"]
+    lines += ["", f"Bound ({b['method']}): takeoff {b['takeoff_speed_m_s']:.3f} m/s, hip apex "
+              f"{b['hip_apex_above_standing_m'] * 1e3:.1f} mm above standing."]
+    if r["floor_why_none"]:
+        lines += ["", f"Floor: none — {r['floor_why_none']}."]
+    if r["published"]:
+        lines += ["", "## Published figures", "",
+                  "| figure | published | computed (the ceiling) | ratio | reproduced | "
+                  "the source's definition |", "|---|---|---|---|---|---|"]
+        for p in r["published"]:
+            extra = (f" from the crouch ({p['computed_from_standing']:.3f} from standing)"
+                     if "computed_from_standing" in p else "")
+            lines.append(f"| {p['name']} | {p['value']:g} | {p['computed']:.3f}{extra} | "
+                         f"{p['ratio']:.2f} | {'yes' if p['reproduced'] else 'no'} | "
+                         f"{p['definition']} |")
+    return "\n".join(lines) + "\n"
+
+
+def plot(jumps: dict, params: Params, path: Path) -> Path:
+    """Each motor's delivered torque against its speed along the ceiling's and the floor's
+    jumps, over the envelope (both quadrants)."""
+    import matplotlib.pyplot as plt
+
+    motor = params.motor
+    speed = np.linspace(-1.2, 1.2, 241) * motor.no_load_speed_rad_s
+    upper, lower = motor.limits(speed)
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4), sharey=True, constrained_layout=True)
+    for i, (ax, name) in enumerate(zip(axes, MOTORS)):
+        ax.fill_between(speed, lower, upper, color="0.92", label="envelope")
+        for label, j in jumps.items():
+            if j is not None:
+                ax.plot(j.speed_rad_s[:, i], j.delivered_Nm[:, i], label=label)
+        ax.set_title(f"motor {name}")
+        ax.set_xlabel("joint speed (rad/s)")
+        ax.axhline(0.0, color="0.6", lw=0.5)
+    axes[0].set_ylabel("delivered torque (N·m)")
+    axes[0].legend(loc="lower left", fontsize=8)
+    fig.suptitle("Optimal vertical jumps against the actuator's envelope")
+    return save_figure(fig, path)
+
+
+def write(params: Params, out: Path, height_m: float | None = None,
+          payload_kg: float = 0.0) -> tuple[dict, list[Path]]:
+    """Compute jump_limits and write OPTIMAL_FILES into out; (result, paths)."""
+    result, jumps = jump_limits(params, height_m, payload_kg)
+    files = [plot(jumps, params, out / "optimal_jump.png"),
+             write_atomic(out / "optimal.md", markdown(result)),
+             write_atomic(out / "optimal.json", json.dumps(json_ready(result), indent=2))]
+    return result, files

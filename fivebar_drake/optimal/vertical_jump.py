@@ -1,0 +1,316 @@
+"""The vertical jump as an optimal-control problem of one leg: the highest jump the legs and
+motors allow (the ceiling) and the least peak motor torque that reaches a height (the floor),
+for any controller.
+
+Model. A vertical jump of all four legs in phase is symmetric: each leg carries a quarter of
+the robot (m_q: a quarter of the body and payload plus its own links), the body does not pitch
+or roll (its centre of mass between the hips), and the leg's foot stays where it stands (no
+slip). One degree of freedom remains: the hip's height u above the foot point (u = -y of the
+foot in the leg plane, x = x_center). Along it the package's own closed-form IK (knees out,
+[limits] held) gives q(u), q'(u) = J_F^-1 (0, -1) and q''(u) (second-order differences on a
+fine grid). With the hip's speed w = u' and acceleration b = u'' (x = w^2):
+
+    tau = (M(q) + N^2 J_rotor) q'' + c(q, q') + G(q) (1 + b/g) - J_F^T F
+
+with q' = q_u w, q'' = q_u b + q_uu x (the links' and the rotors' inertia and the links' weight
+in the hip's accelerating frame, the package's own M, c, G) and the ground force from Newton's
+law on the quarter robot: F_y = m_q (g + b) + Y_uu x + Y_u b, F_x = X_uu x + X_u b, X, Y the
+links' first moments about the hip (the body does not move sideways: the links' horizontal
+motion is all the foot must push). So tau = alpha b + beta x + gamma, affine in (b, x), as are
+F_x and F_y. What is neglected: the body's pitch (the centre of mass is between the hips), the
+foot's rolling (a point foot), the contact's compliance (rigid ground) and the bushing's gap.
+
+Each motor's delivered torque tau + friction(omega), omega = q_u w, must lie within the
+actuator's envelope at omega (both quadrants, Motor.limits) and, for the floor, within +-T;
+the foot stays on the ground (F_y >= 0) inside the friction cone (|F_x| <= mu F_y).
+
+The ceiling: in the phase plane x(u) the acceleration bound b <= b_max(u, x) holds for every
+admissible motion, so integrating x' = 2 b_max(u, x) from rest gives the largest speed at every
+u (the comparison lemma): the highest jump takes off where its centre of mass's apex, z_com +
+v_com^2 / 2g, is highest. The floor of a jump to a height: the least T whose ceiling reaches
+it (bisection; the ceiling grows with T). A linear program over the same grid (Drake's
+MathematicalProgram: tau linear in x and x') gives the floor within the torque box alone, a
+second method for the same number where the envelope does not bind.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from fivebar_drake.core.motor import Motor
+from fivebar_drake.core.validation import ParameterError
+from fivebar_drake.mechanisms.fivebar import (KNEES_OUT, LINK_NAMES, held_force, limit_tests,
+                                              link_coms, past_any)
+from fivebar_drake.robots.quadruped.leg_loads import full_model
+from fivebar_drake.robots.quadruped.params import Params
+
+GRID_POINTS = 1500        # nodes along the stroke: the ceiling changes by < 0.1 mm from 750
+FLOOR_TOLERANCE_NM = 1e-3  # the floor's bisection stops within this of the least torque
+MARGIN_M = 1e-3           # the stroke stays this far inside the leg's limits
+
+
+@dataclass(frozen=True)
+class Stroke:
+    """The leg along a vertical push, on a grid of the hip's height u (n,) above the foot point
+    (m): joint angles q (n, 2) rad and dq/du (n, 2) rad/m; tau = alpha b + beta x + gamma
+    (n, 2) N*m with b = u'' (m/s^2), x = u'^2 (m^2/s^2); the ground force F_x = fx @ (b, x),
+    F_y = fy @ (b, x, 1) (n, 2) and (n, 3) N; the quarter robot's centre of mass above the hip
+    com_m (n,) and its rate com_u (n,) (d com / du); the quarter mass m_q (kg), gravity g, the
+    foot's friction mu and the motor."""
+
+    u: np.ndarray
+    q: np.ndarray
+    dq: np.ndarray
+    alpha: np.ndarray
+    beta: np.ndarray
+    gamma: np.ndarray
+    fx: np.ndarray
+    fy: np.ndarray
+    com_m: np.ndarray
+    com_u: np.ndarray
+    m_q: float
+    g: float
+    mu: float
+    motor: Motor
+
+
+def quarter_mass_kg(params: Params, payload_kg: float = 0.0) -> float:
+    """A quarter of the robot with its payload (kg): the robot's total mass holds the legs."""
+    return (params.robot.total_mass_kg + payload_kg) / params.robot.legs
+
+
+def reach(params: Params) -> tuple[float, float]:
+    """The hip heights (m) above the foot point (x_center below the hip) the leg reaches within
+    its [limits] and its IK, MARGIN_M inside: (deepest crouch, fullest extension)."""
+    leg = params.fivebar_leg
+    u = np.linspace(0.01, leg.geometry.ce_m + leg.geometry.ac_m + leg.geometry.ef_m, 4001)
+    feet = np.stack([np.full_like(u, params.gait.x_center_m), -u], -1)
+    pose = leg.inverse(feet, KNEES_OUT, strict=False)
+    ok = np.isfinite(pose.q).all(-1) & ~past_any(limit_tests(params.leg, pose), u.shape)
+    if not ok.any():
+        raise ParameterError("no hip height puts the foot under the hip within [limits]",
+                             "limits", "parameter file")
+    inside = u[ok]
+    return float(inside.min() + MARGIN_M), float(inside.max() - MARGIN_M)
+
+
+def stroke(params: Params, u0: float, u1: float, payload_kg: float = 0.0,
+           points: int = GRID_POINTS) -> Stroke:
+    """The Stroke from hip height u0 to u1 (m above the foot point)."""
+    leg, g = params.fivebar_leg, params.robot.gravity_m_s2
+    u = np.linspace(u0, u1, points)
+    feet = np.stack([np.full_like(u, params.gait.x_center_m), -u], -1)
+    pose = leg.inverse(feet, KNEES_OUT)
+    jf = leg.tool_jacobian(pose)                                   # (n, 2, 2)
+    dq = np.linalg.solve(jf, np.broadcast_to([0.0, -1.0], u.shape + (2,))[..., None])[..., 0]
+    ddq = np.gradient(dq, u, axis=0, edge_order=2)
+    inertia = leg.mass_matrix(pose) + params.motor.reflected_inertia_kg_m2 * np.eye(2)
+    coriolis = leg.bias_torques(pose, dq)                          # c(q, q_u), times x
+    model = full_model(params)
+    weight = leg.static_torques(
+        type(model)(**{**model.__dict__, "foot_load_N": 0.0}), pose)   # G(q), links alone
+    masses = np.array([params.links[n].mass_kg for n in LINK_NAMES])
+    moments = np.einsum("l,nlk->nk", masses, link_coms(params.leg, params.links, pose))
+    m_u = np.gradient(moments, u, axis=0, edge_order=2)            # (X_u, Y_u)
+    m_uu = np.gradient(m_u, u, axis=0, edge_order=2)
+    m_q = quarter_mass_kg(params, payload_kg)
+    fx = np.stack([m_u[:, 0], m_uu[:, 0]], -1)
+    fy = np.stack([m_q + m_u[:, 1], m_uu[:, 1], np.full_like(u, m_q * g)], -1)
+    jt = np.swapaxes(jf, -1, -2)                                   # J_F^T
+
+    def push(f):                                                   # J_F^T (F_x, F_y)
+        return np.einsum("nij,nj->ni", jt, f)
+
+    alpha = (np.einsum("nij,nj->ni", inertia, dq) + weight / g
+             - push(np.stack([fx[:, 0], fy[:, 0]], -1)))
+    beta = (np.einsum("nij,nj->ni", inertia, ddq) + coriolis
+            - push(np.stack([fx[:, 1], fy[:, 1]], -1)))
+    gamma = weight - push(np.stack([np.zeros_like(u), fy[:, 2]], -1))
+    com = moments[:, 1] / m_q                  # the links' part; the body's is at the hip
+    return Stroke(u, pose.q, dq, alpha, beta, gamma, fx, fy, com, m_u[:, 1] / m_q, m_q, g,
+                  params.body.foot_friction, params.motor)
+
+
+def acceleration_bounds(s: Stroke, k: int, x: float, peak_Nm: float = math.inf):
+    """(least, largest) hip acceleration b (m/s^2) at node k and x = u'^2: every motor's
+    delivered torque within its envelope at its speed and within +-peak_Nm, the foot on the
+    ground inside its friction cone."""
+    w = math.sqrt(max(x, 0.0))
+    omega = s.dq[k] * w
+    upper, lower = s.motor.limits(omega)
+    friction = s.motor.friction(omega)
+    rows = []                                   # c1 b <= c0
+    for i in range(2):
+        rest = s.beta[k, i] * x + s.gamma[k, i] + friction[i]
+        rows.append((s.alpha[k, i], min(upper[i], peak_Nm) - rest))
+        rows.append((-s.alpha[k, i], rest - max(lower[i], -peak_Nm)))
+    fy_b, fy0 = s.fy[k, 0], s.fy[k, 1] * x + s.fy[k, 2]
+    fx_b, fx0 = s.fx[k, 0], s.fx[k, 1] * x
+    rows.append((-fy_b, fy0))                                        # F_y >= 0
+    rows.append((fx_b - s.mu * fy_b, s.mu * fy0 - fx0))              # F_x <= mu F_y
+    rows.append((-fx_b - s.mu * fy_b, s.mu * fy0 + fx0))             # -F_x <= mu F_y
+    low, high = -math.inf, math.inf
+    for c1, c0 in rows:
+        if c1 > 0:
+            high = min(high, c0 / c1)
+        elif c1 < 0:
+            low = max(low, c0 / c1)
+        elif c0 < 0:
+            return math.inf, -math.inf                               # infeasible at any b
+    return low, high
+
+
+@dataclass(frozen=True)
+class Jump:
+    """A vertical jump along a Stroke, pushed at the largest acceleration allowed: the nodes up
+    to takeoff (node `takeoff`), the hip's speed w (m/s), acceleration b (m/s^2, over the cell
+    from each node) and time (s) at each; over each cell before takeoff the motors' torques
+    (cells, 2) N*m (joint) and delivered (with friction) at their speeds (cells, 2) rad/s; at takeoff the centre of mass's speed (m/s) and its apex above the crouch,
+    above standing (m); the apex of the body (the hip) above standing with the legs held at the
+    takeoff pose; the stance time and time to apex (s); which constraint bound the push most
+    (per node: "A"/"B" a motor, "friction", "ground")."""
+
+    stroke: Stroke
+    takeoff: int
+    w: np.ndarray
+    b: np.ndarray
+    t: np.ndarray
+    torque_Nm: np.ndarray
+    delivered_Nm: np.ndarray
+    speed_rad_s: np.ndarray
+    v_com: float
+    com_rise_from_crouch_m: float
+    com_rise_from_standing_m: float
+    body_apex_above_standing_m: float
+    stance_s: float
+    to_apex_s: float
+
+    @property
+    def agility_m_s(self) -> float:
+        """Vertical jumping agility (Haldane et al. 2016): the rise of the centre of mass from
+        the crouch to the apex over the stance time plus the time to apex."""
+        return self.com_rise_from_crouch_m / (self.stance_s + self.to_apex_s)
+
+
+def push(s: Stroke, standing_u: float, peak_Nm: float = math.inf) -> Jump | None:
+    """The highest jump along the stroke (module docstring), torques within +-peak_Nm too;
+    None if the motors cannot start it from rest at the crouch."""
+    n = s.u.size
+    x, b = np.zeros(n), np.zeros(n)
+    for k in range(n - 1):
+        low, high = acceleration_bounds(s, k, x[k], peak_Nm)
+        if not high >= low or (k == 0 and high <= 0.0):      # no admissible push from here
+            if k == 0:
+                return None
+            x, b = x[:k + 1], b[:k + 1]
+            break
+        b[k] = high
+        x[k + 1] = max(x[k] + 2.0 * high * (s.u[k + 1] - s.u[k]), 0.0)
+        if x[k + 1] == 0.0:
+            x, b = x[:k + 2], b[:k + 2]
+            break
+    w = np.sqrt(x)
+    v_com = w * (1.0 + s.com_u[:w.size])
+    z_com = s.u[:w.size] + s.com_m[:w.size]
+    apex = z_com + v_com**2 / (2.0 * s.g)
+    k = int(np.argmax(apex))
+    if k == 0:
+        return None
+    dt = np.diff(s.u[:k + 1]) * 2.0 / np.maximum(w[:k] + w[1:k + 1], 1e-12)
+    t = np.concatenate([[0.0], np.cumsum(dt)])
+    omega = s.dq[:k] * w[:k, None]          # each cell's push, from its first node
+    tau = s.alpha[:k] * b[:k, None] + s.beta[:k] * x[:k, None] + s.gamma[:k]
+    com_stand = standing_u + float(np.interp(standing_u, s.u, s.com_m))
+    return Jump(s, k, w[:k + 1], b[:k + 1], t, tau, tau + s.motor.friction(omega), omega,
+                float(v_com[k]), float(apex[k] - z_com[0]), float(apex[k] - com_stand),
+                float(apex[k] - s.com_m[k] - standing_u), float(t[-1]), float(v_com[k] / s.g))
+
+
+def point_mass_bound(params: Params, u0: float, u1: float, standing_u: float,
+                     payload_kg: float = 0.0, points: int = GRID_POINTS) -> tuple[float, float]:
+    """An upper bound, by another method, on the jump from hip height u0 (at rest) to u1: the
+    quarter robot as a point at the hip on a massless, frictionless leg, pushed at every hip
+    height and speed by the largest vertical foot force the motors hold there (their envelope
+    at the joint speeds the hip's speed takes, through J_F^T: held_force), integrated over the
+    stroke (the comparison lemma again: no motion of this model is faster). The links' inertia
+    and weight, the motors' friction and the friction cone only take from the real jump.
+    Returns (the largest takeoff speed m/s, the largest apex of the hip above standing m)."""
+    leg, g, motor = params.fivebar_leg, params.robot.gravity_m_s2, params.motor
+    u = np.linspace(u0, u1, points)
+    pose = leg.inverse(np.stack([np.full_like(u, params.gait.x_center_m), -u], -1), KNEES_OUT)
+    jf = leg.tool_jacobian(pose)
+    rates = np.linalg.solve(jf, np.broadcast_to([0.0, -1.0], u.shape + (2,))[..., None])[..., 0]
+    m = quarter_mass_kg(params, payload_kg)
+    x = np.zeros(points)
+    for k in range(points - 1):
+        upper, lower = motor.limits(rates[k] * math.sqrt(x[k]))
+        force = float(held_force(jf[k], upper, lower, np.array([0.0, 1.0])))
+        x[k + 1] = max(x[k] + 2.0 * (force / m - g) * (u[k + 1] - u[k]), 0.0)
+        if x[k + 1] == 0.0:
+            break
+    apex = u + x / (2.0 * g)
+    return float(np.sqrt(x.max())), float(apex.max() - standing_u)
+
+
+def torque_floor(s: Stroke, standing_u: float, rise_m: float) -> tuple[float, Jump]:
+    """The least peak motor torque (N*m, delivered) with which the stroke's highest jump
+    raises the centre of mass rise_m above standing, within the envelope too, and that jump
+    (bisection to FLOOR_TOLERANCE_NM). ParameterError naming the ceiling if no torque the
+    motors have reaches it."""
+    best = push(s, standing_u)
+    if best is None or best.com_rise_from_standing_m < rise_m:
+        reached = "none" if best is None else f"{best.com_rise_from_standing_m * 1e3:.1f} mm"
+        raise ParameterError(f"{rise_m * 1e3:.1f} mm above standing: beyond what the motors "
+                             f"allow on this stroke (the highest jump rises {reached})",
+                             "height_m")
+    low, high, found = 0.0, float(np.abs(best.delivered_Nm).max()), best
+    while high - low > FLOOR_TOLERANCE_NM:
+        mid = 0.5 * (low + high)
+        jump = push(s, standing_u, mid)
+        if jump is not None and jump.com_rise_from_standing_m >= rise_m:
+            high, found = mid, jump
+        else:
+            low = mid
+    return high, found
+
+
+def box_floor_lp(s: Stroke, standing_u: float, rise_m: float) -> tuple[float, str]:
+    """(The least peak joint torque (N*m), the solver that found it) of a jump along the whole stroke (taking off at its
+    end) that raises the centre of mass rise_m above standing, within the torque box alone (no
+    friction, no speed limit), with the foot on the ground inside its friction cone: a linear
+    program in x = u'^2 over the grid (Drake's MathematicalProgram; tau is linear in x and
+    x'). A second method: where the envelope does not bind, torque_floor's jump taking off at
+    the stroke's end has the same floor."""
+    from pydrake.solvers import MathematicalProgram, Solve
+
+    n = s.u.size
+    prog = MathematicalProgram()
+    x = prog.NewContinuousVariables(n, "x")
+    peak = prog.NewContinuousVariables(1, "peak")[0]
+    prog.AddBoundingBoxConstraint(0.0, 0.0, x[0])
+    prog.AddBoundingBoxConstraint(0.0, np.inf, x)
+    du = np.diff(s.u)
+    for k in range(n - 1):
+        b = (x[k + 1] - x[k]) / (2.0 * du[k])
+        for i in range(2):
+            tau = s.alpha[k, i] * b + s.beta[k, i] * x[k] + s.gamma[k, i]
+            prog.AddLinearConstraint(tau <= peak)
+            prog.AddLinearConstraint(tau >= -peak)
+        fy = s.fy[k, 0] * b + s.fy[k, 1] * x[k] + s.fy[k, 2]
+        fx = s.fx[k, 0] * b + s.fx[k, 1] * x[k]
+        prog.AddLinearConstraint(fy >= 0.0)
+        prog.AddLinearConstraint(fx <= s.mu * fy)
+        prog.AddLinearConstraint(-fx <= s.mu * fy)
+    # apex of the centre of mass at takeoff (the last node): z_com + (w (1 + com_u))^2 / 2g
+    need = standing_u + float(np.interp(standing_u, s.u, s.com_m)) + rise_m - (s.u[-1]
+                                                                             + s.com_m[-1])
+    prog.AddLinearConstraint(x[-1] * (1.0 + s.com_u[-1]) ** 2 / (2.0 * s.g) >= need)
+    prog.AddLinearCost(peak)
+    result = Solve(prog)
+    if not result.is_success():
+        raise RuntimeError(f"the linear program failed: {result.get_solution_result()} "
+                           f"({result.get_solver_id().name()})")
+    return float(result.GetSolution(peak)), result.get_solver_id().name()

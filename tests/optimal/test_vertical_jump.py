@@ -1,0 +1,133 @@
+"""The vertical jump's ceiling and floor (optimal/vertical_jump.py) held against other methods:
+a point-mass bound, the energy the motors put in, Drake's linear program, the simulated jump,
+and the way a floor moves with the design."""
+
+import json
+
+import numpy as np
+import pytest
+
+from fivebar_drake.cli import main
+from fivebar_drake.core.footpath import Jump as JumpPath
+from fivebar_drake.core.validation import ParameterError
+from fivebar_drake.mechanisms.fivebar import LINK_NAMES, link_jacobians, physical_izz
+from fivebar_drake.optimal.vertical_jump import (box_floor_lp, point_mass_bound, push,
+                                                 quarter_mass_kg, reach, stroke, torque_floor)
+from fivebar_drake.pipeline import run_simulation, summarize_run
+from fivebar_drake.robots.quadruped.config import load_params, with_changes
+from fivebar_drake.simulation.scenario import load_scenario
+
+PLAN = JumpPath()
+
+
+@pytest.fixture(scope="module")
+def params():
+    return load_params(None)
+
+
+def standing(params):
+    return -params.gait.y_home_m
+
+
+def maneuver_stroke(params, **kw):
+    return stroke(params, standing(params) - PLAN.crouch_m, standing(params) + PLAN.extension_m,
+                  **kw)
+
+
+def ceiling(params):
+    u0, u1 = reach(params)
+    return push(stroke(params, u0, u1), standing(params))
+
+
+def test_the_highest_jump_is_below_the_point_mass_bound_and_above_8_cm(params):
+    """The acceptance: the default robot's highest jump rises at least 0.08 m above standing,
+    within the bound of a point mass on massless, frictionless legs with the same motors
+    (an independent integration through held_force), and takes off no faster."""
+    jump = ceiling(params)
+    u0, u1 = reach(params)
+    speed, rise = point_mass_bound(params, u0, u1, standing(params))
+    assert 0.08 <= jump.com_rise_from_standing_m <= rise
+    assert jump.v_com <= speed
+    assert jump.body_apex_above_standing_m <= rise
+
+
+def test_the_motors_work_equals_the_energy_the_jump_gains(params):
+    """Virtual work: the motors' work over the push, sum of tau . dq/du du (the foot does not
+    move, so the ground does none), equals the quarter robot's kinetic energy at takeoff (body
+    at the hip speed, each link's translation and rotation from the package's link Jacobians,
+    the rotors' N^2 J q'^2 / 2) plus its potential energy gained: a second method for the
+    torques' every term."""
+    jump = ceiling(params)
+    s, k = jump.stroke, jump.takeoff
+    du = np.diff(s.u[:k + 1])
+    work = float(np.sum(np.einsum("ni,ni->n", jump.torque_Nm, s.dq[:k]) * du))
+    leg, g = params.fivebar_leg, s.g
+    pose = leg.inverse(np.array([[params.gait.x_center_m, -s.u[i]] for i in (0, k)]))
+    lj = link_jacobians(params.leg, params.links, pose)
+    masses = np.array([params.links[n].mass_kg for n in LINK_NAMES])
+    izz = np.asarray(physical_izz(params.leg, params.links))
+    qd = s.dq[k] * jump.w[k]
+    v_links = np.array([0.0, jump.w[k]]) + np.einsum("lij,j->li", lj.jv[1], qd)
+    kinetic = (0.5 * (s.m_q - masses.sum()) * jump.w[k] ** 2
+               + 0.5 * np.sum(masses * np.sum(v_links**2, -1))
+               + 0.5 * np.sum(izz * (lj.jw[1] @ qd) ** 2)
+               + 0.5 * params.motor.reflected_inertia_kg_m2 * np.sum(qd**2))
+    from fivebar_drake.mechanisms.fivebar import link_coms
+    coms = link_coms(params.leg, params.links, pose)[..., 1]          # (2, 4) above the hip
+    potential = g * ((s.m_q - masses.sum()) * (s.u[k] - s.u[0])
+                     + np.sum(masses * ((s.u[k] + coms[1]) - (s.u[0] + coms[0]))))
+    assert work == pytest.approx(kinetic + potential, rel=5e-3)
+
+
+def test_the_floor_equals_drakes_linear_program_where_the_envelope_does_not_bind(params):
+    """Without friction and with a bus voltage that keeps the envelope flat at these speeds,
+    the floor by bisection over the greedy push and the floor of Drake's linear program (the
+    torque box alone) are the same number, by two methods (grid error under 1 %)."""
+    free = with_changes(params, {"motor.coulomb_friction_Nm": 0.0,
+                                 "motor.viscous_friction_Nm_s": 0.0,
+                                 "motor.bus_voltage_V": 400.0})
+    s = maneuver_stroke(free)
+    peak, jump = torque_floor(s, standing(free), PLAN.height_m)
+    assert jump.takeoff == s.u.size - 1           # the whole stroke, as the program's
+    assert box_floor_lp(s, standing(free), PLAN.height_m)[0] == pytest.approx(peak, rel=1e-2)
+
+
+def test_the_floor_moves_with_the_design(params):
+    """A payload raises the floor; a stronger supply (the envelope binding less) never raises
+    it; a higher jump needs more."""
+    base, _ = torque_floor(maneuver_stroke(params), standing(params), PLAN.height_m)
+    heavy, _ = torque_floor(maneuver_stroke(params, payload_kg=1.0), standing(params),
+                            PLAN.height_m)
+    strong = with_changes(params, {"motor.bus_voltage_V": 48.0})
+    stronger, _ = torque_floor(maneuver_stroke(strong), standing(strong), PLAN.height_m)
+    higher, _ = torque_floor(maneuver_stroke(params), standing(params), 0.09)
+    assert heavy > base * 1.05 and stronger <= base + 1e-3 and higher > base * 1.1
+    assert quarter_mass_kg(params, 1.0) == pytest.approx(quarter_mass_kg(params) + 0.25)
+
+
+def test_a_jump_beyond_the_motors_is_refused_with_what_they_allow(params):
+    with pytest.raises(ParameterError, match="beyond what the motors allow.*rises"):
+        torque_floor(maneuver_stroke(params), standing(params), 0.5)
+
+
+@pytest.mark.slow
+def test_the_floor_is_below_what_the_simulated_jump_asked(params):
+    """No controller needs less than the floor: the packaged jump, simulated to its end
+    (achieved, with the package's controller, rising at least the planned height), asks at
+    least the floor's peak torque of some motor over its push-off."""
+    summary = summarize_run(run_simulation(load_scenario(gait="jump", duration_s=2.8),
+                                           progress=False))
+    assert summary["verdict"] in ("pass", "warn", "fail")
+    assert summary["jump"]["height_m"] >= PLAN.height_m
+    floor, _ = torque_floor(maneuver_stroke(params), standing(params), PLAN.height_m)
+    assert floor <= summary["phases"]["push-off"]["demand_peak_Nm"]
+
+
+def test_the_command_writes_the_answer_first(tmp_path, capsys):
+    assert main(["optimal", "--out", str(tmp_path)]) == 0
+    result = json.loads((tmp_path / "optimal.json").read_text())
+    assert result["ceiling"]["com_rise_from_standing_m"] >= 0.08
+    assert (tmp_path / "optimal.md").read_text().splitlines()[2] == result["answer"]
+    assert main(["optimal", "--out", str(tmp_path), "--height", "0.5"]) == 1
+    assert "beyond what the motors allow" in capsys.readouterr().err
+    assert main(["optimal", "--out", str(tmp_path), "--payload", "-1"]) == 2
