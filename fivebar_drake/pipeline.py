@@ -26,7 +26,10 @@ from fivebar_drake.analysis.plots import write_plots
 from fivebar_drake.analysis.report import ANALYSIS_FILES, write_report
 from fivebar_drake.analysis.torques import Analysis, analyze, seed_results
 from fivebar_drake.core.files import prepare_output_dir
-from fivebar_drake.core.summary_schema import Summary
+from fivebar_drake.core.footpath import Jump as JumpPath
+from fivebar_drake.core.summary_schema import AnyController, Summary
+from fivebar_drake.core.validation import ParameterError
+from fivebar_drake.optimal import vertical_jump
 from fivebar_drake.robots.quadruped.config import load_params, sampling_error
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.simulation.plots import CAPABILITY_FILE, SIM_PLOT_FILES, write_sim_plots
@@ -34,8 +37,9 @@ from fivebar_drake.simulation.recording import RECORDING_FILE, write_recording
 from fivebar_drake.simulation.runner import SimulationRecord, simulate
 from fivebar_drake.simulation.scenario import Scenario
 from fivebar_drake.simulation.signals import signals, step_signals
-from fivebar_drake.simulation.summary import apply_step_check, summarize
-from fivebar_drake.simulation.summary_text import SUMMARY_FILES, write_summary
+from fivebar_drake.simulation.summary import apply_step_check, in_schema_order, summarize
+from fivebar_drake.simulation.summary_text import (SUMMARY_FILES, any_controller_text,
+                                                   write_summary)
 
 
 SIMULATION_FILES = (SIM_PLOT_FILES + (CAPABILITY_FILE, RECORDING_FILE)
@@ -110,12 +114,52 @@ def _signals(record: SimulationRecord) -> tuple:
     return signals(record), step_signals(record) if record.steps is not None else None
 
 
+def any_controller(record: SimulationRecord, summary: Summary) -> AnyController | None:
+    """For a jump, what any controller would need (optimal/vertical_jump.py): the floor of the
+    planned height on the maneuver's own stroke (its crouch and extension, the run's payload),
+    the highest jump on that stroke, what the run's controller asked over the push-off, and
+    whom a failing verdict blames: any controller where no torque the motors have lifts it, or
+    where the torque check decided and even the floor's safety factor (the driving peak over
+    the floor) is below checks.sf_warn; else this controller. None for any other gait or maneuver (the next part of the
+    optimal maneuvers)."""
+    path, params = record.scenario.gait, record.params
+    if not isinstance(path, JumpPath):
+        return None
+    standing = -params.gait.y_home_m
+    stroke = vertical_jump.stroke(params, standing - path.crouch_m, standing + path.extension_m,
+                                  record.scenario.payload_kg)
+    highest = vertical_jump.push(stroke, standing)
+    floor, why = None, ""
+    try:
+        floor = vertical_jump.torque_floor(stroke, standing, path.height_m)[0]
+    except ParameterError as err:
+        why = err.message
+    if record.scenario.slope_deg:
+        why = (why + "; " if why else "") + "the floor is computed on flat ground"
+    push_off = (summary["phases"] or {}).get("push-off")
+    asked = push_off["demand_peak_Nm"] if push_off else None
+    floor_sf = params.motor.peak_torque_Nm / floor if floor else None
+    short = floor is None or (summary["deciding_check"] == "torque"
+                              and floor_sf < params.checks.sf_warn)
+    return {"maneuver": path.kind, "height_m": path.height_m, "floor_Nm": floor,
+            "floor_safety_factor": floor_sf,
+            "ceiling_m": None if highest is None else highest.com_rise_from_standing_m,
+            "asked_Nm": asked,
+            "controller_cost": asked / floor if asked is not None and floor else None,
+            "fails_for": (None if summary["verdict"] not in ("fail", "not_achieved") else
+                          "any controller" if short else "this controller"), "why": why}
+
+
 def _review(record: SimulationRecord, half: SimulationRecord | None = None):
     """(Signals, StepSignals or None, Summary) of a run; with `half`
-    (run_step_check) its step check."""
+    (run_step_check) its step check; a jump's any_controller."""
     sig, steps = _signals(record)
     reference = seed_results(record.params)
     summary = summarize(sig, record, reference, steps)
+    floor = any_controller(record, summary)
+    if floor is not None:
+        summary["answer"] += " " + any_controller_text(floor)
+    summary = in_schema_order({**summary, "any_controller": floor})
     if half is not None:
         half_sig, half_steps = _signals(half)
         apply_step_check(summary, summarize(half_sig, half, reference, half_steps),

@@ -320,6 +320,25 @@ class Timing(TypedDict):
     outputs_share: float
 
 
+class AnyController(TypedDict):
+    """What any controller would need for this maneuver (optimal/; pipeline.any_controller): a
+    jump's floor, the least peak motor torque that lifts the robot to the planned height on the
+    same stroke (None: beyond the motors, why says so), the highest jump on that stroke, what
+    this run's controller asked over the push-off, their ratio, and whom a failing verdict
+    blames ("any controller": the motors cannot; "this controller": a better one would pass;
+    None: nothing failed)."""
+
+    maneuver: str
+    height_m: float
+    floor_Nm: float | None
+    floor_safety_factor: float | None
+    ceiling_m: float | None
+    asked_Nm: float | None
+    controller_cost: float | None
+    fails_for: str | None
+    why: str
+
+
 class Summary(TypedDict):
     """summary.json (simulation/summary.summarize; timing from pipeline.write_simulation)."""
 
@@ -369,5 +388,6 @@ class Summary(TypedDict):
     step_check: StepCheck | None
     limits: LimitReport
     legs: dict[str, dict[str, MotorSummary]]   # leg -> motor ("A", "B") ->
+    any_controller: AnyController | None       # a jump's floor (pipeline.any_controller)
     answer: str
     timing: NotRequired[Timing]

@@ -85,6 +85,7 @@ def maneuver_entry(maneuver, result) -> dict:
             "cycles_in_window": s["cycles_in_window"], "time_step_s": s["time_step_s"],
             "mean_forward_speed_m_s": s["mean_forward_speed_m_s"],
             "max_tilt_deg": s["max_tilt_deg"], "answer": s["answer"],
+            "any_controller": s["any_controller"],
             "operating_point_rows": result.rows,
             "motors": {m: motor_row(s, m) for m in MOTORS},
             "timing": {"real_time_factor": s["real_time_factor"],
@@ -239,13 +240,23 @@ def markdown(report: dict) -> str:
                   f"{s['deciding_check']} check, leg {s['leg']}); worst torque "
                   f"{s['worst_per_check']['torque']}, speed {s['worst_per_check']['speed']}, "
                   f"thermal {s['worst_per_check']['thermal']}."), ""]
-    lines += ["## Maneuvers", "", "| maneuver | gait | changes | status | verdict | simulated s "
-              "| step ms | real-time factor | folder |", "|---|---|---|---|---|---|---|---|---|"]
+    lines += ["## Maneuvers", "", "Floor: the least peak motor torque any controller needs for "
+              "the maneuver, against what this controller asked (a jump's push-off; the other "
+              "maneuvers' floors are not computed yet: —); fails for: whom a failing verdict "
+              "blames (any controller: the motors cannot; this controller: a better one would "
+              "pass).", "",
+              "| maneuver | gait | changes | status | verdict | floor / asked N·m | fails for | "
+              "simulated s | step ms | real-time factor | folder |",
+              "|---|---|---|---|---|---|---|---|---|---|---|"]
     for name, e in report["maneuvers"].items():
         changes = ", ".join(f"{k}: {v}" for k, v in e["changes"].items() if k != "gait")
         timing = e["timing"] or {}
+        a = e.get("any_controller")
+        floor = ("—" if not a else f"none / {_fmt(a['asked_Nm'])}" if a["floor_Nm"] is None
+                 else f"{a['floor_Nm']:.2f} / {_fmt(a['asked_Nm'])}")
         lines.append(f"| {name} | {e['gait']} | {changes or '—'} | {e['status']} | "
-                     f"{e['verdict'].upper()} | {_fmt(e.get('duration_s'))} | "
+                     f"{e['verdict'].upper()} | {floor} | {(a or {}).get('fails_for') or '—'} | "
+                     f"{_fmt(e.get('duration_s'))} | "
                      f"{_fmt(e.get('time_step_s') and e['time_step_s'] * 1e3, '{:g}')} | "
                      f"{_fmt(timing.get('real_time_factor'))} | `{e['folder']}/` |")
     lines += ["", "## Duty cycle", ""]

@@ -13,7 +13,7 @@ from pathlib import Path
 
 from fivebar_drake.core.checks import CHECK_ORDER, demand_unmet, limit_shares_text
 from fivebar_drake.core.files import json_ready, write_atomic
-from fivebar_drake.core.summary_schema import (JumpFigures, LandingFigures, LimitReport,
+from fivebar_drake.core.summary_schema import (AnyController, JumpFigures, LandingFigures, LimitReport,
                                                MotorSummary, Ran, SpeedCheck, Summary,
                                                ThermalCheck, TorqueCheck)
 from fivebar_drake.robots.quadruped.params import Params
@@ -196,6 +196,26 @@ def ran_text(ran: Ran) -> str:
            if events else "") + ".")
 
 
+def any_controller_text(a: AnyController) -> str:
+    """What any controller would need for the maneuver, in a sentence (pipeline.any_controller)."""
+    if a["floor_Nm"] is None:
+        text = (f"No controller could do this {a['maneuver']}: {a['why']}")
+    else:
+        asked = ("" if a["asked_Nm"] is None else
+                 f"; this controller asked {a['asked_Nm']:.2f} N·m over the push-off "
+                 f"({a['controller_cost']:.2f}x)")
+        text = (f"Any controller needs at least {a['floor_Nm']:.2f} N·m at the peak for this "
+                f"{a['height_m'] * 1e3:.0f} mm {a['maneuver']} (the highest on its stroke: "
+                f"{a['ceiling_m'] * 1e3:.0f} mm){asked}")
+        if a["why"]:
+            text += f" ({a['why']})"
+    blame = {"any controller": " The verdict fails for any controller: the motors are too "
+                               "small for it.",
+             "this controller": " The verdict fails for this controller: the motors could do "
+                                "it, a better controller would pass.", None: ""}
+    return text + "." + blame[a["fails_for"]]
+
+
 def maneuver_lines(s: Summary) -> list[str]:
     """A maneuver's measured figures beside their plan (each group's `planned`): the jump and
     the landing, a line each where it happened."""
@@ -213,6 +233,8 @@ def maneuver_lines(s: Summary) -> list[str]:
                      f"{ld['peak_force_N']:.0f} N, peak motor torque {ld['peak_torque_Nm']:.2f} "
                      f"N·m, body drop {ld['compression_m'] * 1e3:.1f} mm over "
                      f"{ld['duration_s'] * 1e3:.0f} ms")
+    if s.get("any_controller"):
+        lines.append(f"- for any controller: {any_controller_text(s['any_controller'])}")
     return lines
 
 

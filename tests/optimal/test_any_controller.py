@@ -1,0 +1,40 @@
+"""A simulated jump's verdict split (pipeline.any_controller): whom a failing verdict blames,
+from the floor of the same jump (optimal/vertical_jump.py) and what the run's controller asked."""
+
+import pytest
+
+from fivebar_drake.pipeline import run_simulation, summarize_run
+from fivebar_drake.simulation.scenario import load_scenario
+
+
+def jump_summary(height_m):
+    return summarize_run(run_simulation(load_scenario(
+        gait={"kind": "jump", "height_m": height_m}, duration_s=2.8), progress=False))
+
+
+@pytest.mark.slow
+def test_a_jump_the_motors_can_do_fails_for_this_controller():
+    """100 mm: the package's controller fails the torque check, the floor is well inside the
+    motors (its safety factor above the warning threshold): a better controller would pass."""
+    s = jump_summary(0.10)
+    a = s["any_controller"]
+    assert s["verdict"] == "fail" and a["fails_for"] == "this controller"
+    assert a["floor_Nm"] < a["asked_Nm"] and a["floor_safety_factor"] >= 1.5
+    assert "fails for this controller" in s["answer"]
+
+
+@pytest.mark.slow
+def test_a_jump_beyond_the_motors_fails_for_any_controller():
+    """130 mm on a stroke whose highest jump is lower: no controller could do it, and the
+    answer says how high the stroke allows."""
+    s = jump_summary(0.13)
+    a = s["any_controller"]
+    assert s["verdict"] == "not_achieved" and a["fails_for"] == "any controller"
+    assert a["floor_Nm"] is None and a["ceiling_m"] < 0.13
+    assert "beyond what the motors allow" in a["why"] and "for any controller" in s["answer"]
+
+
+def test_a_trot_has_no_floor_yet():
+    s = summarize_run(run_simulation(load_scenario(duration_s=0.3, closure="ball"),
+                                     progress=False))
+    assert s["any_controller"] is None
