@@ -17,6 +17,7 @@ duration).
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass
 from pathlib import Path
 import time
@@ -26,7 +27,7 @@ from fivebar_drake.analysis.plots import write_plots
 from fivebar_drake.analysis.report import ANALYSIS_FILES, write_report
 from fivebar_drake.analysis.torques import Analysis, analyze, seed_results
 from fivebar_drake.core.files import prepare_output_dir
-from fivebar_drake.core.footpath import Jump as JumpPath
+from fivebar_drake.core.footpath import Jump as JumpPath, Landing
 from fivebar_drake.core.summary_schema import AnyController, Summary
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.optimal import vertical_jump
@@ -115,39 +116,58 @@ def _signals(record: SimulationRecord) -> tuple:
 
 
 def any_controller(record: SimulationRecord, summary: Summary) -> AnyController | None:
-    """For a jump, what any controller would need (optimal/vertical_jump.py): the floor of the
-    planned height on the maneuver's own stroke (its crouch and extension, the run's payload),
-    the highest jump on that stroke, what the run's controller asked over the push-off, and
-    whom a failing verdict blames: any controller where no torque the motors have lifts it, or
+    """For a jump or a drop, what any controller would need (optimal/vertical_jump.py), on the
+    maneuver's own strokes and the run's payload: the push-off's floor (the planned height),
+    the landing's (stopping the planned touchdown speed within landing_stroke_m from
+    extension_m below standing), what the run's controller asked in each phase, and whom a
+    failing verdict blames: any controller where no torque the motors have does a phase, or
     where the torque check decided and even the floor's safety factor (the driving peak over
-    the floor) is below checks.sf_warn; else this controller. None for any other gait or maneuver (the next part of the
-    optimal maneuvers)."""
+    the floor) is below checks.sf_warn; else this controller. None for the other gaits and
+    maneuvers (not computed yet)."""
     path, params = record.scenario.gait, record.params
-    if not isinstance(path, JumpPath):
+    if not isinstance(path, Landing):
         return None
+    g, payload = params.robot.gravity_m_s2, record.scenario.payload_kg
     standing = -params.gait.y_home_m
-    stroke = vertical_jump.stroke(params, standing - path.crouch_m, standing + path.extension_m,
-                                  record.scenario.payload_kg)
-    highest = vertical_jump.push(stroke, standing)
-    floor, why = None, ""
+    top = standing + path.extension_m
+    phases, why, ceiling = {}, [], None
+    asked = {name: figures["demand_peak_Nm"] for name, figures in
+             (summary["phases"] or {}).items()}
+    if isinstance(path, JumpPath):
+        push = vertical_jump.stroke(params, standing - path.crouch_m, top, payload)
+        highest = vertical_jump.push(push, standing)
+        ceiling = None if highest is None else highest.com_rise_from_standing_m
+        touchdown = path.takeoff_speed(params.gait)
+        try:
+            phases["push-off"] = vertical_jump.torque_floor(push, standing, path.height_m)[0]
+        except ParameterError as err:
+            phases["push-off"] = None
+            why.append(err.message)
+    else:
+        touchdown = math.sqrt(2.0 * g * path.height_m)
+    land = vertical_jump.stroke(params, top - path.landing_stroke_m, top, payload)
+    if not isinstance(path, JumpPath):
+        ceiling = vertical_jump.highest_drop(land) ** 2 / (2.0 * g)
     try:
-        floor = vertical_jump.torque_floor(stroke, standing, path.height_m)[0]
+        phases["landing"] = vertical_jump.landing_floor(land, touchdown)[0]
     except ParameterError as err:
-        why = err.message
+        phases["landing"] = None
+        why.append(err.message)
     if record.scenario.slope_deg:
-        why = (why + "; " if why else "") + "the floor is computed on flat ground"
-    push_off = (summary["phases"] or {}).get("push-off")
-    asked = push_off["demand_peak_Nm"] if push_off else None
+        why.append("the floors are computed on flat ground")
+    floor = None if None in phases.values() else max(phases.values())
+    most = max((asked[p] for p in phases if p in asked), default=None)
     floor_sf = params.motor.peak_torque_Nm / floor if floor else None
     short = floor is None or (summary["deciding_check"] == "torque"
                               and floor_sf < params.checks.sf_warn)
-    return {"maneuver": path.kind, "height_m": path.height_m, "floor_Nm": floor,
-            "floor_safety_factor": floor_sf,
-            "ceiling_m": None if highest is None else highest.com_rise_from_standing_m,
-            "asked_Nm": asked,
-            "controller_cost": asked / floor if asked is not None and floor else None,
+    return {"maneuver": path.kind, "height_m": path.height_m,
+            "phases": {p: {"floor_Nm": f, "asked_Nm": asked.get(p)} for p, f in phases.items()},
+            "floor_Nm": floor, "floor_safety_factor": floor_sf, "ceiling_m": ceiling,
+            "asked_Nm": most,
+            "controller_cost": most / floor if most is not None and floor else None,
             "fails_for": (None if summary["verdict"] not in ("fail", "not_achieved") else
-                          "any controller" if short else "this controller"), "why": why}
+                          "any controller" if short else "this controller"),
+            "why": "; ".join(why)}
 
 
 def _review(record: SimulationRecord, half: SimulationRecord | None = None):

@@ -609,6 +609,11 @@ class Jump(Landing):
 
     kind: ClassVar[str] = "jump"
     title: ClassVar[str] = "vertical jump"
+    height_m: float = 0.06
+    crouch_m: float = 0.06
+    crouch_s: float = 0.4
+    hold_s: float = 0.2
+    retract_m: float = 0.02
 
     def shortfalls(self, gait: Gait, outcome: Outcome, checks: Checks) -> list[str]:
         """A jump leaves the ground with every foot, and ends standing (Maneuver)."""
@@ -616,11 +621,6 @@ class Jump(Landing):
         grounded = [] if m is not None and m["jump"] is not None else [
             "no foot left the ground" + (f" ({m['why_grounded']})" if m else "")]
         return grounded + super().shortfalls(gait, outcome, checks)
-    height_m: float = 0.06
-    crouch_m: float = 0.06
-    crouch_s: float = 0.4
-    hold_s: float = 0.2
-    retract_m: float = 0.02
 
     def takeoff_speed(self, gait: Gait) -> float:
         """Planned takeoff speed (m/s) of the body."""

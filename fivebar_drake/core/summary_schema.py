@@ -320,16 +320,27 @@ class Timing(TypedDict):
     outputs_share: float
 
 
+class PhaseFloor(TypedDict):
+    """One phase's floor (the least peak motor torque any controller needs for it; None: the
+    motors cannot, AnyController.why says so) and what this run's controller asked in it."""
+
+    floor_Nm: float | None
+    asked_Nm: float | None
+
+
 class AnyController(TypedDict):
-    """What any controller would need for this maneuver (optimal/; pipeline.any_controller): a
-    jump's floor, the least peak motor torque that lifts the robot to the planned height on the
-    same stroke (None: beyond the motors, why says so), the highest jump on that stroke, what
-    this run's controller asked over the push-off, their ratio, and whom a failing verdict
-    blames ("any controller": the motors cannot; "this controller": a better one would pass;
-    None: nothing failed)."""
+    """What any controller would need for this maneuver (optimal/; pipeline.any_controller):
+    per phase (a jump's push-off and landing, a drop's landing) the least peak motor torque on
+    the maneuver's own stroke and what this run's controller asked; the maneuver's floor (the
+    largest; None: beyond the motors) with its safety factor; the ceiling (the highest jump on
+    the push's stroke, or the highest drop the landing's stroke absorbs, m); what the
+    controller asked at most in those phases and its ratio to the floor; and whom a failing
+    verdict blames ("any controller": the motors cannot; "this controller": a better one would
+    pass; None: nothing failed)."""
 
     maneuver: str
     height_m: float
+    phases: dict[str, PhaseFloor]
     floor_Nm: float | None
     floor_safety_factor: float | None
     ceiling_m: float | None

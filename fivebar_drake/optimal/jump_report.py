@@ -4,15 +4,17 @@ optimal.md and optimal_jump.png: the answer first, then the figures beside the b
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 
 import numpy as np
 
 from fivebar_drake.core.files import json_ready, save_figure, write_atomic
-from fivebar_drake.core.footpath import Jump as JumpPath
+from fivebar_drake.core.footpath import Drop, Jump as JumpPath
 from fivebar_drake.core.validation import ParameterError, check_number
 from fivebar_drake.mechanisms.fivebar import MOTORS
-from fivebar_drake.optimal.vertical_jump import (Jump, point_mass_bound, push, reach, stroke,
+from fivebar_drake.optimal.vertical_jump import (Jump, highest_drop, landing_floor,
+                                                 point_mass_bound, push, reach, stroke,
                                                  torque_floor)
 from fivebar_drake.robots.quadruped.params import Params
 
@@ -99,9 +101,27 @@ def jump_limits(params: Params, height_m: float | None = None,
                            **_jump_figures(jumps["floor"], params.motor)}
     except ParameterError as err:
         result["floor_why_none"] = err.message
+    result["drop"] = drop_limits(params, payload_kg)
     result["published"] = published_jump(params, result["ceiling"])
     result["answer"] = answer(result, params)
     return result, jumps
+
+
+def drop_limits(params: Params, payload_kg: float = 0.0) -> dict:
+    """The packaged drop maneuver's landing for any controller: the least peak motor torque
+    that stops the body within its landing stroke from its height (braking), and the highest
+    drop that stroke absorbs (m); the floor None with why where the legs give way."""
+    plan, g = Drop(), params.robot.gravity_m_s2
+    top = -params.gait.y_home_m + plan.extension_m
+    s = stroke(params, top - plan.landing_stroke_m, top, payload_kg)
+    out = {"height_m": plan.height_m, "landing_stroke_m": plan.landing_stroke_m,
+           "highest_drop_m": highest_drop(s) ** 2 / (2.0 * g), "least_peak_torque_Nm": None,
+           "why_none": ""}
+    try:
+        out["least_peak_torque_Nm"] = landing_floor(s, math.sqrt(2.0 * g * plan.height_m))[0]
+    except ParameterError as err:
+        out["why_none"] = err.message
+    return out
 
 
 def answer(r: dict, params: Params) -> str:
@@ -121,7 +141,14 @@ def answer(r: dict, params: Params) -> str:
               f"{f['motors']['A']['peak_torque_Nm']:.2f}, B {f['motors']['B']['peak_torque_Nm']:.2f}"
               f" N·m) whatever the controller; the motors give "
               f"{params.motor.peak_torque_Nm:.2f} N·m.")
-    return first + second
+    d = r["drop"]
+    third = (f" The drop maneuver from {d['height_m'] * 1e3:.0f} mm: {d['why_none']}."
+             if d["least_peak_torque_Nm"] is None else
+             f" Landing the {d['height_m'] * 1e3:.0f} mm drop within "
+             f"{d['landing_stroke_m'] * 1e3:.0f} mm needs at least "
+             f"{d['least_peak_torque_Nm']:.2f} N·m (braking); that stroke absorbs a drop of up "
+             f"to {d['highest_drop_m'] * 1e3:.0f} mm.")
+    return first + second + third
 
 
 def markdown(r: dict) -> str:

@@ -134,11 +134,11 @@ def stroke(params: Params, u0: float, u1: float, payload_kg: float = 0.0,
                   params.body.foot_friction, params.motor)
 
 
-def acceleration_bounds(s: Stroke, k: int, x: float, peak_Nm: float = math.inf):
-    """(least, largest) hip acceleration b (m/s^2) at node k and x = u'^2: every motor's
-    delivered torque within its envelope at its speed and within +-peak_Nm, the foot on the
-    ground inside its friction cone."""
-    w = math.sqrt(max(x, 0.0))
+def acceleration_bounds(s: Stroke, k: int, w: float, peak_Nm: float = math.inf):
+    """(least, largest) hip acceleration b (m/s^2) at node k and hip speed w (m/s; > 0 rising,
+    < 0 sinking): every motor's delivered torque within its envelope at its speed and within
+    +-peak_Nm, the foot on the ground inside its friction cone."""
+    x = w * w
     omega = s.dq[k] * w
     upper, lower = s.motor.limits(omega)
     friction = s.motor.friction(omega)
@@ -201,7 +201,7 @@ def push(s: Stroke, standing_u: float, peak_Nm: float = math.inf) -> Jump | None
     n = s.u.size
     x, b = np.zeros(n), np.zeros(n)
     for k in range(n - 1):
-        low, high = acceleration_bounds(s, k, x[k], peak_Nm)
+        low, high = acceleration_bounds(s, k, math.sqrt(x[k]), peak_Nm)
         if not high >= low or (k == 0 and high <= 0.0):      # no admissible push from here
             if k == 0:
                 return None
@@ -314,3 +314,81 @@ def box_floor_lp(s: Stroke, standing_u: float, rise_m: float) -> tuple[float, st
         raise RuntimeError(f"the linear program failed: {result.get_solution_result()} "
                            f"({result.get_solver_id().name()})")
     return float(result.GetSolution(peak)), result.get_solver_id().name()
+
+
+@dataclass(frozen=True)
+class Catch:
+    """A landing along a Stroke, braked at the largest deceleration allowed from touchdown at
+    the stroke's top node: the node where the hip comes to rest (`stop`, None: it does not
+    within the stroke), the distance it sank (m), the time (s), and over each cell the motors'
+    joint and delivered torques (cells, 2) N*m at their speeds (cells, 2) rad/s."""
+
+    stroke: Stroke
+    stop: int | None
+    sink_m: float
+    duration_s: float
+    torque_Nm: np.ndarray
+    delivered_Nm: np.ndarray
+    speed_rad_s: np.ndarray
+
+
+def catch(s: Stroke, touchdown_speed: float, peak_Nm: float = math.inf) -> Catch:
+    """The landing that stops soonest (the comparison lemma, sinking: the largest upward
+    acceleration at every state leaves the least speed at every height) from the hip sinking at
+    touchdown_speed (m/s) at the stroke's top; torques within +-peak_Nm too. The foot's impact
+    is not modelled: the hip keeps its speed through it (the links' momentum lost at impact
+    would help; the floor is that much too high)."""
+    n = s.u.size
+    x, b = np.zeros(n), np.zeros(n)
+    x[-1] = touchdown_speed**2
+    stop = None
+    for k in range(n - 1, 0, -1):
+        low, high = acceleration_bounds(s, k, -math.sqrt(x[k]), peak_Nm)
+        if not high >= low:
+            break                                     # the motors cannot hold it: gives way
+        b[k] = high
+        x[k - 1] = x[k] - 2.0 * high * (s.u[k] - s.u[k - 1])
+        if x[k - 1] <= 0.0:
+            x[k - 1], stop = 0.0, k - 1
+            break
+    first = stop if stop is not None else k
+    cells = slice(first + 1, n)
+    w = -np.sqrt(x)
+    omega = s.dq[cells] * w[cells, None]
+    tau = s.alpha[cells] * b[cells, None] + s.beta[cells] * x[cells, None] + s.gamma[cells]
+    dt = np.diff(s.u[first:]) * 2.0 / np.maximum(-(w[first:-1] + w[first + 1:]), 1e-12)
+    return Catch(s, stop, float(s.u[-1] - s.u[first]), float(dt.sum()), tau,
+                 tau + s.motor.friction(omega), omega)
+
+
+def landing_floor(s: Stroke, touchdown_speed: float) -> tuple[float, Catch]:
+    """The least peak motor torque (N*m, delivered) with which the legs stop the hip within
+    the stroke from touchdown_speed (m/s) at its top, within the envelope (braking: the speeds
+    are negative), and that landing (bisection). ParameterError if the motors cannot stop it
+    within the stroke (the legs give way)."""
+    best = catch(s, touchdown_speed)
+    if best.stop is None:
+        raise ParameterError(f"a touchdown at {touchdown_speed:.2f} m/s: the legs cannot stop "
+                             f"the body within {(s.u[-1] - s.u[0]) * 1e3:.0f} mm of stroke "
+                             "(they give way)", "landing_stroke_m")
+    low, high, found = 0.0, float(np.abs(best.delivered_Nm).max()), best
+    while high - low > FLOOR_TOLERANCE_NM:
+        mid = 0.5 * (low + high)
+        trial = catch(s, touchdown_speed, mid)
+        if trial.stop is not None:
+            high, found = mid, trial
+        else:
+            low = mid
+    return high, found
+
+
+def highest_drop(s: Stroke, tolerance_m_s: float = 1e-3) -> float:
+    """The largest touchdown speed (m/s) at the stroke's top that the legs stop within it
+    (bisection on catch)."""
+    low, high = 0.0, 1.0
+    while catch(s, high).stop is not None:
+        low, high = high, 2.0 * high
+    while high - low > tolerance_m_s:
+        mid = 0.5 * (low + high)
+        low, high = (mid, high) if catch(s, mid).stop is not None else (low, mid)
+    return low

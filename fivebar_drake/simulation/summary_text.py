@@ -198,15 +198,19 @@ def ran_text(ran: Ran) -> str:
 
 def any_controller_text(a: AnyController) -> str:
     """What any controller would need for the maneuver, in a sentence (pipeline.any_controller)."""
+    reach = ("jump on its stroke" if a["maneuver"] == "jump" else
+             "drop its landing stroke absorbs")
     if a["floor_Nm"] is None:
-        text = (f"No controller could do this {a['maneuver']}: {a['why']}")
+        text = f"No controller could do this {a['maneuver']}: {a['why']}"
     else:
-        asked = ("" if a["asked_Nm"] is None else
-                 f"; this controller asked {a['asked_Nm']:.2f} N·m over the push-off "
-                 f"({a['controller_cost']:.2f}x)")
+        per = ", ".join(f"{p} {v['floor_Nm']:.2f}" + ("" if v["asked_Nm"] is None else
+                                                      f" (asked {v['asked_Nm']:.2f})")
+                        for p, v in a["phases"].items())
+        cost = ("" if a["controller_cost"] is None else
+                f"; this controller asked {a['controller_cost']:.2f}x the floor")
         text = (f"Any controller needs at least {a['floor_Nm']:.2f} N·m at the peak for this "
-                f"{a['height_m'] * 1e3:.0f} mm {a['maneuver']} (the highest on its stroke: "
-                f"{a['ceiling_m'] * 1e3:.0f} mm){asked}")
+                f"{a['height_m'] * 1e3:.0f} mm {a['maneuver']} ({per} N·m; the highest "
+                f"{reach}: {a['ceiling_m'] * 1e3:.0f} mm){cost}")
         if a["why"]:
             text += f" ({a['why']})"
     blame = {"any controller": " The verdict fails for any controller: the motors are too "

@@ -14,12 +14,15 @@ def jump_summary(height_m):
 
 @pytest.mark.slow
 def test_a_jump_the_motors_can_do_fails_for_this_controller():
-    """100 mm: the package's controller fails the torque check, the floor is well inside the
-    motors (its safety factor above the warning threshold): a better controller would pass."""
+    """100 mm: the package's controller fails the torque check, the floor (push-off and
+    landing) is inside the motors (its safety factor above the warning threshold): a better
+    controller would pass."""
     s = jump_summary(0.10)
     a = s["any_controller"]
     assert s["verdict"] == "fail" and a["fails_for"] == "this controller"
     assert a["floor_Nm"] < a["asked_Nm"] and a["floor_safety_factor"] >= 1.5
+    for phase in ("push-off", "landing"):
+        assert a["phases"][phase]["floor_Nm"] <= a["phases"][phase]["asked_Nm"]
     assert "fails for this controller" in s["answer"]
 
 
@@ -32,6 +35,18 @@ def test_a_jump_beyond_the_motors_fails_for_any_controller():
     assert s["verdict"] == "not_achieved" and a["fails_for"] == "any controller"
     assert a["floor_Nm"] is None and a["ceiling_m"] < 0.13
     assert "beyond what the motors allow" in a["why"] and "for any controller" in s["answer"]
+
+
+@pytest.mark.slow
+def test_the_drops_landing_floor_is_below_what_the_controller_asked():
+    """The drop from 0.1 m: the landing's floor (stopping the touchdown speed within the
+    landing stroke, braking) is below what the package's controller asked over its landing;
+    the highest drop the stroke absorbs lies above the drop."""
+    s = summarize_run(run_simulation(load_scenario(gait="drop", duration_s=2.0), progress=False))
+    a = s["any_controller"]
+    landing = a["phases"]["landing"]
+    assert landing["floor_Nm"] <= landing["asked_Nm"] and a["ceiling_m"] > 0.1
+    assert a["floor_Nm"] == landing["floor_Nm"]
 
 
 def test_a_trot_has_no_floor_yet():

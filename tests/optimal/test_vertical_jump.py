@@ -3,15 +3,17 @@ a point-mass bound, the energy the motors put in, Drake's linear program, the si
 and the way a floor moves with the design."""
 
 import json
+import math
 
 import numpy as np
 import pytest
 
 from fivebar_drake.cli import main
-from fivebar_drake.core.footpath import Jump as JumpPath
+from fivebar_drake.core.footpath import Drop, Jump as JumpPath
 from fivebar_drake.core.validation import ParameterError
-from fivebar_drake.mechanisms.fivebar import LINK_NAMES, link_jacobians, physical_izz
-from fivebar_drake.optimal.vertical_jump import (box_floor_lp, point_mass_bound, push,
+from fivebar_drake.mechanisms.fivebar import (LINK_NAMES, link_coms, link_jacobians,
+                                              physical_izz)
+from fivebar_drake.optimal.vertical_jump import (box_floor_lp, catch, point_mass_bound, push,
                                                  quarter_mass_kg, reach, stroke, torque_floor)
 from fivebar_drake.pipeline import run_simulation, summarize_run
 from fivebar_drake.robots.quadruped.config import load_params, with_changes
@@ -51,32 +53,54 @@ def test_the_highest_jump_is_below_the_point_mass_bound_and_above_8_cm(params):
     assert jump.body_apex_above_standing_m <= rise
 
 
-def test_the_motors_work_equals_the_energy_the_jump_gains(params):
-    """Virtual work: the motors' work over the push, sum of tau . dq/du du (the foot does not
-    move, so the ground does none), equals the quarter robot's kinetic energy at takeoff (body
-    at the hip speed, each link's translation and rotation from the package's link Jacobians,
-    the rotors' N^2 J q'^2 / 2) plus its potential energy gained: a second method for the
-    torques' every term."""
-    jump = ceiling(params)
-    s, k = jump.stroke, jump.takeoff
-    du = np.diff(s.u[:k + 1])
-    work = float(np.sum(np.einsum("ni,ni->n", jump.torque_Nm, s.dq[:k]) * du))
+def energy(params, s, k, w):
+    """The quarter robot's kinetic energy (J) at node k of stroke s with the hip at speed w
+    (m/s), the foot fixed, from the package's link Jacobians (the body at the hip's speed, each
+    link's translation and rotation, the rotors' N^2 J q'^2 / 2), and its potential energy (J)
+    above the stroke's first node."""
     leg, g = params.fivebar_leg, s.g
     pose = leg.inverse(np.array([[params.gait.x_center_m, -s.u[i]] for i in (0, k)]))
     lj = link_jacobians(params.leg, params.links, pose)
     masses = np.array([params.links[n].mass_kg for n in LINK_NAMES])
     izz = np.asarray(physical_izz(params.leg, params.links))
-    qd = s.dq[k] * jump.w[k]
-    v_links = np.array([0.0, jump.w[k]]) + np.einsum("lij,j->li", lj.jv[1], qd)
-    kinetic = (0.5 * (s.m_q - masses.sum()) * jump.w[k] ** 2
-               + 0.5 * np.sum(masses * np.sum(v_links**2, -1))
+    qd = s.dq[k] * w
+    v_links = np.array([0.0, w]) + np.einsum("lij,j->li", lj.jv[1], qd)
+    kinetic = (0.5 * (s.m_q - masses.sum()) * w**2 + 0.5 * np.sum(masses * np.sum(v_links**2, -1))
                + 0.5 * np.sum(izz * (lj.jw[1] @ qd) ** 2)
                + 0.5 * params.motor.reflected_inertia_kg_m2 * np.sum(qd**2))
-    from fivebar_drake.mechanisms.fivebar import link_coms
     coms = link_coms(params.leg, params.links, pose)[..., 1]          # (2, 4) above the hip
     potential = g * ((s.m_q - masses.sum()) * (s.u[k] - s.u[0])
                      + np.sum(masses * ((s.u[k] + coms[1]) - (s.u[0] + coms[0]))))
+    return kinetic, potential
+
+
+def test_the_motors_work_equals_the_energy_the_jump_gains(params):
+    """Virtual work: the motors' work over the push, sum of tau . dq/du du (the foot does not
+    move, so the ground does none), equals the quarter robot's kinetic energy at takeoff plus
+    its potential energy gained (energy: from the package's link Jacobians): a second method
+    for the torques' every term."""
+    jump = ceiling(params)
+    s, k = jump.stroke, jump.takeoff
+    work = float(np.sum(np.einsum("ni,ni->n", jump.torque_Nm, s.dq[:k]) * np.diff(s.u[:k + 1])))
+    kinetic, potential = energy(params, s, k, jump.w[k])
     assert work == pytest.approx(kinetic + potential, rel=5e-3)
+
+
+def test_the_legs_absorb_a_landings_energy(params):
+    """The catch of the drop maneuver: the motors take (negative work) the kinetic energy at
+    touchdown and the potential energy of the sink, within 0.5 %."""
+    plan = Drop()
+    top = standing(params) + plan.extension_m
+    s = stroke(params, top - plan.landing_stroke_m, top)
+    landing = catch(s, math.sqrt(2 * s.g * plan.height_m))
+    n = s.u.size
+    cells = np.arange(landing.stop + 1, n)
+    work = -float(np.sum(np.einsum("ni,ni->n", landing.torque_Nm, s.dq[cells])
+                         * (s.u[cells] - s.u[cells - 1])))
+    kinetic, potential_top = energy(params, s, n - 1, -math.sqrt(2 * s.g * plan.height_m))
+    _, potential_stop = energy(params, s, landing.stop, 0.0)
+    assert work == pytest.approx(-(kinetic + potential_top - potential_stop), rel=5e-3)
+    assert 0.0 < landing.sink_m < plan.landing_stroke_m
 
 
 def test_the_floor_equals_drakes_linear_program_where_the_envelope_does_not_bind(params):
