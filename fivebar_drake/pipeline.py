@@ -136,7 +136,7 @@ def any_controller(record: SimulationRecord, summary: Summary) -> AnyController 
     if isinstance(path, JumpPath):
         push = vertical_jump.stroke(params, standing - path.crouch_m, top, payload)
         highest = vertical_jump.push(push, standing)
-        ceiling = None if highest is None else highest.com_rise_from_standing_m
+        ceiling = None if highest is None else highest.body_apex_above_standing_m
         touchdown = path.takeoff_speed(params.gait)
         try:
             phases["push-off"] = vertical_jump.torque_floor(push, standing, path.height_m)[0]

@@ -40,7 +40,7 @@ def published_jump(params: Params, ceiling: dict | None) -> list[dict]:
                "definition": entry.definition, "computed": ours,
                "ratio": ours / entry.value, "reproduced": abs(ours / entry.value - 1) <= REPRODUCED}
         if name == "vertical_jump_height_m":
-            row["computed_from_standing"] = ceiling["com_rise_from_standing_m"]
+            row["computed_from_standing"] = ceiling["body_apex_above_standing_m"]
         rows.append(row)
     return rows
 
@@ -128,8 +128,9 @@ def answer(r: dict, params: Params) -> str:
     """The result in two sentences: how high the legs can jump, what the packaged jump needs."""
     c = r["ceiling"]
     first = ("The motors cannot lift the crouched robot: no jump." if c is None else
-             f"The legs and motors allow a vertical jump of {c['com_rise_from_standing_m'] * 1e3:.0f}"
-             f" mm above standing ({c['com_rise_from_crouch_m'] * 1e3:.0f} mm from the crouch, "
+             f"The legs and motors allow a vertical jump of "
+             f"{c['body_apex_above_standing_m'] * 1e3:.0f} mm above standing (the body's apex; "
+             f"the centre of mass rises {c['com_rise_from_crouch_m'] * 1e3:.0f} mm from the crouch, "
              f"takeoff at {c['takeoff_speed_m_s']:.2f} m/s, agility "
              f"{c['agility_m_s']:.2f} m/s), for any controller; a point mass on massless legs "
              f"with the same motors would reach {r['bound']['hip_apex_above_standing_m'] * 1e3:.0f}"
@@ -156,12 +157,14 @@ def markdown(r: dict) -> str:
     lines = ["# What the legs allow: the vertical jump", "", r["answer"], "",
              f"Model: {r['model']}. Quarter mass {r['quarter_mass_kg']:.3f} kg.", ""]
     rows = [("ceiling (highest jump)", r["ceiling"]), ("floor (jump maneuver)", r["floor"])]
-    lines += ["| | COM above standing (mm) | from crouch (mm) | takeoff (m/s) | stance (s) | "
-              "agility (m/s) | A peak (N·m) | B peak (N·m) |", "|---|---|---|---|---|---|---|---|"]
+    lines += ["| | body apex above standing (mm) | COM above standing (mm) | COM from crouch "
+              "(mm) | takeoff (m/s) | stance (s) | agility (m/s) | A peak (N·m) | B peak (N·m) |",
+              "|---|---|---|---|---|---|---|---|---|"]
     for name, j in rows:
         if j is None:
             continue
-        lines.append(f"| {name} | {j['com_rise_from_standing_m'] * 1e3:.1f} | "
+        lines.append(f"| {name} | {j['body_apex_above_standing_m'] * 1e3:.1f} | "
+                     f"{j['com_rise_from_standing_m'] * 1e3:.1f} | "
                      f"{j['com_rise_from_crouch_m'] * 1e3:.1f} | {j['takeoff_speed_m_s']:.3f} | "
                      f"{j['stance_s']:.3f} | {j['agility_m_s']:.2f} | "
                      f"{j['motors']['A']['peak_torque_Nm']:.2f} | "
@@ -176,7 +179,7 @@ def markdown(r: dict) -> str:
                   "| figure | published | computed (the ceiling) | ratio | reproduced | "
                   "the source's definition |", "|---|---|---|---|---|---|"]
         for p in r["published"]:
-            extra = (f" from the crouch ({p['computed_from_standing']:.3f} from standing)"
+            extra = (f" from the crouch ({p['computed_from_standing']:.3f} body apex above standing)"
                      if "computed_from_standing" in p else "")
             lines.append(f"| {p['name']} | {p['value']:g} | {p['computed']:.3f}{extra} | "
                          f"{p['ratio']:.2f} | {'yes' if p['reproduced'] else 'no'} | "

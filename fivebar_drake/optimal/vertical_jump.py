@@ -257,12 +257,13 @@ def point_mass_bound(params: Params, u0: float, u1: float, standing_u: float,
 
 def torque_floor(s: Stroke, standing_u: float, rise_m: float) -> tuple[float, Jump]:
     """The least peak motor torque (N*m, delivered) with which the stroke's highest jump
-    raises the centre of mass rise_m above standing, within the envelope too, and that jump
-    (bisection to FLOOR_TOLERANCE_NM). ParameterError naming the ceiling if no torque the
-    motors have reaches it."""
+    lifts the body rise_m above its standing height (its apex with the legs held at the
+    takeoff pose: the jump maneuver's height_m, as the simulation measures it), within the
+    envelope too, and that jump (bisection to FLOOR_TOLERANCE_NM). ParameterError naming the
+    ceiling if no torque the motors have reaches it."""
     best = push(s, standing_u)
-    if best is None or best.com_rise_from_standing_m < rise_m:
-        reached = "none" if best is None else f"{best.com_rise_from_standing_m * 1e3:.1f} mm"
+    if best is None or best.body_apex_above_standing_m < rise_m:
+        reached = "none" if best is None else f"{best.body_apex_above_standing_m * 1e3:.1f} mm"
         raise ParameterError(f"{rise_m * 1e3:.1f} mm above standing: beyond what the motors "
                              f"allow on this stroke (the highest jump rises {reached})",
                              "height_m")
@@ -270,7 +271,7 @@ def torque_floor(s: Stroke, standing_u: float, rise_m: float) -> tuple[float, Ju
     while high - low > FLOOR_TOLERANCE_NM:
         mid = 0.5 * (low + high)
         jump = push(s, standing_u, mid)
-        if jump is not None and jump.com_rise_from_standing_m >= rise_m:
+        if jump is not None and jump.body_apex_above_standing_m >= rise_m:
             high, found = mid, jump
         else:
             low = mid
@@ -278,10 +279,10 @@ def torque_floor(s: Stroke, standing_u: float, rise_m: float) -> tuple[float, Ju
 
 
 def box_floor_lp(s: Stroke, standing_u: float, rise_m: float) -> tuple[float, str]:
-    """(The least peak joint torque (N*m), the solver that found it) of a jump along the whole stroke (taking off at its
-    end) that raises the centre of mass rise_m above standing, within the torque box alone (no
-    friction, no speed limit), with the foot on the ground inside its friction cone: a linear
-    program in x = u'^2 over the grid (Drake's MathematicalProgram; tau is linear in x and
+    """(The least peak joint torque (N*m), the solver that found it) of a jump along the whole
+    stroke (taking off at its end) that lifts the body rise_m above standing (as torque_floor),
+    within the torque box alone (no friction, no speed limit), with the foot on the ground
+    inside its friction cone: a linear program in x = u'^2 over the grid (Drake's MathematicalProgram; tau is linear in x and
     x'). A second method: where the envelope does not bind, torque_floor's jump taking off at
     the stroke's end has the same floor."""
     from pydrake.solvers import MathematicalProgram, Solve
@@ -304,9 +305,9 @@ def box_floor_lp(s: Stroke, standing_u: float, rise_m: float) -> tuple[float, st
         prog.AddLinearConstraint(fy >= 0.0)
         prog.AddLinearConstraint(fx <= s.mu * fy)
         prog.AddLinearConstraint(-fx <= s.mu * fy)
-    # apex of the centre of mass at takeoff (the last node): z_com + (w (1 + com_u))^2 / 2g
-    need = standing_u + float(np.interp(standing_u, s.u, s.com_m)) + rise_m - (s.u[-1]
-                                                                             + s.com_m[-1])
+    # the body's apex, the legs held at the takeoff pose (the last node): the hip rises with
+    # the centre of mass after takeoff, (w (1 + com_u))^2 / 2g
+    need = standing_u + rise_m - s.u[-1]
     prog.AddLinearConstraint(x[-1] * (1.0 + s.com_u[-1]) ** 2 / (2.0 * s.g) >= need)
     prog.AddLinearCost(peak)
     result = Solve(prog)
