@@ -8,7 +8,7 @@
   fivebar-drake sweep    SPEC.yaml [--out DIR] [--workers N] [--scheduler ADDRESS]
   fivebar-drake envelope [SPEC.yaml] [--out DIR] [--workers N] [--scheduler ADDRESS]
   fivebar-drake optimal  [--config FILE] [--set FIELD=VALUE ...] [--height M] [--payload KG]
-                         [--out DIR]
+                         [--simulate] [--out DIR]
   fivebar-drake compare  RUN_DIR [RUN_DIR ...] [--out FILE]
   fivebar-drake models   [--scenario FILE] [--config FILE] [--out DIR]"""
 
@@ -40,6 +40,7 @@ EXIT_CODES = """exit codes:
   130  interrupted by SIGINT (Ctrl-C), 143 by SIGTERM; simulate and envelope write what they have first"""
 
 EXIT_INTERNAL = 3
+MANEUVER_MARGIN_S = 0.1   # a simulated maneuver runs this past its span (its last sample in)
 DEFAULTS = Scenario()
 COMMON = {"help", "mechanism", "config", "duration", "out"}   # options every study takes
 
@@ -224,8 +225,11 @@ def _optimal(args, signals) -> int:
 
     matplotlib.use("Agg")
     from fivebar_drake.core.validation import MAX_MASS_KG, check_number
-    from fivebar_drake.optimal.jump_report import OPTIMAL_FILES, write
+    from fivebar_drake.optimal.jump_report import (OPTIMAL_FILES, jump_limits, max_jump_plan,
+                                                   write)
+    from fivebar_drake.pipeline import SIMULATION_FILES, run_simulation, write_simulation
     from fivebar_drake.robots.quadruped.config import load_params
+    from fivebar_drake.simulation.scenario import load_scenario
     from fivebar_drake.studies.fivebar_leg import with_sets
 
     params = with_sets(load_params(args.config), args.sets)
@@ -238,7 +242,22 @@ def _optimal(args, signals) -> int:
                 raise err.located("command line") from None
     out = prepare_output_dir(args.out or "out/optimal", "--out", OPTIMAL_FILES)
     start = time.perf_counter()
-    result, files = write(params, out, args.height, args.payload or 0.0)
+    result, jumps = jump_limits(params, args.height, args.payload or 0.0)
+    files = []
+    if args.simulate and jumps["ceiling"] is not None:
+        plan = max_jump_plan(params, jumps["ceiling"])
+        scenario = load_scenario(gait=plan, payload_kg=args.payload or 0.0,
+                                 duration_s=DEFAULTS.stand_s + plan.span_s(params.gait)
+                                 + MANEUVER_MARGIN_S)
+        folder = prepare_output_dir(out / "max_jump", "--out", SIMULATION_FILES)
+        summary, files = write_simulation(run_simulation(scenario, params, progress=True,
+                                                         stop=lambda: signals.name), folder)
+        height = summary["jump"]["height_m"] if summary["jump"] else 0.0
+        result["max_jump_simulated"] = {
+            "folder": "max_jump", "plan": plan.fields(), "height_m": height,
+            "share_of_ceiling": height / plan.height_m, "verdict": summary["verdict"],
+            "achieved": summary["verdict"] in ("pass", "warn", "fail")}
+    files = write(result, jumps, params, out) + files
     say(result["answer"])
     say(f"wrote {len(files)} files to {out.resolve()} in {time.perf_counter() - start:.1f} s:")
     for path in files:
@@ -370,6 +389,10 @@ def parser() -> argparse.ArgumentParser:
                    "above standing (m; default: the jump maneuver's, 0.06)")
     o.add_argument("--payload", type=float, metavar="KG", help="mass added to the body (kg; "
                    "default 0)")
+    o.add_argument("--simulate", action="store_const", const=True,
+                   help="also simulate the highest jump (the jump maneuver planned at the "
+                        "ceiling, the package's controller) into DIR/max_jump and report its "
+                        "apex against the ceiling")
     o.add_argument("--out", metavar="DIR", help="output folder: optimal.md, optimal.json, "
                    "optimal_jump.png (default: out/optimal)")
     c = command("compare", _compare, "simulated runs side by side: each motor's verdict and torques (what a foot path or a design costs)")

@@ -45,6 +45,9 @@ from fivebar_drake.core.variants import Variant, by_kind, registrar
 MAX_MANEUVER_VALUE = 100.0   # a maneuver's lengths (m) and times (s): catches a slip of units
 REACH_SPEED_M_S = 0.1   # a landing foot reaches down at this speed at touchdown (early touchdown
 #                         detection joins a descending foot to the support)
+EXTENSION_STOP_S = 0.02  # after takeoff a jump's legs stop extending within this (the foot sinks
+#                          v t / 2 below the takeoff point: 8 mm at the packaged jump's 0.77 m/s;
+#                          a light leg stops that fast, and it keeps the leg inside its reach)
 MIN_CRAWL_DUTY = 0.75   # a crawl's duty factor: one leg in swing at a time, three feet down
 PATHS: dict[str, type["FootPath"]] = {}   # the foot paths by kind, in registration order
 register_path = registrar(PATHS)
@@ -603,8 +606,9 @@ class Landing(Maneuver):
 class Jump(Landing):
     """A vertical jump of all four legs: crouch crouch_m above the standing line over crouch_s,
     hold hold_s, push off (the foot's quintic from rest to the takeoff speed at extension_m below
-    the standing line: peak acceleration 0.75 v^2 / stroke), fly (the feet tucked retract_m and
-    reaching down at 0.1 m/s to land), land (Landing). The takeoff speed puts the body's apex
+    the standing line: peak acceleration 0.75 v^2 / stroke), fly (the legs' extension stopped
+    within EXTENSION_STOP_S, the feet tucked retract_m and reaching down at 0.1 m/s to land),
+    land (Landing). The takeoff speed puts the body's apex
     height_m above its standing height: v = sqrt(2 g (height_m - extension_m))."""
 
     kind: ClassVar[str] = "jump"
@@ -643,14 +647,16 @@ class Jump(Landing):
         push, flight, v = self.timing(gait)
         crouch, takeoff = (x, y0 + self.crouch_m), (x, y0 - self.extension_m)
         tucked = (x, takeoff[1] + self.retract_m)
+        stopped = (x, takeoff[1] - v * EXTENSION_STOP_S / 2)     # the extension, stopped
         return [move(self.crouch_s, True, (x, y0), crouch), hold(self.hold_s, True, crouch),
                 (push, True, (x, *REST, x, *REST),
                  (crouch[1], 0.0, 0.0, takeoff[1], -v, 0.0)),
-                move(flight / 2, False, takeoff, tucked, (-v, 0.0)),
+                move(EXTENSION_STOP_S, False, takeoff, stopped, (-v, 0.0)),
+                move(flight / 2 - EXTENSION_STOP_S, False, stopped, tucked),
                 move(flight / 2, False, tucked, takeoff, (0.0, -REACH_SPEED_M_S)),
                 ] + self.landing(gait, v)
 
-    def events(self, gait: Gait) -> dict[str, float]:
+    def events(self, gait: Gait) -> Events:
         push, flight, _ = self.timing(gait)
         onset = self.crouch_s + self.hold_s
         return Events(onset=onset, takeoff=onset + push, touchdown=onset + push + flight)
@@ -678,7 +684,7 @@ class Drop(Landing):
         return ([hold(math.sqrt(2.0 * self.height_m / g), False, foot)]
                 + self.landing(gait, math.sqrt(2.0 * g * self.height_m)))
 
-    def events(self, gait: Gait) -> dict[str, float]:
+    def events(self, gait: Gait) -> Events:
         return Events(touchdown=math.sqrt(2.0 * self.height_m / gait.gravity_m_s2))
 
 

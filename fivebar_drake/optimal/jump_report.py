@@ -19,6 +19,7 @@ from fivebar_drake.optimal.vertical_jump import (Jump, highest_drop, landing_flo
 from fivebar_drake.robots.quadruped.params import Params
 
 OPTIMAL_FILES = ("optimal_jump.png", "optimal.md", "optimal.json")   # the JSON last: complete
+MARGIN_LANDING_M = 0.005   # the max jump's landing stops this short of its crouch
 REPRODUCED = 0.15   # a published jump figure is reproduced within this relative difference: the
 #                     presets' own numbers (masses, currents) are estimates to about this
 
@@ -174,13 +175,19 @@ def markdown(r: dict) -> str:
               f"{b['hip_apex_above_standing_m'] * 1e3:.1f} mm above standing."]
     if r["floor_why_none"]:
         lines += ["", f"Floor: none — {r['floor_why_none']}."]
+    if r.get("max_jump_simulated"):
+        m = r["max_jump_simulated"]
+        lines += ["", f"Simulated (the package's controller on the jump maneuver planned at the "
+                      f"ceiling, `{m['folder']}/`): apex {m['height_m'] * 1e3:.1f} mm, "
+                      f"{m['share_of_ceiling']:.0%} of the ceiling; verdict "
+                      f"{m['verdict'].upper()}{' (achieved)' if m['achieved'] else ''}."]
     if r["published"]:
         lines += ["", "## Published figures", "",
                   "| figure | published | computed (the ceiling) | ratio | reproduced | "
                   "the source's definition |", "|---|---|---|---|---|---|"]
         for p in r["published"]:
-            extra = (f" from the crouch ({p['computed_from_standing']:.3f} body apex above standing)"
-                     if "computed_from_standing" in p else "")
+            extra = (f" from the crouch ({p['computed_from_standing']:.3f} body apex above "
+                     "standing)" if "computed_from_standing" in p else "")
             lines.append(f"| {p['name']} | {p['value']:g} | {p['computed']:.3f}{extra} | "
                          f"{p['ratio']:.2f} | {'yes' if p['reproduced'] else 'no'} | "
                          f"{p['definition']} |")
@@ -210,11 +217,21 @@ def plot(jumps: dict, params: Params, path: Path) -> Path:
     return save_figure(fig, path)
 
 
-def write(params: Params, out: Path, height_m: float | None = None,
-          payload_kg: float = 0.0) -> tuple[dict, list[Path]]:
-    """Compute jump_limits and write OPTIMAL_FILES into out; (result, paths)."""
-    result, jumps = jump_limits(params, height_m, payload_kg)
+def max_jump_plan(params: Params, ceiling: Jump) -> JumpPath:
+    """The jump maneuver that asks for the ceiling: its crouch at the ceiling's start, its
+    extension at the ceiling's takeoff, its height the ceiling's body apex, landing over the
+    whole stroke back to the crouch (MARGIN_LANDING_M short of it)."""
+    standing = -params.gait.y_home_m
+    u0, takeoff = float(ceiling.stroke.u[0]), float(ceiling.stroke.u[ceiling.takeoff])
+    return JumpPath(height_m=round(ceiling.body_apex_above_standing_m, 4),
+                    crouch_m=round(standing - u0, 4), extension_m=round(takeoff - standing, 4),
+                    landing_stroke_m=round(takeoff - u0 - MARGIN_LANDING_M, 4))
+
+
+def write(result: dict, jumps: dict[str, Jump], params: Params,
+          out: Path) -> list[Path]:
+    """Write OPTIMAL_FILES of jump_limits' result and jumps into out; the paths."""
     files = [plot(jumps, params, out / "optimal_jump.png"),
              write_atomic(out / "optimal.md", markdown(result)),
              write_atomic(out / "optimal.json", json.dumps(json_ready(result), indent=2))]
-    return result, files
+    return files

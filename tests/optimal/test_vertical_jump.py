@@ -155,3 +155,17 @@ def test_the_command_writes_the_answer_first(tmp_path, capsys):
     assert main(["optimal", "--out", str(tmp_path), "--height", "0.5"]) == 1
     assert "beyond what the motors allow" in capsys.readouterr().err
     assert main(["optimal", "--out", str(tmp_path), "--payload", "-1"]) == 2
+
+
+@pytest.mark.slow
+def test_the_highest_jump_simulated_reaches_85_percent_of_it(tmp_path):
+    """The acceptance: the jump maneuver planned at the ceiling (its crouch, takeoff extension
+    and body apex), simulated on the Drake Diagram with the package's controller, is achieved
+    and rises at least 85 % of the optimized height (and, being a simulation of the same
+    legs, no higher than it)."""
+    assert main(["optimal", "--simulate", "--out", str(tmp_path)]) == 0
+    result = json.loads((tmp_path / "optimal.json").read_text())
+    simulated = result["max_jump_simulated"]
+    assert simulated["achieved"] and 0.85 <= simulated["share_of_ceiling"] <= 1.0
+    summary = json.loads((tmp_path / "max_jump" / "summary.json").read_text())
+    assert summary["jump"]["height_m"] == pytest.approx(simulated["height_m"])
