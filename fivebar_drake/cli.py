@@ -219,13 +219,13 @@ def _envelope(args, signals) -> int:
 
 
 def _optimal(args, signals) -> int:
-    """What the legs allow for any controller (optimal/jump_report.py): every input checked
+    """What the legs allow for any controller (optimal/report.py): every input checked
     first (exit 2); exit 1 when the jump asked for is beyond the motors."""
     import matplotlib
 
     matplotlib.use("Agg")
     from fivebar_drake.core.validation import MAX_MASS_KG, check_number
-    from fivebar_drake.optimal.jump_report import (OPTIMAL_FILES, jump_limits, max_jump_plan,
+    from fivebar_drake.optimal.report import (OPTIMAL_FILES, jump_limits, max_jump_plan,
                                                    write)
     from fivebar_drake.pipeline import SIMULATION_FILES, run_simulation, write_simulation
     from fivebar_drake.robots.quadruped.config import load_params

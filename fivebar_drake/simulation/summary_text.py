@@ -198,8 +198,8 @@ def ran_text(ran: Ran) -> str:
 
 def any_controller_text(a: AnyController) -> str:
     """What any controller would need for the maneuver, in a sentence (pipeline.any_controller)."""
-    reach = ("jump on its stroke" if a["maneuver"] == "jump" else
-             "drop its landing stroke absorbs")
+    reach = {"jump": "jump on its stroke", "drop": "drop its landing stroke absorbs"}.get(
+        a["maneuver"])
     if a["floor_Nm"] is None:
         text = f"No controller could do this {a['maneuver']}: {a['why']}"
     else:
@@ -208,9 +208,12 @@ def any_controller_text(a: AnyController) -> str:
                         for p, v in a["phases"].items())
         cost = ("" if a["controller_cost"] is None else
                 f"; this controller asked {a['controller_cost']:.2f}x the floor")
+        what = (f"{a['height_m'] * 1e3:.0f} mm {a['maneuver']}" if a["height_m"]
+                else a["maneuver"])
+        ceiling = ("" if a["ceiling_m"] is None else
+                   f"; the highest {reach}: {a['ceiling_m'] * 1e3:.0f} mm")
         text = (f"Any controller needs at least {a['floor_Nm']:.2f} N·m at the peak for this "
-                f"{a['height_m'] * 1e3:.0f} mm {a['maneuver']} ({per} N·m; the highest "
-                f"{reach}: {a['ceiling_m'] * 1e3:.0f} mm){cost}")
+                f"{what} ({per} N·m{ceiling}){cost}")
         if a["why"]:
             text += f" ({a['why']})"
     blame = {"any controller": " The verdict fails for any controller: the motors are too "

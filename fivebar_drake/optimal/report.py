@@ -1,5 +1,7 @@
-"""The vertical jump's ceiling and floor for one design (vertical_jump.py), as optimal.json,
-optimal.md and optimal_jump.png: the answer first, then the figures beside the bound."""
+"""What the legs allow for any controller, for one design (`fivebar-drake optimal`): the
+vertical jump's ceiling and floor and the drop's landing (vertical_jump.py), the trot's floor
+(trot_floor.py), as optimal.json, optimal.md and optimal_jump.png: the answer first, then the
+figures beside the bounds."""
 
 from __future__ import annotations
 
@@ -13,6 +15,7 @@ from fivebar_drake.core.files import json_ready, save_figure, write_atomic
 from fivebar_drake.core.footpath import Drop, Jump as JumpPath
 from fivebar_drake.core.validation import ParameterError, check_number
 from fivebar_drake.mechanisms.fivebar import MOTORS
+from fivebar_drake.optimal.trot_floor import trot_floor
 from fivebar_drake.optimal.vertical_jump import (Jump, highest_drop, landing_floor,
                                                  point_mass_bound, push, reach, stroke,
                                                  torque_floor)
@@ -103,6 +106,15 @@ def jump_limits(params: Params, height_m: float | None = None,
     except ParameterError as err:
         result["floor_why_none"] = err.message
     result["drop"] = drop_limits(params, payload_kg)
+    at_gait, free = (trot_floor(params, payload_kg=payload_kg, free_height=f)
+                     for f in (False, True))
+    result["trot"] = {"floor_Nm": at_gait.floor_Nm,
+                      "constant_height_floor_Nm": at_gait.constant_height_Nm,
+                      "height_swing_m": float(np.ptp(at_gait.z_m)),
+                      "free_height_floor_Nm": free.floor_Nm,
+                      "free_height_change_m": float(np.mean(free.z_m)),
+                      "scope": "stance legs at the trot's speed, period and duty factor; the "
+                               "swing legs' torques are not in the floor"}
     result["published"] = published_jump(params, result["ceiling"])
     result["answer"] = answer(result, params)
     return result, jumps
@@ -150,7 +162,13 @@ def answer(r: dict, params: Params) -> str:
              f"{d['landing_stroke_m'] * 1e3:.0f} mm needs at least "
              f"{d['least_peak_torque_Nm']:.2f} N·m (braking); that stroke absorbs a drop of up "
              f"to {d['highest_drop_m'] * 1e3:.0f} mm.")
-    return first + second + third
+    t = r["trot"]
+    fourth = (f" The trot needs at least {t['floor_Nm']:.2f} N·m in stance at its own height "
+              f"(the body bobbing {t['height_swing_m'] * 1e3:.0f} mm; "
+              f"{t['constant_height_floor_Nm']:.2f} N·m held level), "
+              f"{t['free_height_floor_Nm']:.2f} N·m with the body "
+              f"{t['free_height_change_m'] * 1e3:.0f} mm higher.")
+    return first + second + third + fourth
 
 
 def markdown(r: dict) -> str:
