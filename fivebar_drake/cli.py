@@ -203,6 +203,13 @@ def _envelope(args, signals) -> int:
         if s:
             say(f"motor {motor} is sized by {s['maneuver']} ({s['verdict'].upper()}, "
                 f"{s['deciding_check']} check, leg {s['leg']})")
+    floor = report["sized_by_floor"]
+    if floor:
+        say(f"for any controller: {floor['maneuver']} " + (
+            f"needs at least {floor['floor_Nm']:.2f} N·m (SF {floor['safety_factor']:.2f} on "
+            "the motors' peak)" if floor["floor_Nm"] is not None else
+            "is beyond these motors") + (f"; no floor yet for {', '.join(floor['without_floor'])}"
+                                         if floor["without_floor"] else ""))
     duty = report["duty_cycle"]
     say("duty cycle: " + (report["duty_cycle_why_none"] if duty is None else ", ".join(
         f"motor {m} peaks at {v['peak_C']:.1f} °C (leg {v['leg']})"

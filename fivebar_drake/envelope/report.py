@@ -121,6 +121,24 @@ def sizing(maneuvers: dict) -> dict:
     return out
 
 
+def sized_by_floor(maneuvers: dict, peak_torque_Nm: float) -> dict | None:
+    """The maneuver whose floor (its any_controller: the least peak motor torque any controller
+    needs; a jump's, a drop's, a trot's) is the largest, with that floor, the motors' safety
+    factor on it (driving peak over the floor) and the maneuvers that have no floor; None when
+    no maneuver has one. Where a maneuver is beyond the motors for any controller, it sizes
+    them (floor None, safety factor 0)."""
+    floors = {name: e["any_controller"] for name, e in maneuvers.items()
+              if e.get("any_controller")}
+    if not floors:
+        return None
+    name = max(floors, key=lambda n: math.inf if floors[n]["floor_Nm"] is None
+               else floors[n]["floor_Nm"])
+    floor = floors[name]["floor_Nm"]
+    return {"maneuver": name, "floor_Nm": floor,
+            "safety_factor": 0.0 if floor is None else peak_torque_Nm / floor,
+            "without_floor": [n for n in maneuvers if n not in floors]}
+
+
 def _reason(motor: str, maneuver: str, row: dict) -> str:
     check = row["deciding_check"]
     where = f"motor {motor} in {maneuver} (leg {row['leg']})"
@@ -170,6 +188,7 @@ def envelope_report(spec, results: dict, duty: dict | None, duty_why: str,
                   "no_load_speed_rad_s": motor.no_load_speed_rad_s,
                   "continuous_torque_Nm": motor.continuous_torque_Nm},
         "sized_by": sized,
+        "sized_by_floor": sized_by_floor(maneuvers, motor.peak_torque_Nm),
         "maneuvers": maneuvers,
         "duty_cycle": None if duty is None else {
             "steps": [{"maneuver": s.maneuver, "duration_s": s.duration_s}
@@ -240,6 +259,16 @@ def markdown(report: dict) -> str:
                   f"{s['deciding_check']} check, leg {s['leg']}); worst torque "
                   f"{s['worst_per_check']['torque']}, speed {s['worst_per_check']['speed']}, "
                   f"thermal {s['worst_per_check']['thermal']}."), ""]
+    f = report["sized_by_floor"]
+    if f is not None:
+        lines += ["## For any controller", "",
+                  ("Sized by its floor: " + (
+                      f"**{f['maneuver']}** needs at least {f['floor_Nm']:.2f} N·m at the peak "
+                      f"whatever the controller: the motors' safety factor on it is "
+                      f"{f['safety_factor']:.2f}" if f["floor_Nm"] is not None else
+                      f"**{f['maneuver']}** is beyond these motors for any controller"))
+                  + (f". No floor is computed yet for {', '.join(f['without_floor'])}."
+                     if f["without_floor"] else "."), ""]
     lines += ["## Maneuvers", "", "Floor: the least peak motor torque any controller needs for "
               "the maneuver, against what this controller asked (a jump's push-off; the other "
               "maneuvers' floors are not computed yet: —); fails for: whom a failing verdict "
