@@ -1,6 +1,6 @@
 """Rerun recordings (.rrd) of every simulation: a file written atomically with its blueprint
-and footer, scalar series logged in columns with their legend and style, and the frames at which
-3-D poses are logged."""
+and footer, scalar series logged in columns with their legend and style, the frames at which
+3-D poses are logged, and a scalar series read back from a file."""
 
 from __future__ import annotations
 
@@ -47,3 +47,20 @@ def pose_frames(t, rate_hz: float) -> np.ndarray:
     multiple of 1 / rate_hz."""
     frames = np.unique(np.searchsorted(t, np.arange(0.0, t[-1] + 1e-9, 1.0 / rate_hz)))
     return frames[frames < len(t)]
+
+
+def read_series(path: Path, entity: str) -> tuple[np.ndarray, np.ndarray]:
+    """Time (s) and values of a scalar entity of a recording, read back from the file."""
+    from rerun.chunk import RrdReader
+
+    chunks = RrdReader(str(path)).stream().filter(content=entity, is_static=False).to_chunks()
+    if not chunks:
+        raise ValueError(f"{path} has no entity {entity!r}")
+    t, v = [], []
+    for chunk in chunks:
+        batch = chunk.to_record_batch()
+        t.append(batch.column(TIMELINE).cast("int64").to_numpy() * 1e-9)
+        v.append(np.array([row[0] for row in batch.column("Scalars:scalars").to_pylist()]))
+    t, v = np.concatenate(t), np.concatenate(v)
+    order = np.argsort(t, kind="stable")
+    return t[order], v[order]

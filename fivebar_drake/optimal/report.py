@@ -15,13 +15,15 @@ from fivebar_drake.core.files import json_ready, save_figure, write_atomic
 from fivebar_drake.core.footpath import Drop, Jump as JumpPath
 from fivebar_drake.core.validation import ParameterError, check_number
 from fivebar_drake.mechanisms.fivebar import MOTORS
+from fivebar_drake.optimal.recording import RECORDING_FILE, write_recording
 from fivebar_drake.optimal.trot_floor import trot_floor
 from fivebar_drake.optimal.vertical_jump import (Jump, highest_drop, landing_floor,
                                                  point_mass_bound, push, reach, stroke,
                                                  torque_floor)
 from fivebar_drake.robots.quadruped.params import Params
 
-OPTIMAL_FILES = ("optimal_jump.png", "optimal.md", "optimal.json")   # the JSON last: complete
+OPTIMAL_FILES = ("optimal_jump.png", RECORDING_FILE, "optimal.md",
+                 "optimal.json")                                   # the JSON last: complete
 MARGIN_LANDING_M = 0.005   # the max jump's landing stops this short of its crouch
 REPRODUCED = 0.15   # a published jump figure is reproduced within this relative difference: the
 #                     presets' own numbers (masses, currents) are estimates to about this
@@ -250,6 +252,7 @@ def write(result: dict, jumps: dict[str, Jump], params: Params,
           out: Path) -> list[Path]:
     """Write OPTIMAL_FILES of jump_limits' result and jumps into out; the paths."""
     files = [plot(jumps, params, out / "optimal_jump.png"),
+             write_recording(out / RECORDING_FILE, jumps, params),
              write_atomic(out / "optimal.md", markdown(result)),
              write_atomic(out / "optimal.json", json.dumps(json_ready(result), indent=2))]
     return files

@@ -260,20 +260,3 @@ def _log_events(rec, sig: Signals, legs):
                                       markers=EVENT_MARKERS[kind], marker_sizes=5.0,
                                       colors=LEG_COLORS[i] if leg else FLIGHT_COLOR),
                 static=True)
-
-
-def read_series(path: Path, entity: str) -> tuple[np.ndarray, np.ndarray]:
-    """Time (s) and values of a scalar entity of a recording, read back from the file."""
-    from rerun.chunk import RrdReader
-
-    chunks = RrdReader(str(path)).stream().filter(content=entity, is_static=False).to_chunks()
-    if not chunks:
-        raise ValueError(f"{path} has no entity {entity!r}")
-    t, v = [], []
-    for chunk in chunks:
-        batch = chunk.to_record_batch()
-        t.append(batch.column(TIMELINE).cast("int64").to_numpy() * 1e-9)
-        v.append(np.array([row[0] for row in batch.column("Scalars:scalars").to_pylist()]))
-    t, v = np.concatenate(t), np.concatenate(v)
-    order = np.argsort(t, kind="stable")
-    return t[order], v[order]

@@ -22,7 +22,7 @@ from fivebar_drake.envelope.duty_cycle import duty_temperature
 from fivebar_drake.envelope.maneuver import decimate
 from fivebar_drake.envelope.spec import DATA, DutyStep, load_envelope_spec
 from fivebar_drake.robots.quadruped.config import DEFAULT_PATH
-from fivebar_drake.simulation.recording import read_series
+from fivebar_drake.core.rerun_files import read_series
 
 # two short trot variants with a verdict: 3 whole cycles after 0.2 s standing and the ramp
 SPEC = """\

@@ -10,6 +10,7 @@ import pytest
 
 from fivebar_drake.cli import main
 from fivebar_drake.core.footpath import Drop, Jump as JumpPath
+from fivebar_drake.core.rerun_files import read_series
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.mechanisms.fivebar import (LINK_NAMES, link_coms, link_jacobians,
                                               physical_izz)
@@ -152,6 +153,11 @@ def test_the_command_writes_the_answer_first(tmp_path, capsys):
     result = json.loads((tmp_path / "optimal.json").read_text())
     assert result["ceiling"]["com_rise_from_standing_m"] >= 0.08
     assert (tmp_path / "optimal.md").read_text().splitlines()[2] == result["answer"]
+    _, torque = read_series(tmp_path / "optimal.rrd", "/torque/A/ceiling")     # Rerun's file
+    assert np.abs(torque).max() == pytest.approx(
+        result["ceiling"]["motors"]["A"]["peak_torque_Nm"])
+    _, height = read_series(tmp_path / "optimal.rrd", "/hip/height_m/floor")
+    assert height[-1] == pytest.approx(PLAN.extension_m, abs=1e-6)         # takeoff
     assert main(["optimal", "--out", str(tmp_path), "--height", "0.5"]) == 1
     assert "beyond what the motors allow" in capsys.readouterr().err
     assert main(["optimal", "--out", str(tmp_path), "--payload", "-1"]) == 2

@@ -17,7 +17,8 @@ from fivebar_drake.analysis.torques import analyze, seed_results
 from fivebar_drake.pipeline import run_simulation, write_simulation
 from fivebar_drake.simulation.events import CONTACT_N, detect_events, phases
 from fivebar_drake.simulation.plots import Band, StripChart, band_of, extremes
-from fivebar_drake.simulation.recording import EYE_OFFSET_M, read_series
+from fivebar_drake.core.rerun_files import read_series
+from fivebar_drake.simulation.recording import EYE_OFFSET_M
 from fivebar_drake.simulation.scenario import load_scenario
 from fivebar_drake.simulation.signals import signals
 

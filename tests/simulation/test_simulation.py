@@ -15,7 +15,7 @@ from fivebar_drake.cli import main
 from fivebar_drake.core.footpath import Trot
 from fivebar_drake.mechanisms.fivebar import UnreachableError, foot_jacobian, forward
 from fivebar_drake.pipeline import run_simulation, summarize_run
-from fivebar_drake.simulation.recording import read_series
+from fivebar_drake.core.rerun_files import read_series
 from fivebar_drake.simulation.scenario import load_scenario
 from fivebar_drake.robots.quadruped.plant import set_standing_pose
 from fivebar_drake.simulation.builder import build_diagram, check_run

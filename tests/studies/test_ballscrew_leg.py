@@ -12,7 +12,7 @@ import pytest
 from fivebar_drake import catalog
 from fivebar_drake.cli import main
 from fivebar_drake.mechanisms.ballscrew_leg import load_params
-from fivebar_drake.simulation.recording import read_series
+from fivebar_drake.core.rerun_files import read_series
 from fivebar_drake.studies.ballscrew_leg.model import build_model
 
 REQUIRED_IDS = {"ratio_max_s1_0.02", "ratio_min_s1_0.02", "ratio_max_s1_0.05",

@@ -12,7 +12,7 @@ import pytest
 
 from fivebar_drake.cli import main
 from fivebar_drake.mechanisms.parallel4.kinematics import inverse
-from fivebar_drake.simulation.recording import read_series
+from fivebar_drake.core.rerun_files import read_series
 from fivebar_drake.studies.parallel4 import ANALYSIS_FILES, load_params
 from fivebar_drake.studies.parallel4.model import Parallel4Plant, closed_form_static_forces
 from fivebar_drake.studies.parallel4.simulation import simulate

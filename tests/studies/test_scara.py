@@ -10,7 +10,7 @@ import pytest
 
 from fivebar_drake.cli import main
 from fivebar_drake.mechanisms.scara import Dynamics, load_params, seed_inertia
-from fivebar_drake.simulation.recording import read_series
+from fivebar_drake.core.rerun_files import read_series
 from fivebar_drake.studies.scara.analysis import seed_motion
 from fivebar_drake.studies.scara.model import drake_terms
 
