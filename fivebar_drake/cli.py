@@ -232,8 +232,8 @@ def _optimal(args, signals) -> int:
 
     matplotlib.use("Agg")
     from fivebar_drake.core.validation import MAX_MASS_KG, check_number
-    from fivebar_drake.optimal.report import (OPTIMAL_FILES, jump_limits, max_jump_plan,
-                                                   write)
+    from fivebar_drake.optimal.report import (OPTIMAL_FILES, beyond, jump_limits,
+                                              max_jump_plan, write)
     from fivebar_drake.pipeline import SIMULATION_FILES, run_simulation, write_simulation
     from fivebar_drake.robots.quadruped.config import load_params
     from fivebar_drake.simulation.scenario import load_scenario
@@ -269,8 +269,9 @@ def _optimal(args, signals) -> int:
     say(f"wrote {len(files)} files to {out.resolve()} in {time.perf_counter() - start:.1f} s:")
     for path in files:
         say(f"  {path}")
-    if result["ceiling"] is None or result["floor"] is None:
-        _err(result["ceiling_why_none"] or result["floor_why_none"])
+    short = beyond(result)
+    if short:
+        _err(f"beyond the motors for any controller: {short}")
         return 1
     return 0
 

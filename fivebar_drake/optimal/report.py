@@ -111,6 +111,7 @@ def jump_limits(params: Params, height_m: float | None = None,
     at_gait, free = (trot_floor(params, payload_kg=payload_kg, free_height=f)
                      for f in (False, True))
     result["trot"] = {"floor_Nm": at_gait.floor_Nm,
+                      "beyond_motors": at_gait.floor_Nm > params.motor.peak_torque_Nm,
                       "constant_height_floor_Nm": at_gait.constant_height_Nm,
                       "height_swing_m": float(np.ptp(at_gait.z_m)),
                       "free_height_floor_Nm": free.floor_Nm,
@@ -169,7 +170,9 @@ def answer(r: dict, params: Params) -> str:
               f"(the body bobbing {t['height_swing_m'] * 1e3:.0f} mm; "
               f"{t['constant_height_floor_Nm']:.2f} N·m held level), "
               f"{t['free_height_floor_Nm']:.2f} N·m with the body "
-              f"{t['free_height_change_m'] * 1e3:.0f} mm higher.")
+              f"{t['free_height_change_m'] * 1e3:.0f} mm higher"
+              + (f": beyond the motors' {params.motor.peak_torque_Nm:.2f} N·m, for any "
+                 "controller." if t["beyond_motors"] else "."))
     return first + second + third + fourth
 
 
@@ -246,6 +249,14 @@ def max_jump_plan(params: Params, ceiling: Jump) -> JumpPath:
     return JumpPath(height_m=round(ceiling.body_apex_above_standing_m, 4),
                     crouch_m=round(standing - u0, 4), extension_m=round(takeoff - standing, 4),
                     landing_stroke_m=round(takeoff - u0 - MARGIN_LANDING_M, 4))
+
+
+def beyond(result: dict) -> str:
+    """What the design cannot do for any controller, in a line ("" where it can do all)."""
+    why = [result["ceiling_why_none"], result["floor_why_none"], result["drop"]["why_none"]]
+    if result["trot"]["beyond_motors"]:
+        why.append(f"the trot needs at least {result['trot']['floor_Nm']:.2f} N·m in stance")
+    return "; ".join(w for w in why if w)
 
 
 def write(result: dict, jumps: dict[str, Jump], params: Params,

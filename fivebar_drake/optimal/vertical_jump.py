@@ -263,10 +263,10 @@ def torque_floor(s: Stroke, standing_u: float, rise_m: float) -> tuple[float, Ju
     ceiling if no torque the motors have reaches it."""
     best = push(s, standing_u)
     if best is None or best.body_apex_above_standing_m < rise_m:
-        reached = "none" if best is None else f"{best.body_apex_above_standing_m * 1e3:.1f} mm"
+        reached = ("the motors cannot lift the crouched robot" if best is None else
+                   f"the highest jump rises {best.body_apex_above_standing_m * 1e3:.1f} mm")
         raise ParameterError(f"{rise_m * 1e3:.1f} mm above standing: beyond what the motors "
-                             f"allow on this stroke (the highest jump rises {reached})",
-                             "height_m")
+                             f"allow on this stroke ({reached})", "height_m")
     low, high, found = 0.0, float(np.abs(best.delivered_Nm).max()), best
     while high - low > FLOOR_TOLERANCE_NM:
         mid = 0.5 * (low + high)

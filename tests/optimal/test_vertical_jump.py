@@ -175,3 +175,14 @@ def test_the_highest_jump_simulated_reaches_85_percent_of_it(tmp_path):
     assert simulated["achieved"] and 0.85 <= simulated["share_of_ceiling"] <= 1.0
     summary = json.loads((tmp_path / "max_jump" / "summary.json").read_text())
     assert summary["jump"]["height_m"] == pytest.approx(simulated["height_m"])
+
+
+def test_a_design_too_weak_for_everything_is_told_so(tmp_path, capsys):
+    """Motors of 0.5 A peak: no jump, no landing, a trot beyond them: exit 1, each named, and
+    every file written with the reasons (never a floor where there is none)."""
+    assert main(["optimal", "--set", "motor.peak_current_A=0.5", "--out", str(tmp_path)]) == 1
+    err = capsys.readouterr().err
+    assert "cannot lift the crouched robot" in err and "give way" in err and "trot" in err
+    result = json.loads((tmp_path / "optimal.json").read_text())
+    assert result["ceiling"] is None and result["floor"] is None
+    assert result["drop"]["least_peak_torque_Nm"] is None and result["trot"]["beyond_motors"]
