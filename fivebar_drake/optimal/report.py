@@ -110,12 +110,19 @@ def jump_limits(params: Params, height_m: float | None = None,
     result["drop"] = drop_limits(params, payload_kg)
     at_gait, free = (trot_floor(params, payload_kg=payload_kg, free_height=f)
                      for f in (False, True))
+    thermal = trot_floor(params, payload_kg=payload_kg, thermal=True)
+    continuous = params.motor.rated_continuous_current_A
     result["trot"] = {"floor_Nm": at_gait.floor_Nm,
                       "beyond_motors": at_gait.floor_Nm > params.motor.peak_torque_Nm,
                       "constant_height_floor_Nm": at_gait.constant_height_Nm,
                       "height_swing_m": float(np.ptp(at_gait.z_m)),
                       "free_height_floor_Nm": free.floor_Nm,
                       "free_height_change_m": float(np.mean(free.z_m)),
+                      "thermal_floor_rms_torque_Nm": thermal.floor_Nm,
+                      "thermal_floor_rms_current_A": thermal.rms_current_A,
+                      "continuous_current_A": continuous,
+                      "thermal_margin": (continuous / thermal.rms_current_A
+                                         if continuous else None),
                       "scope": "stance legs at the trot's speed, period and duty factor; the "
                                "swing legs' torques are not in the floor"}
     result["published"] = published_jump(params, result["ceiling"])
@@ -172,7 +179,11 @@ def answer(r: dict, params: Params) -> str:
               f"{t['free_height_floor_Nm']:.2f} N·m with the body "
               f"{t['free_height_change_m'] * 1e3:.0f} mm higher"
               + (f": beyond the motors' {params.motor.peak_torque_Nm:.2f} N·m, for any "
-                 "controller." if t["beyond_motors"] else "."))
+                 "controller." if t["beyond_motors"] else ".")
+              + ("" if t["thermal_margin"] is None else
+                 f" Its thermal floor: {t['thermal_floor_rms_current_A']:.2f} A RMS (stance "
+                 f"only), {t['thermal_margin']:.2f} of the continuous "
+                 f"{t['continuous_current_A']:.2f} A."))
     return first + second + third + fourth
 
 

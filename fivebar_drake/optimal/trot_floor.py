@@ -46,7 +46,8 @@ class TrotFloor:
     the times (s) of the knots over a period, the body height's change z (m) and the vertical
     force on a first-pair foot F_1 (N) at each, that leg's motor torques (knots, 2) N*m (zero in
     swing); the floor at constant height (N*m) beside it; whether the mean height was free; the
-    linear programs solved."""
+    worst motor's RMS current over the period (A; the motor law at the stance joint speeds,
+    zero in swing; nan without a thermal model); the programs solved."""
 
     floor_Nm: float
     t: np.ndarray
@@ -55,6 +56,7 @@ class TrotFloor:
     torque_Nm: np.ndarray
     constant_height_Nm: float
     free_height: bool
+    rms_current_A: float
     programs: int
 
 
@@ -69,22 +71,25 @@ def _stance(params: Params, path) -> tuple[np.ndarray, np.ndarray, float]:
     return u, stance, gait.x_center_m - gait.a_m + 2.0 * gait.a_m * sigma
 
 
-def _height(coefficients, t, period: float) -> tuple[np.ndarray, np.ndarray]:
-    """(z, z'') of the half-period profile: mean plus harmonics (cos, sin pairs)."""
+def _height(coefficients, t, period: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(z, z', z'') of the half-period profile: mean plus harmonics (cos, sin pairs)."""
     w = 4.0 * math.pi / period
-    z, zdd = np.full_like(t, coefficients[0]), np.zeros_like(t)
+    z, zd, zdd = np.full_like(t, coefficients[0]), np.zeros_like(t), np.zeros_like(t)
     for k in range(1, len(coefficients) // 2 + 1):
         c, s = coefficients[2 * k - 1], coefficients[2 * k]
         phase = k * w * t
         z += c * np.cos(phase) + s * np.sin(phase)
+        zd += k * w * (s * np.cos(phase) - c * np.sin(phase))
         zdd -= (k * w) ** 2 * (c * np.cos(phase) + s * np.sin(phase))
-    return z, zdd
+    return z, zd, zdd
 
 
-def _peak(params: Params, x, stance, z, zdd, mass: float):
-    """(least peak torque N*m, F_1 (KNOTS,), torques (KNOTS, 2)) for the height profile by the
-    linear program; (inf, None, None) where a stance pose is out of reach or past [limits], or
-    the feet would have to pull."""
+def _peak(params: Params, x, stance, z, zdd, mass: float, rms: bool = False):
+    """(least peak torque N*m, F_1 (KNOTS,), torques (KNOTS, 2), the stance leg's joint Jacobians
+    J_F (stance, 2, 2)) for the height profile by the linear program; with rms, the least
+    total squared stance torque over the period (the copper loss, a quadratic program on the
+    same constraints), valued as the worst motor's RMS torque; (inf, None, None, None) where a
+    stance pose is out of reach or past [limits], or the feet would have to pull."""
     from pydrake.solvers import MathematicalProgram, Solve
 
     leg, g = params.fivebar_leg, params.robot.gravity_m_s2
@@ -92,13 +97,13 @@ def _peak(params: Params, x, stance, z, zdd, mass: float):
     pose = leg.inverse(feet, KNEES_OUT, strict=False)
     if (not np.isfinite(pose.q).all()
             or past_any(limit_tests(params.leg, pose), (int(stance.sum()),)).any()):
-        return math.inf, None, None
+        return math.inf, None, None, None
     jf = leg.tool_jacobian(pose)                                  # (stance, 2, 2)
     model = full_model(params)
     weight = leg.static_torques(type(model)(**{**model.__dict__, "foot_load_N": 0.0}), pose)
     prog = MathematicalProgram()
     force = prog.NewContinuousVariables(KNOTS, "F")
-    peak = prog.NewContinuousVariables(1, "peak")[0]
+    peak = None if rms else prog.NewContinuousVariables(1, "peak")[0]
     prog.AddBoundingBoxConstraint(0.0, np.inf, force)
     swing = np.flatnonzero(~stance)
     prog.AddBoundingBoxConstraint(0.0, 0.0, force[swing])
@@ -109,27 +114,36 @@ def _peak(params: Params, x, stance, z, zdd, mass: float):
     for n, j in enumerate(np.flatnonzero(stance)):
         for i in range(2):
             tau = weight[n, i] - jf[n, 1, i] * force[j]          # -J_F^T (0, F)
-            prog.AddLinearConstraint(tau <= peak)
-            prog.AddLinearConstraint(tau >= -peak)
-    prog.AddLinearCost(peak)
+            if rms:
+                prog.AddQuadraticCost(tau * tau / KNOTS)
+            else:
+                prog.AddLinearConstraint(tau <= peak)
+                prog.AddLinearConstraint(tau >= -peak)
+    if not rms:
+        prog.AddLinearCost(peak)
     result = Solve(prog)
     if not result.is_success():
-        return math.inf, None, None
+        return math.inf, None, None, None
     f = result.GetSolution(force)
     torque = np.zeros((KNOTS, 2))
     torque[stance] = weight - jf[:, 1, :] * f[stance, None]
-    return float(result.GetSolution(peak)), f, torque
+    value = (float(np.sqrt(np.mean(torque**2, axis=0)).max()) if rms
+             else float(result.GetSolution(peak)))
+    return value, f, torque, jf
 
 
 def trot_floor(params: Params, path=None, payload_kg: float = 0.0,
-               free_height: bool = False) -> TrotFloor:
+               free_height: bool = False, thermal: bool = False) -> TrotFloor:
     """The trot path's (default the parameter file's trot) torque floor (module docstring):
     the body's mean height the gait's own (its stance feet at y_home) unless free_height, where
     any mean height within the leg's reach and [limits] is allowed (a straighter leg holds the
-    weight with less torque). Cached per process by (design, path, payload, free_height): a
-    sweep's or an envelope's runs of one design ask once (~1 s)."""
+    weight with less torque). thermal: the thermal floor instead, the least copper loss (the
+    sum of the stance torques squared over the period, swing torques taken as zero), floor_Nm
+    its worst motor's RMS torque and rms_current_A its RMS current. Cached per process by
+    (design, path, payload, free_height, thermal): a sweep's or an envelope's runs of one
+    design ask once (~1 s)."""
     return _cached(pickle.dumps((params, foot_path(path or Trot()), float(payload_kg),
-                                 bool(free_height))))
+                                 bool(free_height), bool(thermal))))
 
 
 @functools.lru_cache(maxsize=CACHE_SIZE)
@@ -137,7 +151,8 @@ def _cached(key: bytes) -> TrotFloor:
     return _solve(*pickle.loads(key))
 
 
-def _solve(params: Params, path, payload_kg: float, free_height: bool) -> TrotFloor:
+def _solve(params: Params, path, payload_kg: float, free_height: bool,
+           thermal: bool) -> TrotFloor:
     """trot_floor, computed."""
     from scipy.optimize import minimize
 
@@ -152,14 +167,22 @@ def _solve(params: Params, path, payload_kg: float, free_height: bool) -> TrotFl
 
     def cost(free):
         count[0] += 1
-        z, zdd = _height(full(free), t, period)
-        return _peak(params, x, stance, z, zdd, mass)[0]
+        z, _, zdd = _height(full(free), t, period)
+        return _peak(params, x, stance, z, zdd, mass, thermal)[0]
 
     start = np.zeros(2 * HARMONICS + (1 if free_height else 0))
     constant = cost(start)
     best = minimize(cost, start, method="Nelder-Mead",
                     options={"initial_simplex": np.vstack([start, 0.005 * np.eye(len(start))]),
                              "xatol": 1e-5, "fatol": 1e-4, "maxiter": 400})
-    z, zdd = _height(full(best.x), t, period)
-    floor, force, torque = _peak(params, x, stance, z, zdd, mass)
-    return TrotFloor(floor, t, z, force, torque, constant, free_height, count[0] + 1)
+    z, zd, zdd = _height(full(best.x), t, period)
+    floor, force, torque, jf = _peak(params, x, stance, z, zdd, mass, thermal)
+    current = math.nan
+    if jf is not None and params.motor.has_thermal_model:
+        # the stance leg's joint speeds: its foot moves at the stance speed along x and at -z'
+        speed = np.zeros((KNOTS, 2))
+        feet = np.stack([np.full(int(stance.sum()), path.stance_speed(params.gait)),
+                         -zd[stance]], -1)
+        speed[stance] = np.linalg.solve(jf, feet[..., None])[..., 0]
+        current = float(np.sqrt(np.mean(params.motor.currents(torque, speed) ** 2, axis=0)).max())
+    return TrotFloor(floor, t, z, force, torque, constant, free_height, current, count[0] + 1)

@@ -58,3 +58,14 @@ def test_the_trot_floor_is_below_what_the_controller_asked(params):
     assert a["maneuver"] == "trot" and a["floor_Nm"] == pytest.approx(trot_floor(params).floor_Nm)
     assert a["floor_Nm"] < a["asked_Nm"]
     assert trot_floor(params, Trot(duty_factor=0.75)).floor_Nm == pytest.approx(a["floor_Nm"])
+
+
+def test_the_thermal_floor_heats_less_than_the_peak_floor(params):
+    """The least copper loss (a quadratic program) leaves the worst motor an RMS torque and
+    current no larger than those of the least peak torque's trot, and its peak no smaller;
+    its current is the motor law's at the stance joint speeds (below the peak current)."""
+    peak, thermal = trot_floor(params), trot_floor(params, thermal=True)
+    rms = np.sqrt(np.mean(peak.torque_Nm**2, axis=0)).max()
+    assert thermal.floor_Nm <= rms + 1e-3 and thermal.rms_current_A <= peak.rms_current_A + 1e-3
+    assert np.abs(thermal.torque_Nm).max() >= peak.floor_Nm - 1e-3
+    assert 0.0 < thermal.rms_current_A < params.motor.law.peak_current
