@@ -1,9 +1,9 @@
 """Optimal-maneuver benchmark: the vertical jump's ceiling and floor (optimal/vertical_jump.py)
 of the default robot on one core, warm (each computed once before timing), the median of
 --repeats; the linear program's solve (Drake MathematicalProgram) for the same floor; the
-trot's stance floor (optimal/trot_floor.py, uncached: each repeat solves it). Prints a table,
-then one JSON object: ceiling_s, floor_s, lp_s, lp_solver, bisection_steps, trot_floor_s,
-trot_programs."""
+trot's and the walk's stance floors (optimal/stance_floor.py, uncached: each repeat solves
+them). Prints a table, then one JSON object: ceiling_s, floor_s, lp_s, lp_solver,
+bisection_steps, trot_floor_s, trot_programs, walk_floor_s, walk_programs."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ import statistics
 import time
 
 from fivebar_drake.core.footpath import Jump as JumpPath
-from fivebar_drake.optimal import trot_floor as tf
+from fivebar_drake.optimal import stance_floor as sf
 from fivebar_drake.optimal import vertical_jump as vj
 from fivebar_drake.robots.quadruped.config import load_params
 
@@ -62,7 +62,8 @@ def main() -> None:
     stroke = maneuver()
     lp_s, (lp_peak, solver) = timed(lambda: vj.box_floor_lp(stroke, standing, plan.height_m),
                                     args.repeats)
-    trot_s, trot = timed(lambda: tf._solve(params, tf.Trot(), 0.0, False), args.repeats)
+    gaits = {kind: timed(lambda kind=kind: sf._solve(params, sf.foot_path(kind), 0.0, False,
+                                                    False), args.repeats) for kind in sf.REPEAT}
     print(f"vertical jump, default robot, {vj.GRID_POINTS} nodes, median of {args.repeats}:")
     print(f"  ceiling (highest jump, {jump.com_rise_from_standing_m * 1e3:.1f} mm): "
           f"{ceiling_s * 1e3:.0f} ms")
@@ -70,11 +71,13 @@ def main() -> None:
           f"by bisection): {floor_s * 1e3:.0f} ms   (target <= 10 s)")
     print(f"  torque-box floor, Drake linear program ({lp_peak:.3f} N m, {solver}): "
           f"{lp_s * 1e3:.0f} ms")
-    print(f"  trot stance floor ({trot.floor_Nm:.3f} N m, {trot.programs} linear programs): "
-          f"{trot_s * 1e3:.0f} ms   (target <= 10 s)")
+    for kind, (seconds, floor) in gaits.items():
+        print(f"  {kind} stance floor ({floor.floor_Nm:.3f} N m, {floor.programs} linear "
+              f"programs): {seconds * 1e3:.0f} ms   (target <= 10 s)")
     print(json.dumps({"ceiling_s": ceiling_s, "floor_s": floor_s, "lp_s": lp_s,
-                      "lp_solver": solver, "bisection_steps": steps, "trot_floor_s": trot_s,
-                      "trot_programs": trot.programs}))
+                      "lp_solver": solver, "bisection_steps": steps,
+                      **{f"{kind}_floor_s": seconds for kind, (seconds, _) in gaits.items()},
+                      **{f"{kind}_programs": f.programs for kind, (_, f) in gaits.items()}}))
 
 
 if __name__ == "__main__":

@@ -27,10 +27,10 @@ from fivebar_drake.analysis.plots import write_plots
 from fivebar_drake.analysis.report import ANALYSIS_FILES, write_report
 from fivebar_drake.analysis.torques import Analysis, analyze, seed_results
 from fivebar_drake.core.files import prepare_output_dir
-from fivebar_drake.core.footpath import Jump as JumpPath, Landing, Trot
+from fivebar_drake.core.footpath import Jump as JumpPath, Landing
 from fivebar_drake.core.summary_schema import AnyController, Summary
 from fivebar_drake.core.validation import ParameterError
-from fivebar_drake.optimal import trot_floor, vertical_jump
+from fivebar_drake.optimal import stance_floor, vertical_jump
 from fivebar_drake.robots.quadruped.config import load_params, sampling_error
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.simulation.plots import CAPABILITY_FILE, SIM_PLOT_FILES, write_sim_plots
@@ -125,10 +125,8 @@ def any_controller(record: SimulationRecord, summary: Summary) -> AnyController 
     the floor) is below checks.sf_warn; else this controller. None for the other gaits and
     maneuvers (not computed yet)."""
     path, params = record.scenario.gait, record.params
-    if type(path) is Trot:
-        return trot_any_controller(record, summary)
     if not isinstance(path, Landing):
-        return None
+        return stance_any_controller(record, summary)
     g, payload = params.robot.gravity_m_s2, record.scenario.payload_kg
     standing = -params.gait.y_home_m
     top = standing + path.extension_m
@@ -172,26 +170,38 @@ def any_controller(record: SimulationRecord, summary: Summary) -> AnyController 
             "why": "; ".join(why)}
 
 
-def trot_any_controller(record: SimulationRecord, summary: Summary) -> AnyController:
-    """For a trot, what any controller would need (optimal/trot_floor.py): the stance floor at
-    the gait's own mean height beside the largest demand peak of the run's motors, the same
-    blame as any_controller; ceiling_m: None (the fastest trot is not computed yet)."""
-    params = record.params
-    floor = trot_floor.trot_floor(params, record.scenario.gait,
-                                  record.scenario.payload_kg).floor_Nm
+def stance_any_controller(record: SimulationRecord, summary: Summary) -> AnyController | None:
+    """For a trot or a walk, what any controller would need (optimal/stance_floor.py): the
+    stance floor at the gait's own mean height beside the largest demand peak of the run's
+    motors. Whom a failing verdict blames: any controller where the torque check decided and
+    even the floor's safety factor is below checks.sf_warn; else this controller, or
+    "undecided" where the floor is a relaxation (the trot's: the body's pitch left to its
+    rotation, so the true least may lie above it). None for another gait."""
+    params, path = record.params, record.scenario.gait
+    floor = stance_floor.stance_floor(params, path, record.scenario.payload_kg)
+    if floor is None:
+        return None
     asked = max((m["demand_peak_Nm"] for motors in summary["legs"].values()
                  for m in motors.values()), default=None)
-    floor_sf = params.motor.peak_torque_Nm / floor
-    short = summary["deciding_check"] == "torque" and floor_sf < params.checks.sf_warn
-    why = "stance legs only (the swing legs' torques are not in the floor)"
+    floor_sf = params.motor.peak_torque_Nm / floor.floor_Nm
+    relaxed = stance_floor.RELAXED[path.kind]
+    why = ["stance legs only (the swing legs' torques are not in the floor)"]
+    if relaxed:
+        why.append(f"a relaxation: the {', '.join(relaxed)} moment is left to the body's "
+                   "rotation")
     if record.scenario.slope_deg:
-        why += "; the floor is computed on flat ground"
-    return {"maneuver": "trot", "height_m": 0.0,
-            "phases": {"stance": {"floor_Nm": floor, "asked_Nm": asked}}, "floor_Nm": floor,
-            "floor_safety_factor": floor_sf, "ceiling_m": None, "asked_Nm": asked,
-            "controller_cost": asked / floor if asked is not None else None,
-            "fails_for": (None if summary["verdict"] not in ("fail", "not_achieved") else
-                          "any controller" if short else "this controller"), "why": why}
+        why.append("the floor is computed on flat ground")
+    fails = None
+    if summary["verdict"] in ("fail", "not_achieved"):
+        fails = ("any controller" if summary["deciding_check"] == "torque"
+                 and floor_sf < params.checks.sf_warn else
+                 "undecided" if relaxed else "this controller")
+    return {"maneuver": path.kind, "height_m": 0.0,
+            "phases": {"stance": {"floor_Nm": floor.floor_Nm, "asked_Nm": asked}},
+            "floor_Nm": floor.floor_Nm, "floor_safety_factor": floor_sf, "ceiling_m": None,
+            "asked_Nm": asked,
+            "controller_cost": asked / floor.floor_Nm if asked is not None else None,
+            "fails_for": fails, "why": "; ".join(why)}
 
 
 def _review(record: SimulationRecord, half: SimulationRecord | None = None):

@@ -336,7 +336,7 @@ class AnyController(TypedDict):
     the push's stroke, or the highest drop the landing's stroke absorbs, m); what the
     controller asked at most in those phases and its ratio to the floor; and whom a failing
     verdict blames ("any controller": the motors cannot; "this controller": a better one would
-    pass; None: nothing failed)."""
+    pass; "undecided": the floor is a relaxation within the motors; None: nothing failed)."""
 
     maneuver: str
     height_m: float

@@ -1,6 +1,6 @@
 """What the legs allow for any controller, for one design (`fivebar-drake optimal`): the
-vertical jump's ceiling and floor and the drop's landing (vertical_jump.py), the trot's floor
-(trot_floor.py), as optimal.json, optimal.md and optimal_jump.png: the answer first, then the
+vertical jump's ceiling and floor and the drop's landing (vertical_jump.py), the trot's and the
+walk's stance floors (stance_floor.py), as optimal.json, optimal.md and optimal_jump.png: the answer first, then the
 figures beside the bounds."""
 
 from __future__ import annotations
@@ -16,7 +16,7 @@ from fivebar_drake.core.footpath import Drop, Jump as JumpPath
 from fivebar_drake.core.validation import ParameterError, check_number
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.optimal.recording import RECORDING_FILE, write_recording
-from fivebar_drake.optimal.trot_floor import trot_floor
+from fivebar_drake.optimal.stance_floor import RELAXED, REPEAT, stance_floor
 from fivebar_drake.optimal.vertical_jump import (Jump, highest_drop, landing_floor,
                                                  point_mass_bound, push, reach, stroke,
                                                  torque_floor)
@@ -108,26 +108,33 @@ def jump_limits(params: Params, height_m: float | None = None,
     except ParameterError as err:
         result["floor_why_none"] = err.message
     result["drop"] = drop_limits(params, payload_kg)
-    at_gait, free = (trot_floor(params, payload_kg=payload_kg, free_height=f)
-                     for f in (False, True))
-    thermal = trot_floor(params, payload_kg=payload_kg, thermal=True)
-    continuous = params.motor.rated_continuous_current_A
-    result["trot"] = {"floor_Nm": at_gait.floor_Nm,
-                      "beyond_motors": at_gait.floor_Nm > params.motor.peak_torque_Nm,
-                      "constant_height_floor_Nm": at_gait.constant_height_Nm,
-                      "height_swing_m": float(np.ptp(at_gait.z_m)),
-                      "free_height_floor_Nm": free.floor_Nm,
-                      "free_height_change_m": float(np.mean(free.z_m)),
-                      "thermal_floor_rms_torque_Nm": thermal.floor_Nm,
-                      "thermal_floor_rms_current_A": thermal.rms_current_A,
-                      "continuous_current_A": continuous,
-                      "thermal_margin": (continuous / thermal.rms_current_A
-                                         if continuous else None),
-                      "scope": "stance legs at the trot's speed, period and duty factor; the "
-                               "swing legs' torques are not in the floor"}
+    result["gaits"] = {kind: gait_limits(params, kind, payload_kg) for kind in REPEAT}
     result["published"] = published_jump(params, result["ceiling"])
     result["answer"] = answer(result, params)
     return result, jumps
+
+
+def gait_limits(params: Params, kind: str, payload_kg: float = 0.0) -> dict:
+    """A walking gait's stance floors for any controller (stance_floor.py): at the gait's own
+    height, held level and with the height free; the thermal floor (the least RMS current)
+    against the continuous current; whether the floor is beyond the motors; and what the floor
+    leaves out (RELAXED)."""
+    at_gait, free = (stance_floor(params, kind, payload_kg, free_height=f) for f in (False, True))
+    thermal = stance_floor(params, kind, payload_kg, thermal=True)
+    continuous = params.motor.rated_continuous_current_A
+    return {"floor_Nm": at_gait.floor_Nm,
+            "beyond_motors": at_gait.floor_Nm > params.motor.peak_torque_Nm,
+            "constant_height_floor_Nm": at_gait.constant_height_Nm,
+            "height_swing_m": float(np.ptp(at_gait.z_m)),
+            "free_height_floor_Nm": free.floor_Nm,
+            "free_height_change_m": float(np.mean(free.z_m)),
+            "thermal_floor_rms_torque_Nm": thermal.floor_Nm,
+            "thermal_floor_rms_current_A": thermal.rms_current_A,
+            "continuous_current_A": continuous,
+            "thermal_margin": continuous / thermal.rms_current_A if continuous else None,
+            "relaxed": list(RELAXED[kind]),
+            "scope": f"stance legs at the {kind}'s speed, period and duty factor; the swing "
+                     "legs' torques are not in the floor"}
 
 
 def drop_limits(params: Params, payload_kg: float = 0.0) -> dict:
@@ -172,18 +179,17 @@ def answer(r: dict, params: Params) -> str:
              f"{d['landing_stroke_m'] * 1e3:.0f} mm needs at least "
              f"{d['least_peak_torque_Nm']:.2f} N·m (braking); that stroke absorbs a drop of up "
              f"to {d['highest_drop_m'] * 1e3:.0f} mm.")
-    t = r["trot"]
-    fourth = (f" The trot needs at least {t['floor_Nm']:.2f} N·m in stance at its own height "
-              f"(the body bobbing {t['height_swing_m'] * 1e3:.0f} mm; "
-              f"{t['constant_height_floor_Nm']:.2f} N·m held level), "
-              f"{t['free_height_floor_Nm']:.2f} N·m with the body "
-              f"{t['free_height_change_m'] * 1e3:.0f} mm higher"
-              + (f": beyond the motors' {params.motor.peak_torque_Nm:.2f} N·m, for any "
-                 "controller." if t["beyond_motors"] else ".")
-              + ("" if t["thermal_margin"] is None else
-                 f" Its thermal floor: {t['thermal_floor_rms_current_A']:.2f} A RMS (stance "
-                 f"only), {t['thermal_margin']:.2f} of the continuous "
-                 f"{t['continuous_current_A']:.2f} A."))
+    fourth = "".join(
+        f" The {kind} needs at least {t['floor_Nm']:.2f} N·m in stance at its own height (the "
+        f"body bobbing {t['height_swing_m'] * 1e3:.0f} mm; {t['constant_height_floor_Nm']:.2f}"
+        f" N·m held level; {t['free_height_floor_Nm']:.2f} N·m with the body "
+        f"{t['free_height_change_m'] * 1e3:.0f} mm higher)"
+        + (f", beyond the motors' {params.motor.peak_torque_Nm:.2f} N·m for any controller"
+           if t["beyond_motors"] else "")
+        + ("" if t["thermal_margin"] is None else
+           f"; its thermal floor {t['thermal_floor_rms_current_A']:.2f} A RMS, "
+           f"{t['thermal_margin']:.2f} of the continuous {t['continuous_current_A']:.2f} A")
+        + "." for kind, t in r["gaits"].items())
     return first + second + third + fourth
 
 
@@ -265,8 +271,8 @@ def max_jump_plan(params: Params, ceiling: Jump) -> JumpPath:
 def beyond(result: dict) -> str:
     """What the design cannot do for any controller, in a line ("" where it can do all)."""
     why = [result["ceiling_why_none"], result["floor_why_none"], result["drop"]["why_none"]]
-    if result["trot"]["beyond_motors"]:
-        why.append(f"the trot needs at least {result['trot']['floor_Nm']:.2f} N·m in stance")
+    why += [f"the {kind} needs at least {t['floor_Nm']:.2f} N·m in stance"
+            for kind, t in result["gaits"].items() if t["beyond_motors"]]
     return "; ".join(w for w in why if w)
 
 

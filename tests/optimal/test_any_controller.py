@@ -49,7 +49,7 @@ def test_the_drops_landing_floor_is_below_what_the_controller_asked():
     assert a["floor_Nm"] == landing["floor_Nm"]
 
 
-def test_a_walk_has_no_floor_yet():
-    s = summarize_run(run_simulation(load_scenario(gait="walk", duration_s=0.3,
+def test_a_bound_has_no_floor_yet():
+    s = summarize_run(run_simulation(load_scenario(gait="bound", duration_s=0.3,
                                                    closure="ball"), progress=False))
     assert s["any_controller"] is None

@@ -185,4 +185,5 @@ def test_a_design_too_weak_for_everything_is_told_so(tmp_path, capsys):
     assert "cannot lift the crouched robot" in err and "give way" in err and "trot" in err
     result = json.loads((tmp_path / "optimal.json").read_text())
     assert result["ceiling"] is None and result["floor"] is None
-    assert result["drop"]["least_peak_torque_Nm"] is None and result["trot"]["beyond_motors"]
+    assert result["drop"]["least_peak_torque_Nm"] is None
+    assert result["gaits"]["trot"]["beyond_motors"] and result["gaits"]["walk"]["beyond_motors"]
