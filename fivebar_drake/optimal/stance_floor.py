@@ -34,6 +34,7 @@ import pickle
 from dataclasses import dataclass
 
 import numpy as np
+from scipy import sparse
 
 from fivebar_drake.core.footpath import Trot, foot_path
 from fivebar_drake.mechanisms.fivebar import KNEES_OUT, limit_tests, past_any
@@ -144,29 +145,24 @@ def _program(params: Params, st: Stances, z, zdd, mass: float, thermal: bool,
         a[4, 2 * at] = -body_y[at]                                      # yaw: -y F_x
         keep = [0, 1] + [2 + ("roll", "pitch", "yaw").index(m) for m in balanced]
         rows.append((a[keep], np.array([mass * (g + zdd[k]), 0.0, 0.0, 0.0, 0.0])[keep]))
-    prog.AddLinearEqualityConstraint(np.vstack([r[0] for r in rows]),
+    prog.AddLinearEqualityConstraint(sparse.csc_matrix(np.vstack([r[0] for r in rows])),
                                      np.concatenate([r[1] for r in rows]), f)
-    cone = np.zeros((2 * n, 2 * n))
-    for j in range(n):                                  # |F_x| <= mu F_z
-        cone[2 * j, 2 * j], cone[2 * j, 2 * j + 1] = 1.0, -mu
-        cone[2 * j + 1, 2 * j], cone[2 * j + 1, 2 * j + 1] = -1.0, -mu
-    prog.AddLinearConstraint(cone, np.full(2 * n, -np.inf), np.zeros(2 * n), f)
+    cone = sparse.block_diag([np.array([[1.0, -mu], [-1.0, -mu]])] * n, format="csc")
+    prog.AddLinearConstraint(cone, np.full(2 * n, -np.inf), np.zeros(2 * n), f)   # |F_x| <= mu F_z
     # torque = weight - J_F^T (F_plane), F_plane = (-F_x, F_z) (leg-plane x backwards)
-    gain = np.zeros((2 * n, 2 * n))
-    for j in range(n):
-        for i in range(2):
-            gain[2 * j + i, 2 * j] = jf[j, 0, i]
-            gain[2 * j + i, 2 * j + 1] = -jf[j, 1, i]
+    blocks = np.stack([jf[:, 0, :], -jf[:, 1, :]], -1)                 # (n, motor, (F_x, F_z))
+    gain = sparse.block_diag(list(blocks), format="csc")
     base = weight.ravel()
     if thermal:
-        prog.AddQuadraticCost(2.0 * gain.T @ gain / z.size, 2.0 * gain.T @ base / z.size, f)
+        prog.AddQuadraticCost((2.0 * gain.T @ gain / z.size).toarray(),
+                              2.0 * gain.T @ base / z.size, f)
     else:
         peak = prog.NewContinuousVariables(1, "peak")
-        ones = np.ones((2 * n, 1))
-        prog.AddLinearConstraint(np.hstack([gain, -ones]), np.full(2 * n, -np.inf), -base,
-                                 np.concatenate([f, peak]))
-        prog.AddLinearConstraint(np.hstack([-gain, -ones]), np.full(2 * n, -np.inf), base,
-                                 np.concatenate([f, peak]))
+        ones = sparse.csc_matrix(np.ones((2 * n, 1)))
+        for sign in (1.0, -1.0):                        # +-torque <= peak
+            prog.AddLinearConstraint(sparse.hstack([sign * gain, -ones], format="csc"),
+                                     np.full(2 * n, -np.inf), -sign * base,
+                                     np.concatenate([f, peak]))
         prog.AddLinearCost([1.0], 0.0, peak)
     result = Solve(prog)
     if not result.is_success():
