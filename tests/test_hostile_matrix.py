@@ -108,3 +108,36 @@ def test_bad_worker_count(command, workers, tmp_path, capsys):
     assert main([command, "--workers", workers, "--out", str(out)]) == 2
     assert "--workers" in capsys.readouterr().err
     assert not out.exists()
+
+
+@pytest.mark.parametrize("kind", CONFIGS)
+def test_bad_parameter_file_of_optimal(kind, tmp_path, capsys):
+    out = tmp_path / "out"
+    config = _hostile_file(tmp_path, kind, ".toml")
+    assert main(["optimal", "--config", config, "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert WORDS[kind] in err and os.path.basename(config) in err, err
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("out_kind", ["empty", "file", "below a file"])
+def test_bad_output_path_of_optimal(out_kind, tmp_path, capsys):
+    (tmp_path / "afile").write_text("keep me")
+    out = {"empty": "", "file": str(tmp_path / "afile"),
+           "below a file": str(tmp_path / "afile" / "sub")}[out_kind]
+    assert main(["optimal", "--out", out]) == 2
+    assert "--out" in capsys.readouterr().err
+    assert (tmp_path / "afile").read_text() == "keep me"
+
+
+@pytest.mark.parametrize("option, value", [
+    ("--height", v) for v in ("nan", "-1", "0", "inf", "1e300", "two")] + [
+    ("--payload", v) for v in ("nan", "-1", "inf", "1e300", "two")] + [
+    ("--set", v) for v in ("motor.gear_ratio", "motor.gear_ratio=-1", "nosuch.field=1")])
+def test_bad_values_of_optimal(option, value, tmp_path, capsys):
+    """Every bad value of optimal's options: exit 2 naming the option, nothing written."""
+    out = tmp_path / "out"
+    assert main(["optimal", option, value, "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert option in err or "set" in err, err
+    assert "Traceback" not in err and not out.exists()
