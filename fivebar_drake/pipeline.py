@@ -155,19 +155,9 @@ def any_controller(record: SimulationRecord, summary: Summary) -> AnyController 
         why.append(err.message)
     if record.scenario.slope_deg:
         why.append("the floors are computed on flat ground")
-    floor = None if None in phases.values() else max(phases.values())
-    most = max((asked[p] for p in phases if p in asked), default=None)
-    floor_sf = params.motor.peak_torque_Nm / floor if floor else None
-    short = floor is None or (summary["deciding_check"] == "torque"
-                              and floor_sf < params.checks.sf_warn)
-    return {"maneuver": path.kind, "height_m": path.height_m,
-            "phases": {p: {"floor_Nm": f, "asked_Nm": asked.get(p)} for p, f in phases.items()},
-            "floor_Nm": floor, "floor_safety_factor": floor_sf, "ceiling_m": ceiling,
-            "asked_Nm": most,
-            "controller_cost": most / floor if most is not None and floor else None,
-            "fails_for": (None if summary["verdict"] not in ("fail", "not_achieved") else
-                          "any controller" if short else "this controller"),
-            "why": "; ".join(why)}
+    return verdict_split(path.kind, path.height_m,
+                         {p: (f, asked.get(p)) for p, f in phases.items()}, ceiling, why,
+                         summary, params)
 
 
 def stance_any_controller(record: SimulationRecord, summary: Summary) -> AnyController | None:
@@ -183,7 +173,6 @@ def stance_any_controller(record: SimulationRecord, summary: Summary) -> AnyCont
         return None
     asked = max((m["demand_peak_Nm"] for motors in summary["legs"].values()
                  for m in motors.values()), default=None)
-    floor_sf = params.motor.peak_torque_Nm / floor.floor_Nm
     relaxed = stance_floor.RELAXED[path.kind]
     why = ["stance legs only (the swing legs' torques are not in the floor)"]
     if relaxed:
@@ -191,17 +180,34 @@ def stance_any_controller(record: SimulationRecord, summary: Summary) -> AnyCont
                    "rotation")
     if record.scenario.slope_deg:
         why.append("the floor is computed on flat ground")
-    fails = None
-    if summary["verdict"] in ("fail", "not_achieved"):
-        fails = ("any controller" if summary["deciding_check"] == "torque"
-                 and floor_sf < params.checks.sf_warn else
-                 "undecided" if relaxed else "this controller")
-    return {"maneuver": path.kind, "height_m": 0.0,
-            "phases": {"stance": {"floor_Nm": floor.floor_Nm, "asked_Nm": asked}},
-            "floor_Nm": floor.floor_Nm, "floor_safety_factor": floor_sf, "ceiling_m": None,
-            "asked_Nm": asked,
-            "controller_cost": asked / floor.floor_Nm if asked is not None else None,
-            "fails_for": fails, "why": "; ".join(why)}
+    return verdict_split(path.kind, 0.0, {"stance": (floor.floor_Nm, asked)}, None, why,
+                         summary, params, bool(relaxed))
+
+
+def verdict_split(maneuver: str, height_m: float, phases: dict, ceiling_m: float | None,
+                  why: list[str], summary: Summary, params: Params,
+                  relaxed: bool = False) -> AnyController:
+    """The summary's any_controller from each phase's (floor N*m or None, asked N*m or None):
+    the maneuver's floor (the largest; None if a phase has none), its safety factor (the
+    driving peak over it), what the controller asked at most and its cost, and whom a failing
+    verdict blames: any controller where a phase is beyond the motors or the torque check
+    decided and even the floor's safety factor is below checks.sf_warn; else undecided on a
+    relaxed floor, this controller on an exact one."""
+    floors = [f for f, _ in phases.values()]
+    floor = None if None in floors else max(floors)
+    most = max((a for _, a in phases.values() if a is not None), default=None)
+    floor_sf = params.motor.peak_torque_Nm / floor if floor else None
+    short = floor is None or (summary["deciding_check"] == "torque"
+                              and floor_sf < params.checks.sf_warn)
+    return {"maneuver": maneuver, "height_m": height_m,
+            "phases": {p: {"floor_Nm": f, "asked_Nm": a} for p, (f, a) in phases.items()},
+            "floor_Nm": floor, "floor_safety_factor": floor_sf, "ceiling_m": ceiling_m,
+            "asked_Nm": most,
+            "controller_cost": most / floor if most is not None and floor else None,
+            "fails_for": (None if summary["verdict"] not in ("fail", "not_achieved") else
+                          "any controller" if short else
+                          "undecided" if relaxed else "this controller"),
+            "why": "; ".join(why)}
 
 
 def _review(record: SimulationRecord, half: SimulationRecord | None = None):
