@@ -174,13 +174,13 @@ def _previous_rows(fingerprint: str, out: Path, header: list[str],
 
 class Progress:
     """A progress line on stderr: items (points, maneuvers) done of all, failures, time left
-    (from the mean rate so far); redrawn in place on a terminal, else one line per
-    PROGRESS_EVERY_S * 10."""
+    (from the mean rate so far) and a note (e.g. the best design so far); redrawn in place on a
+    terminal, else one line per PROGRESS_EVERY_S * 10."""
 
     def __init__(self, total: int, done: int, enabled: bool, job: str = "sweep",
                  items: str = "points"):
         self.total, self.done, self.failed, self.enabled = total, done, 0, enabled
-        self.job, self.items = job, items
+        self.job, self.items, self.note = job, items, ""
         self.start, self.first, self.shown = time.perf_counter(), done, 0.0
         self.tty = sys.stderr.isatty()
 
@@ -196,7 +196,8 @@ class Progress:
             left = elapsed / new * (self.total - self.done) if new else float("nan")
             bar = "#" * int(30 * self.done / self.total)
             line = (f"{self.job} [{bar:<30}] {self.done}/{self.total} {self.items}, "
-                    f"{self.failed} failed, {elapsed:.0f} s, ~{left:.0f} s left")
+                    f"{self.failed} failed, {elapsed:.0f} s, ~{left:.0f} s left"
+                    + (f"; {self.note}" if self.note else ""))
             print(("\r" + line) if self.tty else line, end="" if self.tty and
                   self.done < self.total else "\n", file=sys.stderr, flush=True)
 

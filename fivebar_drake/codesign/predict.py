@@ -1,0 +1,153 @@
+"""The co-design's predictions, two levels below simulation, each honest about what it covers:
+
+(a) screening, closed form: the full model's torque analysis over one cycle of the trot path
+    under trot loading (analysis/design_points.evaluate_designs, vectorised over the designs
+    that share a leg) for each trot maneuver of the requirements, with that maneuver's gait:
+    each motor's safety factor, speed and thermal checks;
+(b) the optimal-maneuver floors (optimal/vertical_jump.py), for the designs that pass (a): for
+    each jump and drop, the least peak motor torque any controller needs for its push-off and
+    its landing on the maneuver's own strokes; the predicted safety factor is the motors' peak
+    over that floor (no controller does better, the package's asks more).
+
+The other maneuvers (walk, bound, pronk, stand-up) have no prediction here: the simulation
+alone judges them. A requirement's margin is the figure over what the accepted verdict needs
+(>= 1 meets it): the safety factor over checks.sf_pass (sf_warn when warn is accepted), the
+least speed margin over checks.speed_margin_warn (1), the thermal current margin over
+checks.thermal_margin_warn (1).
+"""
+
+from __future__ import annotations
+
+import math
+
+from fivebar_drake.analysis.design_points import evaluate_designs
+from fivebar_drake.codesign.designs import actuator_mass, design_name, design_params
+from fivebar_drake.codesign.spec import CodesignSpec
+from fivebar_drake.core.footpath import Jump, Landing
+from fivebar_drake.core.validation import ParameterError
+from fivebar_drake.envelope.spec import Maneuver
+from fivebar_drake.mechanisms.fivebar import MOTORS
+from fivebar_drake.optimal import vertical_jump
+from fivebar_drake.robots.quadruped.params import Params
+
+SCREENED = ("trot",)              # gait kinds level (a) predicts
+CHECKS = ("torque", "speed", "thermal")
+
+
+def needs(params: Params, accept: tuple[str, ...]) -> dict[str, float]:
+    """What each check's figure must reach for the accepted verdicts."""
+    c, warn = params.checks, "warn" in accept
+    return {"torque": c.sf_warn if warn else c.sf_pass,
+            "speed": 1.0 if warn else c.speed_margin_warn,
+            "thermal": 1.0 if warn else c.thermal_margin_warn}
+
+
+def closed_form(maneuver: Maneuver, designs: list[Params], accept) -> list[dict]:
+    """Level (a) of a trot maneuver for many designs (its gait, each design's parameters): per
+    design the worst motor's safety factor, its verdict, each check's margin, or an error."""
+    out = []
+    for params, row in zip(designs, evaluate_designs(designs, "trot", "full_trot")):
+        if "error" in row:
+            out.append({"level": "closed form", "error": row["error"], "margins": {}})
+            continue
+        need = needs(params, accept)
+        figures = {"torque": min(row[m]["safety_factor"] for m in MOTORS),
+                   "speed": min(row[m]["speed_margin"] for m in MOTORS),
+                   "thermal": min(row[m]["thermal_current_margin"] for m in MOTORS)}
+        worst = min(MOTORS, key=lambda m: row[m]["safety_factor"])
+        out.append({"level": "closed form", "safety_factor": figures["torque"],
+                    "verdict": max((row[m]["verdict"] for m in MOTORS), key=_severity),
+                    "deciding_check": row[worst]["deciding_check"],
+                    "margins": {c: figures[c] / need[c] for c in CHECKS}})
+    return out
+
+
+def _severity(verdict: str) -> int:
+    return ("pass", "warn", "fail").index(verdict) if verdict in ("pass", "warn", "fail") else 3
+
+
+def floors(maneuver: Maneuver, params: Params, accept) -> dict:
+    """Level (b) of a jump or a drop: its push-off's and landing's floors (N*m), the motors'
+    safety factor on the larger, the torque margin; a phase no torque the motors have does is
+    a margin of 0 with why (as pipeline.any_controller computes them from a run)."""
+    path, g = maneuver.scenario.gait, params.robot.gravity_m_s2
+    payload, standing = maneuver.scenario.payload_kg, -params.gait.y_home_m
+    top = standing + path.extension_m
+    phases, why = {}, []
+    try:
+        if isinstance(path, Jump):
+            push = vertical_jump.stroke(params, standing - path.crouch_m, top, payload)
+            phases["push-off"] = vertical_jump.torque_floor(push, standing, path.height_m)[0]
+            touchdown = path.takeoff_speed(params.gait)
+        else:
+            touchdown = math.sqrt(2.0 * g * path.height_m)
+        land = vertical_jump.stroke(params, top - path.landing_stroke_m, top, payload)
+        phases["landing"] = vertical_jump.landing_floor(land, touchdown)[0]
+    except ParameterError as err:
+        why.append(err.message)
+    if why:
+        return {"level": "floor", "phases": phases, "safety_factor": 0.0, "verdict": "fail",
+                "why": "; ".join(why), "margins": {"torque": 0.0}}
+    sf = params.motor.peak_torque_Nm / max(phases.values())
+    return {"level": "floor", "phases": phases, "safety_factor": sf,
+            "margins": {"torque": sf / needs(params, accept)["torque"]}}
+
+
+def max_jump_height(params: Params) -> float:
+    """The highest vertical jump the legs and motors allow (m above standing, any controller:
+    the ceiling over the leg's whole reach, optimal/vertical_jump.push)."""
+    standing = -params.gait.y_home_m
+    low, high = vertical_jump.reach(params)
+    jump = vertical_jump.push(vertical_jump.stroke(params, low, high), standing)
+    return 0.0 if jump is None else jump.body_apex_above_standing_m
+
+
+def predict(spec: CodesignSpec, designs: list[dict]) -> list[dict]:
+    """Each design's prediction (JSON-ready): its name, objectives, per maneuver the level that
+    judged it and its figures, the least margin and where (`short_of`), whether it meets every
+    predicted requirement (`meets`), or `error` for a design that cannot be built."""
+    maneuvers = spec.envelope.maneuvers
+    out, built = [], []
+    for design in designs:
+        entry = {"design": design, "name": design_name(design), "error": "",
+                 "objectives": {"actuator_mass_kg": actuator_mass(design)}, "maneuvers": {}}
+        try:
+            params = {m.name: design_params(m.params, design) for m in maneuvers}
+        except ParameterError as err:
+            entry["error"] = str(err)
+            params = None
+        out.append(entry)
+        built.append(params)
+    ok = [i for i, p in enumerate(built) if p is not None]
+    for m in maneuvers:
+        if m.scenario.gait.kind in SCREENED and ok:
+            for i, result in zip(ok, closed_form(m, [built[i][m.name] for i in ok],
+                                                 spec.accept)):
+                out[i]["maneuvers"][m.name] = result
+    for i in ok:
+        entry = out[i]
+        screened = _least(entry)[0] >= 1.0
+        for m in maneuvers:
+            if isinstance(m.scenario.gait, Landing) and screened:
+                entry["maneuvers"][m.name] = floors(m, built[i][m.name], spec.accept)
+        if "max_jump_height_m" in spec.objectives:
+            entry["objectives"]["max_jump_height_m"] = max_jump_height(built[i][maneuvers[0].name])
+        entry["margin"], entry["short_of"] = _least(entry)
+        entry["meets"] = entry["margin"] >= 1.0 and not any(
+            "error" in r for r in entry["maneuvers"].values())
+    for i in set(range(len(designs))) - set(ok):
+        out[i].update(margin=0.0, short_of="", meets=False)
+    return out
+
+
+def _least(entry: dict) -> tuple[float, str]:
+    """(the least margin of the design's predicted requirements, "maneuver check" of it);
+    (inf, "") with none predicted, (0, maneuver) where a maneuver has an error."""
+    least, where = math.inf, ""
+    for name, result in entry["maneuvers"].items():
+        if "error" in result:
+            return 0.0, name
+        for check, margin in result["margins"].items():
+            if margin < least:
+                least, where = margin, f"{name} {check}"
+    return least, where

@@ -1,0 +1,265 @@
+"""The co-design's outputs: design.md (its first line the recommended design and why), design.json,
+design.toml (the recommended design's parameter file) and pareto.png; or, when no design is
+verified, why not: the requirement no candidate meets and the best candidate's margin."""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+from fivebar_drake.codesign.designs import write_parameter_file
+from fivebar_drake.codesign.search import JOURNAL_FILE, ranked
+from fivebar_drake.codesign.spec import CodesignSpec
+from fivebar_drake.core.files import json_ready, save_figure, write_atomic
+from fivebar_drake.mechanisms.fivebar import MOTORS
+
+FILES = ("design.md", "design.toml", "pareto.png", "design.json")   # design.json last
+FLAG = 0.10          # predicted and simulated figures further apart than this are flagged
+
+
+@dataclass
+class CodesignRun:
+    """What run_codesign did: design.json's dictionary, the files written, and why no design
+    is recommended ("" when one is)."""
+
+    report: dict
+    files: list[Path]
+    failure: str
+
+
+def compare(prediction: dict, sim: dict) -> list[dict]:
+    """Per maneuver a level predicted: the predicted safety factor beside the simulated (the
+    worst motor's), their relative difference and whether it exceeds FLAG."""
+    rows = []
+    for name, p in prediction["maneuvers"].items():
+        simulated_sf = sim["maneuvers"][name]["figures"].get("torque")
+        predicted_sf = p.get("safety_factor")
+        diff = (predicted_sf / simulated_sf - 1.0 if predicted_sf is not None and simulated_sf
+                and math.isfinite(simulated_sf) else None)
+        rows.append({"maneuver": name, "level": p["level"], "predicted_sf": predicted_sf,
+                     "simulated_sf": simulated_sf, "difference": diff,
+                     "flagged": diff is None or abs(diff) > FLAG})
+    return rows
+
+
+def least(sim: dict, accept: tuple[str, ...]) -> tuple[float, str]:
+    """(the least simulated margin, "maneuver check" of it), a maneuver whose verdict is not
+    accepted first (its deciding check; a margin of 0 without figures: no verdict)."""
+    found = (math.inf, "")
+    for name, m in sim["maneuvers"].items():
+        if m["verdict"] not in accept:
+            check = m["deciding_check"]
+            return (m["margins"].get(check, 0.0), f"{name} {check or ''} ({m['verdict']})")
+        for check, margin in m["margins"].items():
+            found = min(found, (margin, f"{name} {check}"))
+    return found
+
+
+def nobody_meets(spec: CodesignSpec, entries: list[dict], finalists: list[dict]) -> str:
+    """Why no design is recommended: a requirement (a maneuver's check) no candidate meets and
+    the best candidate's margin on it; else the best candidate and where it falls short."""
+    pool = ([(f["name"], f["simulated"], "simulated") for f in finalists] or
+            [(e["name"], e, "predicted") for e in entries if not e["error"]])
+    if not pool:
+        return "no design of the space can be built: " + (entries[0]["error"] if entries else
+                                                          "no trial finished")
+    best = {}
+    for name, result, level in pool:
+        for maneuver, m in result["maneuvers"].items():
+            for check, margin in (m["margins"] or {"verdict": 0.0}).items():
+                key = f"{maneuver} {check}"
+                if key not in best or margin > best[key][0]:
+                    best[key] = (margin, name, level)
+    unmet = sorted((v, k) for k, v in best.items() if v[0] < 1.0)
+    if unmet:
+        (margin, name, level), key = unmet[0]
+        return (f"no candidate meets {key} (requirement of {spec.envelope.source or 'the'} "
+                f"envelope, accepted {'/'.join(spec.accept)}): the best, {name}, reaches a "
+                f"{level} margin of {margin:.2f} (1 meets it)")
+    level = pool[0][2]
+
+    def overall(result):
+        return least(result, spec.accept) if level == "simulated" else (result["margin"],
+                                                            result["short_of"])
+
+    name, result, _ = max(pool, key=lambda p: overall(p[1])[0])
+    margin, where = overall(result)
+    return (f"no candidate meets every requirement at once: the best, {name}, is short on "
+            f"{where} ({level} margin {margin:.2f}; every requirement alone is met by some "
+            "candidate)")
+
+
+def codesign_report(spec: CodesignSpec, entries: list[dict], chosen: list[dict],
+                    verified: dict) -> dict:
+    """design.json's dictionary (module docstring)."""
+    base = spec.envelope.maneuvers[0].params
+    default_mass = base.robot.motors_kg / (base.robot.legs * len(MOTORS))
+    finalists = [{**e, "key": f"trial_{e['trial']}", "simulated": verified[f"trial_{e['trial']}"],
+                  "comparison": compare(e, verified[f"trial_{e['trial']}"])} for e in chosen]
+    passing = ranked(spec, [f for f in finalists if f["simulated"]["passes"]])
+    recommended = passing[0] if passing else None
+    report = {"spec": spec.source, "accept": list(spec.accept),
+              "objectives": list(spec.objectives), "trials": len(entries),
+              "predicted_meeting": sum(e["meets"] for e in entries),
+              "default": {"actuator_mass_kg": default_mass, "simulated": verified["default"]},
+              "finalists": finalists, "recommended": recommended,
+              "failure": "" if recommended else nobody_meets(spec, entries, finalists),
+              "candidates": entries}
+    report["answer"] = answer(spec, report)
+    return report
+
+
+def answer(spec: CodesignSpec, report: dict) -> str:
+    """design.md's first line: the recommended design and why, or that there is none."""
+    r = report["recommended"]
+    if r is None:
+        return f"No design recommended: {report['failure']}."
+    margin, where = least(r["simulated"], spec.accept)
+    mass = r["objectives"]["actuator_mass_kg"]
+    duty = " and the duty cycle" if r["simulated"]["duty_cycle"] else ""
+    passing = [f for f in report["finalists"] if f["simulated"]["passes"]]
+    better = [f for f in report["finalists"] if not f["simulated"]["passes"] and
+              f["objectives"]["actuator_mass_kg"] < mass]
+    decided = ("; decided by " + ", ".join(
+        f"{least(f['simulated'], spec.accept)[1]}, where the lighter {f['name']} fails in "
+        "simulation" for f in better) if better else "")
+    return (f"Recommended design: {r['name']} — the best by {spec.objectives[0]} of the "
+            f"finalists that pass every maneuver{duty} of the requirements in full Drake "
+            f"simulation ({len(passing)} of {len(report['finalists'])}; every check of every "
+            f"motor, accepted {'/'.join(spec.accept)}): actuator mass {mass:.3f} kg against "
+            f"the default design's {report['default']['actuator_mass_kg']:.3f} kg{decided}; "
+            f"its least margin {margin:.2f} ({where}); verified by simulating the whole "
+            f"envelope in finalists/{r['key']}.")
+
+
+def _f(x, pattern: str = "{:.2f}") -> str:
+    return "—" if x is None or (isinstance(x, float) and not math.isfinite(x)) else \
+        pattern.format(x)
+
+
+def markdown(spec: CodesignSpec, report: dict) -> str:
+    """design.md."""
+    lines = [report["answer"], ""]
+    r, default = report["recommended"], report["default"]["simulated"]
+    lines += ["## Margins per check per maneuver (simulated)", "",
+              "Figure: torque the worst motor's safety factor, speed its least speed margin, "
+              "thermal its current margin; margin: the figure over what the accepted verdict "
+              "needs (>= 1 meets it).", "",
+              "| maneuver | check | recommended | margin | default design | margin |",
+              "|---|---|---|---|---|---|"]
+    for name, d in default["maneuvers"].items():
+        rec = r["simulated"]["maneuvers"][name] if r else {"verdict": "—", "figures": {},
+                                                             "margins": {}}
+        lines.append(f"| {name} | verdict | {rec['verdict']} | | {d['verdict']} | |")
+        for check in d["figures"] or rec["figures"]:
+            lines.append(f"| {name} | {check} | {_f(rec['figures'].get(check))} | "
+                         f"{_f(rec['margins'].get(check))} | {_f(d['figures'].get(check))} | "
+                         f"{_f(d['margins'].get(check))} |")
+    lines += ["", "## Predicted vs simulated", "",
+              "Predicted: (a) closed form (trot maneuvers), (b) the optimal-maneuver floor "
+              "(jumps and drops: the motors' peak over the least any controller needs, so an "
+              f"upper bound on the simulated). Flagged: more than {FLAG:.0%} apart.", "",
+              "| finalist | maneuver | level | predicted SF | simulated SF | difference | |",
+              "|---|---|---|---|---|---|---|"]
+    for f in report["finalists"]:
+        for c in f["comparison"]:
+            lines.append(f"| {f['key']} | {c['maneuver']} | {c['level']} | "
+                         f"{_f(c['predicted_sf'])} | {_f(c['simulated_sf'])} | "
+                         f"{_f(c['difference'], '{:+.0%}')} | "
+                         f"{'FLAG' if c['flagged'] else ''} |")
+    lines += ["", "## Finalists", "",
+              "| finalist | design | " + " | ".join(spec.objectives)
+              + " | predicted margin | simulated | least simulated margin |",
+              "|---|---|" + "---|" * len(spec.objectives) + "---|---|---|"]
+    for f in report["finalists"]:
+        margin, where = least(f["simulated"], spec.accept)
+        lines.append(f"| {f['key']} | {f['name']} | " + " | ".join(
+            _f(f["objectives"][o], "{:.3f}") for o in spec.objectives)
+            + f" | {_f(f['margin'])} ({f['short_of']}) | "
+            + ("passes" if f["simulated"]["passes"] else "fails")
+            + f" | {_f(margin)} ({where}) |")
+    unpredicted = [m.name for m in spec.envelope.maneuvers
+                   if not any(m.name in e["maneuvers"] for e in report["candidates"])]
+    lines += ["", "## Search", "",
+              f"{report['trials']} trials (Optuna TPE, seed {spec.seed}, journal "
+              f"{JOURNAL_FILE}), {report['predicted_meeting']} predicted to meet every "
+              f"predicted requirement; {len(report['finalists'])} finalists simulated, and the "
+              "default design.",
+              "Judged by simulation only (no closed form or floor here): "
+              + (", ".join(unpredicted) or "none") + ".",
+              "Assumptions: a catalogue motor keeps the base parameter file's friction and "
+              "thermal model (the catalogue gives neither); robot.motors_kg is the 8 "
+              "actuators' mass. The envelope's runs have no step check.", ""]
+    return "\n".join(lines)
+
+
+def pareto_figure(spec: CodesignSpec, report: dict):
+    """Left: the objectives of every trial (the first against the second, or against the
+    predicted least margin), the finalists marked by their simulated outcome, the recommended
+    design labelled. Right: each finalist's least margin predicted and simulated."""
+    import matplotlib.pyplot as plt
+
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(12, 5))
+    first = spec.objectives[0]
+    second = spec.objectives[1] if len(spec.objectives) > 1 else None
+    ylabel = second or "predicted least margin"
+
+    def y(e):
+        return e["objectives"][second] if second else min(e["margin"], 3.0)
+
+    built = [e for e in report["candidates"] if first in e["objectives"]]
+    for meets, style, label in ((True, dict(marker="o", color="tab:blue"), "predicted to meet"),
+                                (False, dict(marker="x", color="0.6"), "predicted short")):
+        pts = [e for e in built if e["meets"] == meets]
+        ax.scatter([e["objectives"][first] for e in pts], [y(e) for e in pts], label=label,
+                   **style)
+    for passes, style, label in ((True, dict(marker="*", s=200, color="tab:green"),
+                                  "finalist: simulation passes"),
+                                 (False, dict(marker="s", s=80, color="tab:red"),
+                                  "finalist: simulation fails")):
+        pts = [f for f in report["finalists"] if f["simulated"]["passes"] == passes]
+        ax.scatter([f["objectives"][first] for f in pts], [y(f) for f in pts], label=label,
+                   zorder=3, **style)
+    r = report["recommended"]
+    if r is not None:
+        ax.annotate(f"recommended\n{r['name']}", (r["objectives"][first], y(r)),
+                    xytext=(10, -30), textcoords="offset points", fontsize=8,
+                    arrowprops=dict(arrowstyle="->"))
+    if first == "actuator_mass_kg":
+        ax.axvline(report["default"]["actuator_mass_kg"], color="k", ls="--",
+                   label="default design's actuator")
+    ax.set(xlabel=first, ylabel=ylabel, title="co-design: every trial (predicted)")
+    ax.legend(fontsize=8)
+    for i, f in enumerate(report["finalists"]):
+        sim = least(f["simulated"], spec.accept)[0]
+        bx.plot([i, i], [min(f["margin"], 5.0), min(sim, 5.0)], color="0.7")
+        bx.scatter([i], [min(f["margin"], 5.0)], marker="o", color="tab:blue",
+                   label="predicted" if i == 0 else None)
+        bx.scatter([i], [min(sim, 5.0)], marker="*", s=150,
+                   color="tab:green" if f["simulated"]["passes"] else "tab:red",
+                   label="simulated" if i == 0 else None)
+    bx.axhline(1.0, color="k", ls=":", label="meets (margin 1)")
+    bx.set_xticks(range(len(report["finalists"])), [f["key"] for f in report["finalists"]],
+                  rotation=20, fontsize=8)
+    bx.set(ylabel="least margin (capped at 5)", title="finalists: predicted vs simulated")
+    bx.legend(fontsize=8)
+    fig.tight_layout()
+    return fig
+
+
+def write_report(spec: CodesignSpec, out: Path, entries: list[dict], chosen: list[dict],
+                 verified: dict) -> CodesignRun:
+    """Write FILES into out (design.toml only with a recommended design; a previous one is
+    removed); returns the CodesignRun."""
+    report = codesign_report(spec, entries, chosen, verified)
+    files = [write_atomic(out / "design.md", markdown(spec, report))]
+    (out / "design.toml").unlink(missing_ok=True)
+    if report["recommended"] is not None:
+        files.append(write_parameter_file(spec.envelope, report["recommended"]["design"],
+                                          out / "design.toml"))
+    files.append(save_figure(pareto_figure(spec, report), out / "pareto.png"))
+    files.append(write_atomic(out / "design.json", json.dumps(json_ready(report), indent=1)))
+    return CodesignRun(report, files, report["failure"])
+

@@ -1,0 +1,156 @@
+"""A co-design's specification (SPEC.yaml): what may change, what every design must pass, what
+to minimise and how much to spend.
+
+    variables:                   # the design space
+      motor: [default_assumed, tmotor_mn5212_kv340]   # catalogue names (data/actuators.yaml)
+      gearbox: [single_stage_planetary]   # optional: gearbox types (data/gearboxes.yaml);
+                                          # default: the lightest type that spans the ratio
+      motor.gear_ratio: [4.0, 12.0]       # a range [low, high] (continuous) or a list
+      leg.ce_m: [0.135, 0.145, 0.155]     # any dotted parameter path, as a sweep's
+    requirements:
+      envelope: envelope_demo.yaml  # an envelope spec (file or mapping): its maneuvers, duty
+                                    # cycle and base parameter file (its `config`)
+      accept: pass                  # every check of every motor of every maneuver: pass, or warn
+    objectives: [actuator_mass_kg, max_jump_height_m]   # the first decides; default the mass
+    budget: {trials: 40, finalists: 3, seed: 0}
+
+A built-in actuator (CubeMars AK, Mini Cheetah) keeps its own gearbox and ratio: for it the
+gear ratio and gearbox variables do not apply. Relative paths are taken from the spec file's
+folder.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import hashlib
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from fivebar_drake.core.actuators import catalog, gearboxes
+from fivebar_drake.core.files import read_input_text
+from fivebar_drake.core.validation import ParameterError, check_number, require
+from fivebar_drake.core.yaml_files import load_spec_file
+from fivebar_drake.envelope.spec import EnvelopeSpec, spec_from_dict as envelope_from_dict
+from fivebar_drake.sweep.spec import Varied
+
+KEYS = ("variables", "requirements", "objectives", "budget")
+MOTOR, GEARBOX, RATIO = "motor", "gearbox", "motor.gear_ratio"
+OBJECTIVES = {"actuator_mass_kg": "minimize", "max_jump_height_m": "maximize"}
+ACCEPT = {"pass": ("pass",), "warn": ("pass", "warn")}
+BUDGET = {"trials": (1, 100_000), "finalists": (1, 100), "seed": (0, 2**31 - 1)}
+DEFAULT_BUDGET = {"trials": 40, "finalists": 3, "seed": 0}
+
+
+@dataclass(frozen=True)
+class CodesignSpec:
+    """The checked spec: the catalogue motors and gearbox types to choose from (gearboxes empty:
+    the lightest type spanning the ratio), the other varied parameters (sweep.spec.Varied: a
+    list, or a range with num None: continuous), the requirements (an EnvelopeSpec and the
+    verdicts accepted), the objectives in order, the budget and the source file."""
+
+    motors: tuple[str, ...]
+    gearboxes: tuple[str, ...]
+    vary: tuple[Varied, ...]
+    envelope: EnvelopeSpec
+    accept: tuple[str, ...]
+    objectives: tuple[str, ...]
+    trials: int
+    finalists: int
+    seed: int
+    text: str = field(default="", compare=False)
+    source: str = field(default="", compare=False)
+
+    @property
+    def directions(self) -> list[str]:
+        return [OBJECTIVES[o] for o in self.objectives]
+
+    def fingerprint(self) -> str:
+        """A hash of everything that decides the search and its result: the spec's text and the
+        maneuvers' parameters (so editing the spec or a file it names makes another study)."""
+        data = {"text": self.text, "maneuvers": [repr(dataclasses.astuple(m.params)) + repr(
+            m.scenario) for m in self.envelope.maneuvers]}
+        return hashlib.sha256(json.dumps(data, sort_keys=True).encode()).hexdigest()
+
+
+def load_codesign_spec(path: str | Path) -> CodesignSpec:
+    """Read and check SPEC.yaml (ParameterError naming the file and the field)."""
+    path = Path(path)
+    spec = load_spec_file(path, "co-design spec", spec_from_dict)
+    return dataclasses.replace(spec, text=read_input_text(path, "co-design spec"))
+
+
+def spec_from_dict(data, folder: Path, source: str = "") -> CodesignSpec:
+    """CodesignSpec from the YAML's mapping; relative files are taken from folder."""
+    require(isinstance(data, dict), "SPEC", type(data).__name__, f"must be a mapping of {KEYS}")
+    unknown = sorted(set(data) - set(KEYS))
+    require(not unknown, unknown[0] if unknown else "", unknown,
+            f"unknown key(s); the keys are {list(KEYS)}")
+    variables = data.get("variables")
+    require(isinstance(variables, dict) and MOTOR in variables, "variables", variables,
+            "must map `motor` (a list of catalogue names) and dotted parameter paths to a list "
+            "or a range [low, high]")
+    motors = _names("variables.motor", variables[MOTOR], catalog())
+    kinds = (_names("variables.gearbox", variables[GEARBOX], gearboxes())
+             if GEARBOX in variables else ())
+    vary = tuple(_varied(str(k), v) for k, v in variables.items() if k not in (MOTOR, GEARBOX))
+    envelope, accept = _requirements(data.get("requirements"), folder, source)
+    objectives = data.get("objectives", ["actuator_mass_kg"])
+    require(isinstance(objectives, list) and objectives and len(set(objectives)) == len(
+        objectives) and all(o in OBJECTIVES for o in objectives), "objectives", objectives,
+        f"must be a list of distinct names of {list(OBJECTIVES)}")
+    budget = data.get("budget", {})
+    require(isinstance(budget, dict) and set(budget) <= set(BUDGET), "budget", budget,
+            f"must be a mapping of {list(BUDGET)}")
+    counts = {k: check_number(f"budget.{k}", budget.get(k, DEFAULT_BUDGET[k]), *BUDGET[k],
+                              integer=True) for k in BUDGET}
+    return CodesignSpec(motors=motors, gearboxes=kinds, vary=vary, envelope=envelope,
+                        accept=ACCEPT[accept], objectives=tuple(objectives), source=source,
+                        **counts)
+
+
+def _names(where: str, value, known) -> tuple[str, ...]:
+    require(isinstance(value, list) and value and all(v in known for v in value)
+            and len(set(value)) == len(value), where, value,
+            f"must be a list of distinct names of {sorted(known)}")
+    return tuple(value)
+
+
+def _varied(path: str, value) -> Varied:
+    """A list of numbers, or a range [low, high] (low < high), of a dotted parameter path."""
+    where = f"variables.{path}"
+    numbers = isinstance(value, list) and value and all(
+        isinstance(v, (int, float)) and not isinstance(v, bool) for v in value)
+    require(bool(numbers), where, value, "must be a range [low, high] or a list of numbers, "
+            "e.g. [4.0, 12.0] (two numbers: a range)")
+    for i, v in enumerate(value):
+        check_number(f"{where}[{i}]", v)
+    if len(value) == 2:
+        require(value[0] < value[1], where, value, "a range [low, high] needs low < high (a "
+                "list of values has three or more, or one)")
+        return Varied(path, low=float(value[0]), high=float(value[1]))
+    return Varied(path, values=tuple(float(v) for v in value))
+
+
+def _requirements(value, folder: Path, source: str) -> tuple[EnvelopeSpec, str]:
+    """(the envelope spec, the accepted verdict's name) of `requirements`."""
+    require(isinstance(value, dict) and "envelope" in value and set(value) <= {
+        "envelope", "accept"}, "requirements", value,
+        "must be a mapping {envelope: FILE or an envelope spec's mapping, accept: pass|warn}")
+    accept = value.get("accept", "pass")
+    require(accept in ACCEPT, "requirements.accept", accept, f"must be one of {list(ACCEPT)}")
+    given = value["envelope"]
+    if isinstance(given, str):
+        path = folder / given
+        require(path.is_file(), "requirements.envelope", given,
+                f"must name an existing envelope spec (relative to {folder})")
+        return load_spec_file(path, "envelope spec", envelope_from_dict), accept
+    require(isinstance(given, dict), "requirements.envelope", given,
+            "must be a file name or an envelope spec's mapping (maneuvers, duty_cycle, ...)")
+    try:
+        return envelope_from_dict(given, folder, source), accept
+    except ParameterError as err:
+        if err.source:                  # a file the envelope names: its own error
+            raise
+        raise ParameterError(f"requirements.envelope.{err.message}",
+                             f"requirements.envelope.{err.field}") from None
