@@ -1,9 +1,9 @@
 """Optimal-maneuver benchmark: the vertical jump's ceiling and floor (optimal/vertical_jump.py)
 of the default robot on one core, warm (each computed once before timing), the median of
 --repeats; the linear program's solve (Drake MathematicalProgram) for the same floor; the
-trot's and the walk's stance floors (optimal/stance_floor.py, uncached: each repeat solves
+gaits' floors (optimal/gait_floor.py: trot, walk, bound, pronk; uncached: each repeat solves
 them). Prints a table, then one JSON object: ceiling_s, floor_s, lp_s, lp_solver,
-bisection_steps, trot_floor_s, trot_programs, walk_floor_s, walk_programs."""
+bisection_steps, and KIND_floor_s, KIND_programs per gait."""
 
 from __future__ import annotations
 
@@ -13,9 +13,9 @@ import statistics
 import time
 
 from fivebar_drake.core.footpath import Jump as JumpPath
-from fivebar_drake.optimal import stance_floor as sf
+from fivebar_drake.optimal import gait_floor as gf
 from fivebar_drake.optimal import vertical_jump as vj
-from fivebar_drake.robots.quadruped.config import load_params
+from fivebar_drake.robots.quadruped.config import load_params, with_path_defaults
 
 
 def timed(function, repeats: int) -> tuple[float, object]:
@@ -62,8 +62,9 @@ def main() -> None:
     stroke = maneuver()
     lp_s, (lp_peak, solver) = timed(lambda: vj.box_floor_lp(stroke, standing, plan.height_m),
                                     args.repeats)
-    gaits = {kind: timed(lambda kind=kind: sf._solve(params, sf.foot_path(kind), 0.0, False,
-                                                    False), args.repeats) for kind in sf.REPEAT}
+    gaits = {kind: timed(lambda kind=kind: gf._solve(with_path_defaults(params, kind),
+                                                    gf.foot_path(kind), 0.0, False, False),
+                         args.repeats) for kind in gf.KINDS}
     print(f"vertical jump, default robot, {vj.GRID_POINTS} nodes, median of {args.repeats}:")
     print(f"  ceiling (highest jump, {jump.com_rise_from_standing_m * 1e3:.1f} mm): "
           f"{ceiling_s * 1e3:.0f} ms")
@@ -72,8 +73,9 @@ def main() -> None:
     print(f"  torque-box floor, Drake linear program ({lp_peak:.3f} N m, {solver}): "
           f"{lp_s * 1e3:.0f} ms")
     for kind, (seconds, floor) in gaits.items():
-        print(f"  {kind} stance floor ({floor.floor_Nm:.3f} N m, {floor.programs} linear "
-              f"programs): {seconds * 1e3:.0f} ms   (target <= 10 s)")
+        print(f"  {kind} floor ({floor.floor_Nm:.3f} N m, {floor.programs} linear programs, "
+              f"pitch residual {floor.moment_residual_Nm:.1e} N m): {seconds * 1e3:.0f} ms   "
+              f"(target <= 10 s)")
     print(json.dumps({"ceiling_s": ceiling_s, "floor_s": floor_s, "lp_s": lp_s,
                       "lp_solver": solver, "bisection_steps": steps,
                       **{f"{kind}_floor_s": seconds for kind, (seconds, _) in gaits.items()},

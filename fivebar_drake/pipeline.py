@@ -30,7 +30,7 @@ from fivebar_drake.core.files import prepare_output_dir
 from fivebar_drake.core.footpath import Jump as JumpPath, Landing
 from fivebar_drake.core.summary_schema import AnyController, Summary
 from fivebar_drake.core.validation import ParameterError
-from fivebar_drake.optimal import stance_floor, vertical_jump
+from fivebar_drake.optimal import gait_floor, vertical_jump
 from fivebar_drake.robots.quadruped.config import load_params, sampling_error
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.simulation.plots import CAPABILITY_FILE, SIM_PLOT_FILES, write_sim_plots
@@ -161,38 +161,33 @@ def any_controller(record: SimulationRecord, summary: Summary) -> AnyController 
 
 
 def stance_any_controller(record: SimulationRecord, summary: Summary) -> AnyController | None:
-    """For a trot or a walk, what any controller would need (optimal/stance_floor.py): the
-    stance floor at the gait's own mean height beside the largest demand peak of the run's
-    motors. Whom a failing verdict blames: any controller where the torque check decided and
-    even the floor's safety factor is below checks.sf_warn; else this controller, or
-    "undecided" where the floor is a relaxation (the trot's: the body's pitch left to its
-    rotation, so the true least may lie above it). None for another gait."""
+    """For a trot, walk, bound or pronk, what any controller would need (optimal/gait_floor.py):
+    the gait's floor at its own mean height beside the largest demand peak of the run's motors.
+    Whom a failing verdict blames: any controller where the torque check decided and even the
+    floor's safety factor is below checks.sf_warn; else this controller. None for another
+    gait."""
     params, path = record.params, record.scenario.gait
-    floor = stance_floor.stance_floor(params, path, record.scenario.payload_kg)
+    floor = gait_floor.gait_floor(params, path, record.scenario.payload_kg)
     if floor is None:
         return None
     asked = max((m["demand_peak_Nm"] for motors in summary["legs"].values()
-                 for m in motors.values()), default=None)
-    relaxed = stance_floor.RELAXED[path.kind]
-    why = ["stance legs only (the swing legs' torques are not in the floor)"]
-    if relaxed:
-        why.append(f"a relaxation: the {', '.join(relaxed)} moment is left to the body's "
-                   "rotation")
+                 for m in motors.values() if math.isfinite(m["demand_peak_Nm"])), default=None)
+    why = ["stance legs only (the swing legs' torques are not in the floor)",
+           "the least a local search found (a lower one may exist)"]
     if record.scenario.slope_deg:
         why.append("the floor is computed on flat ground")
     return verdict_split(path.kind, 0.0, {"stance": (floor.floor_Nm, asked)}, None, why,
-                         summary, params, bool(relaxed))
+                         summary, params)
 
 
 def verdict_split(maneuver: str, height_m: float, phases: dict, ceiling_m: float | None,
-                  why: list[str], summary: Summary, params: Params,
-                  relaxed: bool = False) -> AnyController:
+                  why: list[str], summary: Summary, params: Params) -> AnyController:
     """The summary's any_controller from each phase's (floor N*m or None, asked N*m or None):
     the maneuver's floor (the largest; None if a phase has none), its safety factor (the
     driving peak over it), what the controller asked at most and its cost, and whom a failing
     verdict blames: any controller where a phase is beyond the motors or the torque check
-    decided and even the floor's safety factor is below checks.sf_warn; else undecided on a
-    relaxed floor, this controller on an exact one."""
+    decided and even the floor's safety factor is below checks.sf_warn; else this
+    controller."""
     floors = [f for f, _ in phases.values()]
     floor = None if None in floors else max(floors)
     most = max((a for _, a in phases.values() if a is not None), default=None)
@@ -205,8 +200,7 @@ def verdict_split(maneuver: str, height_m: float, phases: dict, ceiling_m: float
             "asked_Nm": most,
             "controller_cost": most / floor if most is not None and floor else None,
             "fails_for": (None if summary["verdict"] not in ("fail", "not_achieved") else
-                          "any controller" if short else
-                          "undecided" if relaxed else "this controller"),
+                          "any controller" if short else "this controller"),
             "why": "; ".join(why)}
 
 

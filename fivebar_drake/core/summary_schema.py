@@ -330,13 +330,13 @@ class PhaseFloor(TypedDict):
 
 class AnyController(TypedDict):
     """What any controller would need for this maneuver (optimal/; pipeline.any_controller):
-    per phase (a jump's push-off and landing, a drop's landing) the least peak motor torque on
+    per phase (a jump's push-off and landing, a drop's landing, a gait's stance) the least peak motor torque on
     the maneuver's own stroke and what this run's controller asked; the maneuver's floor (the
     largest; None: beyond the motors) with its safety factor; the ceiling (the highest jump on
     the push's stroke, or the highest drop the landing's stroke absorbs, m); what the
     controller asked at most in those phases and its ratio to the floor; and whom a failing
     verdict blames ("any controller": the motors cannot; "this controller": a better one would
-    pass; "undecided": the floor is a relaxation within the motors; None: nothing failed)."""
+    pass; None: nothing failed)."""
 
     maneuver: str
     height_m: float

@@ -1,6 +1,6 @@
 """What the legs allow for any controller, for one design (`fivebar-drake optimal`): the
-vertical jump's ceiling and floor and the drop's landing (vertical_jump.py), the trot's and the
-walk's stance floors (stance_floor.py), as optimal.json, optimal.md and optimal_jump.png: the answer first, then the
+vertical jump's ceiling and floor and the drop's landing (vertical_jump.py), the gaits'
+floors (gait_floor.py: trot, walk, bound, pronk), as optimal.json, optimal.md and optimal_jump.png: the answer first, then the
 figures beside the bounds."""
 
 from __future__ import annotations
@@ -16,10 +16,11 @@ from fivebar_drake.core.footpath import Drop, Jump as JumpPath
 from fivebar_drake.core.validation import ParameterError, check_number
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.optimal.recording import RECORDING_FILE, write_recording
-from fivebar_drake.optimal.stance_floor import RELAXED, REPEAT, stance_floor
+from fivebar_drake.optimal.gait_floor import KINDS, MAX_PITCH_RAD, gait_floor
 from fivebar_drake.optimal.vertical_jump import (Jump, highest_drop, landing_floor,
                                                  point_mass_bound, push, reach, stroke,
                                                  torque_floor)
+from fivebar_drake.robots.quadruped.config import with_path_defaults
 from fivebar_drake.robots.quadruped.params import Params
 
 OPTIMAL_FILES = ("optimal_jump.png", RECORDING_FILE, "optimal.md",
@@ -108,33 +109,38 @@ def jump_limits(params: Params, height_m: float | None = None,
     except ParameterError as err:
         result["floor_why_none"] = err.message
     result["drop"] = drop_limits(params, payload_kg)
-    result["gaits"] = {kind: gait_limits(params, kind, payload_kg) for kind in REPEAT}
+    result["gaits"] = {kind: gait_limits(params, kind, payload_kg) for kind in KINDS}
     result["published"] = published_jump(params, result["ceiling"])
     result["answer"] = answer(result, params)
     return result, jumps
 
 
 def gait_limits(params: Params, kind: str, payload_kg: float = 0.0) -> dict:
-    """A walking gait's stance floors for any controller (stance_floor.py): at the gait's own
-    height, held level and with the height free; the thermal floor (the least RMS current)
-    against the continuous current; whether the floor is beyond the motors; and what the floor
-    leaves out (RELAXED)."""
-    at_gait, free = (stance_floor(params, kind, payload_kg, free_height=f) for f in (False, True))
-    thermal = stance_floor(params, kind, payload_kg, thermal=True)
+    """A gait's floors for any controller (gait_floor.py) at its own gait fields (the path's
+    defaults over the parameter file's, as simulate runs it): at the gait's own mean height,
+    held level (None where no forces hold the body level: a single pair down) and with the
+    height free; the motion the floor takes; the thermal floor (the least worst-motor RMS
+    torque) against the continuous current; whether the floor is beyond the motors."""
+    params = with_path_defaults(params, kind)
+    at_gait, free = (gait_floor(params, kind, payload_kg, free_height=f) for f in (False, True))
+    thermal = gait_floor(params, kind, payload_kg, thermal=True)
     continuous = params.motor.rated_continuous_current_A
     return {"floor_Nm": at_gait.floor_Nm,
             "beyond_motors": at_gait.floor_Nm > params.motor.peak_torque_Nm,
-            "constant_height_floor_Nm": at_gait.constant_height_Nm,
+            "level_floor_Nm": at_gait.level_Nm,
             "height_swing_m": float(np.ptp(at_gait.z_m)),
+            "surge_swing_m": float(np.ptp(at_gait.x_m)),
+            "pitch_swing_deg": float(np.degrees(np.ptp(at_gait.pitch_rad))),
             "free_height_floor_Nm": free.floor_Nm,
             "free_height_change_m": float(np.mean(free.z_m)),
             "thermal_floor_rms_torque_Nm": thermal.floor_Nm,
             "thermal_floor_rms_current_A": thermal.rms_current_A,
             "continuous_current_A": continuous,
             "thermal_margin": continuous / thermal.rms_current_A if continuous else None,
-            "relaxed": list(RELAXED[kind]),
-            "scope": f"stance legs at the {kind}'s speed, period and duty factor; the swing "
-                     "legs' torques are not in the floor"}
+            "frequency_hz": params.gait.frequency_hz,
+            "scope": f"stance legs at the {kind}'s speed, period and duty factor, the body "
+                     f"free to surge, heave and pitch (within {math.degrees(MAX_PITCH_RAD):g} deg); the "
+                     "swing legs' torques are not in the floor"}
 
 
 def drop_limits(params: Params, payload_kg: float = 0.0) -> dict:
@@ -181,10 +187,13 @@ def answer(r: dict, params: Params) -> str:
              f"to {d['highest_drop_m'] * 1e3:.0f} mm.")
     fourth = "".join(
         f" The {kind} needs at least {t['floor_Nm']:.2f} N·m in stance at its own height (the "
-        f"body bobbing {t['height_swing_m'] * 1e3:.0f} mm; {t['constant_height_floor_Nm']:.2f}"
-        f" N·m held level; {t['free_height_floor_Nm']:.2f} N·m with the body "
+        f"body heaving {t['height_swing_m'] * 1e3:.0f} mm and pitching through "
+        f"{t['pitch_swing_deg']:.0f} deg; "
+        + ("no level body balances" if t["level_floor_Nm"] is None else
+           f"{t['level_floor_Nm']:.2f} N·m held level")
+        + f"; {t['free_height_floor_Nm']:.2f} N·m with the body "
         f"{t['free_height_change_m'] * 1e3:.0f} mm higher)"
-        + (f", beyond the motors' {params.motor.peak_torque_Nm:.2f} N·m for any controller"
+        + (f", beyond the motors' {params.motor.peak_torque_Nm:.2f} N·m (the least found)"
            if t["beyond_motors"] else "")
         + ("" if t["thermal_margin"] is None else
            f"; its thermal floor {t['thermal_floor_rms_current_A']:.2f} A RMS, "

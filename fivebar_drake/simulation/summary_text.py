@@ -219,9 +219,7 @@ def any_controller_text(a: AnyController) -> str:
     blame = {"any controller": " The verdict fails for any controller: the motors are too "
                                "small for it.",
              "this controller": " The verdict fails for this controller: the motors could do "
-                                "it, a better controller would pass.",
-             "undecided": " Whether a better controller would pass is undecided: the floor is "
-                          "a relaxation and lies within the motors.", None: ""}
+                                "it, a better controller would pass.", None: ""}
     return text + "." + blame[a["fails_for"]]
 
 
