@@ -32,6 +32,7 @@ demo: $(STAMP)
 		--out $(OUT)/gear_comparison.md
 	$(BIN)/fivebar-drake sweep fivebar_drake/data/sweep_example.yaml --out $(OUT)/sweep
 	$(BIN)/fivebar-drake envelope fivebar_drake/data/envelope_demo.yaml --out $(OUT)/envelope
+	$(BIN)/fivebar-drake codesign fivebar_drake/data/codesign_demo.yaml --out $(OUT)/codesign
 	$(BIN)/fivebar-drake optimal --out $(OUT)/optimal
 	for m in ballscrew_leg scara parallel4; do \
 		$(BIN)/fivebar-drake analyze --mechanism $$m --out $(OUT)/$$m || exit 1; done
@@ -50,6 +51,7 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_sweep.py
 	$(BIN)/python benchmarks/bench_envelope.py
 	$(BIN)/python benchmarks/bench_optimal.py
+	$(BIN)/python benchmarks/bench_codesign.py
 
 # the picture of a recording in the README: the Rerun web viewer, served locally, in headless
 # Chromium (Debian: apt-get install chromium)

@@ -7,6 +7,7 @@
                          [--closure {bushing,bushing_rpy,ball}] [--step-check] [--out DIR]
   fivebar-drake sweep    SPEC.yaml [--out DIR] [--workers N] [--scheduler ADDRESS]
   fivebar-drake envelope [SPEC.yaml] [--out DIR] [--workers N] [--scheduler ADDRESS]
+  fivebar-drake codesign SPEC.yaml [--out DIR] [--workers N] [--scheduler ADDRESS]
   fivebar-drake optimal  [--config FILE] [--set FIELD=VALUE ...] [--height M] [--payload KG]
                          [--simulate] [--out DIR]
   fivebar-drake compare  RUN_DIR [RUN_DIR ...] [--out FILE]
@@ -225,6 +226,39 @@ def _envelope(args, signals) -> int:
     return 0
 
 
+def _codesign(args, signals) -> int:
+    """The co-design (codesign/run.py): the spec checked first (exit 2), the search and the
+    finalists' envelopes on Dask, the design written; exit 1 when no design is verified."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from pathlib import Path
+    from fivebar_drake.codesign.run import run_codesign
+    from fivebar_drake.codesign.spec import load_codesign_spec
+
+    spec = load_codesign_spec(args.spec)
+    _check_cluster(args)
+    out = Path(args.out or Path("out/codesign") / Path(args.spec).stem)
+    start = time.perf_counter()
+    say(f"co-design: {len(spec.motors)} motors, {len(spec.vary)} more variables, "
+        f"{spec.trials} trials, {spec.finalists} finalists; requirements: "
+        f"{len(spec.envelope.maneuvers)} maneuvers of {spec.envelope.source or args.spec}")
+    try:
+        run = run_codesign(spec, out, args.workers, args.scheduler)
+    except (KeyboardInterrupt, Interrupted):
+        _err(f"the finished trials and envelopes are kept in {out}; run the same command "
+             "again to resume")
+        raise
+    say(run.report["answer"])
+    say(f"wrote {len(run.files)} files to {out.resolve()} in {time.perf_counter() - start:.1f} "
+        "s: " + ", ".join(p.name for p in run.files) + ", the journal and the finalists' "
+        "envelopes")
+    if run.failure:
+        _err(run.failure)
+        return 1
+    return 0
+
+
 def _optimal(args, signals) -> int:
     """What the legs allow for any controller (optimal/report.py): every input checked
     first (exit 2); exit 1 when the jump asked for is beyond the motors."""
@@ -363,31 +397,40 @@ def parser() -> argparse.ArgumentParser:
                    help="output folder; a previous run's files in it are removed before the "
                         "run starts (default: out/simulation for the quadruped, "
                         "out/simulation/NAME for another mechanism)")
-    w = command("sweep", _sweep, "a parameter sweep of the 5-bar quadruped (closed-form "
-                "analysis or simulation points) on a local Dask cluster or an existing one")
-    w.add_argument("spec", metavar="SPEC", help="sweep spec (YAML; see README: fidelity, "
-                   "sampling, vary, config, scenario)")
-    w.add_argument("--out", metavar="DIR", help="output folder: points.csv, plots, sweep.md; "
-                   "rerunning the same sweep into it computes only the missing points "
-                   "(default: out/sweep/SPEC's name)")
-    workers = dict(type=int, metavar="N", help="process workers of the local cluster, one "
-                   "thread each (default: one per core)")
-    w.add_argument("--workers", **workers)
-    w.add_argument("--scheduler", metavar="ADDRESS", help="send the sweep to this Dask "
-                   "scheduler (tcp://HOST:PORT) instead of a local cluster")
-    e = command("envelope", _envelope, "the duty envelope of the hip motors: maneuvers "
-                "simulated on a local Dask cluster or an existing one; per motor and maneuver "
-                "the verdict's checks, what sizes each motor, the operating points over the "
-                "envelope and a duty cycle's winding temperature")
-    e.add_argument("spec", nargs="?", metavar="SPEC", help="envelope spec (YAML; see README: "
-                   "maneuvers, duty_cycle, config, scenario, duration_s); default: the packaged "
-                   "fivebar_drake/data/envelope_default.yaml")
-    e.add_argument("--out", metavar="DIR", help="output folder: envelope.md, envelope.json, "
-                   "operating_points.png, duty_cycle.png and a folder per maneuver (default: "
-                   "out/envelope/SPEC's name)")
-    e.add_argument("--workers", **workers)
-    e.add_argument("--scheduler", metavar="ADDRESS", help="run the maneuvers on this Dask "
-                   "scheduler (tcp://HOST:PORT) instead of a local cluster")
+    def on_dask(name, run, text, spec, out, what, **positional):
+        """A command on Dask: its spec, --out, --workers and --scheduler (what: what it does on
+        a scheduler)."""
+        p = command(name, run, text)
+        p.add_argument("spec", metavar="SPEC", help=spec, **positional)
+        p.add_argument("--out", metavar="DIR", help=out)
+        p.add_argument("--workers", type=int, metavar="N", help="process workers of the local "
+                       "cluster, one thread each (default: one per core)")
+        p.add_argument("--scheduler", metavar="ADDRESS", help=f"{what} this Dask scheduler "
+                       "(tcp://HOST:PORT) instead of a local cluster")
+
+    on_dask("sweep", _sweep, "a parameter sweep of the 5-bar quadruped (closed-form analysis or "
+            "simulation points) on a local Dask cluster or an existing one",
+            "sweep spec (YAML; see README: fidelity, sampling, vary, config, scenario)",
+            "output folder: points.csv, plots, sweep.md; rerunning the same sweep into it "
+            "computes only the missing points (default: out/sweep/SPEC's name)",
+            "send the sweep to")
+    on_dask("envelope", _envelope, "the duty envelope of the hip motors: maneuvers simulated on "
+            "a local Dask cluster or an existing one; per motor and maneuver the verdict's "
+            "checks, what sizes each motor, the operating points over the envelope and a duty "
+            "cycle's winding temperature",
+            "envelope spec (YAML; see README: maneuvers, duty_cycle, config, scenario, "
+            "duration_s); default: the packaged fivebar_drake/data/envelope_default.yaml",
+            "output folder: envelope.md, envelope.json, operating_points.png, duty_cycle.png and "
+            "a folder per maneuver (default: out/envelope/SPEC's name)",
+            "run the maneuvers on", nargs="?")
+    on_dask("codesign", _codesign, "co-design of motor (from the actuator catalogue), gearbox "
+            "and leg parameters against an envelope's maneuvers: a search judged by closed-form "
+            "screening and optimal-maneuver floors, the finalists and the default design "
+            "verified by full simulation on a local Dask cluster or an existing one",
+            "co-design spec (YAML; see README: variables, requirements, objectives, budget)",
+            "output folder: design.md, design.json, design.toml, pareto.png, codesign.journal "
+            "and the finalists' envelopes; rerunning the same spec into it resumes (default: "
+            "out/codesign/SPEC's name)", "run the finalists' maneuvers on")
     o = command("optimal", _optimal, "what the legs and motors allow for any controller: the "
                 "highest vertical jump (beside a bound by another method) and the least peak "
                 "motor torque of the jump maneuver to a height (5-bar quadruped)")

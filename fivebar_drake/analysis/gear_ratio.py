@@ -13,6 +13,7 @@ import numpy as np
 from scipy.optimize import minimize_scalar
 
 from fivebar_drake.core.motor import Motor, with_gear
+from fivebar_drake.core.validation import ParameterError
 
 
 RATIO_RANGE = (1.0, 100.0)   # gear ratios searched (a direct drive to a two-stage planetary)
@@ -29,11 +30,16 @@ def safety_factors(motor: Motor, load_Nm, qd, qdd, ratios, speed_line: bool = Tr
     the least over the samples of the envelope's torque at qd in the direction of the torque
     the motor delivers (load + N^2 J_r qdd if rotor, + friction) over it (Motor.torque_margins)
     if speed_line, else the peak-current torque of each sample's quadrant over it (1 / the
-    largest of Motor.quadrant_loads)."""
+    largest of Motor.quadrant_loads); 0 at a ratio where the motor cannot turn against the
+    output friction (a fast motor geared down little)."""
     qd, qdd = np.asarray(qd, dtype=float), np.asarray(qdd, dtype=float)
     out = []
     for r in np.asarray(ratios, dtype=float).ravel():
-        m = with_gear(motor, r)
+        try:
+            m = with_gear(motor, r)
+        except ParameterError:     # at this ratio the motor cannot turn against the friction
+            out.append(np.zeros(np.shape(load_Nm)[-1]))
+            continue
         need = m.delivered_torque(np.asarray(load_Nm) + (r**2 * motor.rotor_inertia_kg_m2 * qdd
                                                          if rotor else 0.0), qd)
         if speed_line:

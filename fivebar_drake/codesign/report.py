@@ -16,6 +16,7 @@ from fivebar_drake.core.files import json_ready, save_figure, write_atomic
 from fivebar_drake.mechanisms.fivebar import MOTORS
 
 FILES = ("design.md", "design.toml", "pareto.png", "design.json")   # design.json last
+DEFAULT = "default"      # the default design's key among the simulated
 FLAG = 0.10          # predicted and simulated figures further apart than this are flagged
 
 
@@ -103,7 +104,8 @@ def codesign_report(spec: CodesignSpec, entries: list[dict], chosen: list[dict],
     report = {"spec": spec.source, "accept": list(spec.accept),
               "objectives": list(spec.objectives), "trials": len(entries),
               "predicted_meeting": sum(e["meets"] for e in entries),
-              "default": {"actuator_mass_kg": default_mass, "simulated": verified["default"]},
+              "default": {"actuator_mass_kg": default_mass,
+                          "simulated": verified.get(DEFAULT)},
               "finalists": finalists, "recommended": recommended,
               "failure": "" if recommended else nobody_meets(spec, entries, finalists),
               "candidates": entries}
@@ -143,6 +145,9 @@ def markdown(spec: CodesignSpec, report: dict) -> str:
     """design.md."""
     lines = [report["answer"], ""]
     r, default = report["recommended"], report["default"]["simulated"]
+    if default is None:
+        default = {"maneuvers": {}}
+        lines += ["No design was predicted to meet the requirements: none was simulated.", ""]
     lines += ["## Margins per check per maneuver (simulated)", "",
               "Figure: torque the worst motor's safety factor, speed its least speed margin, "
               "thermal its current margin; margin: the figure over what the accepted verdict "

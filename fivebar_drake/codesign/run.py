@@ -12,7 +12,7 @@ or an existing scheduler), then the report (report.py):
     OUT/pareto.png                the objectives, predicted and verified
 
 A design is verified only when its simulated envelope has every maneuver (and the duty cycle)
-in the accepted verdicts. The finalists are the designs predicted to meet every requirement,
+in the accepted verdicts; without finalists nothing is simulated. The finalists are the designs predicted to meet every requirement,
 best first (with several objectives, the predicted Pareto front first), one per motor and
 gearbox type before a second of the same, `budget.finalists` of them. Each envelope's outcome is
 kept in the journal, so a rerun simulates only the finalists that lack one.
@@ -26,7 +26,7 @@ from pathlib import Path
 
 from fivebar_drake.codesign.designs import GEARBOX, MOTOR, design_envelope, design_name
 from fivebar_drake.codesign.predict import CHECKS, needs
-from fivebar_drake.codesign.report import CodesignRun, write_report
+from fivebar_drake.codesign.report import DEFAULT, CodesignRun, write_report
 from fivebar_drake.codesign.search import predictions, ranked, search
 from fivebar_drake.codesign.spec import CodesignSpec
 from fivebar_drake.envelope.run import run_envelope
@@ -34,7 +34,6 @@ from fivebar_drake.sweep.engine import (Progress, check_output_folder, check_sch
                                         check_workers, dask_client)
 
 FINALISTS_DIR = "finalists"
-DEFAULT = "default"
 DUTY = "duty cycle"        # its row beside the maneuvers (no maneuver name has a space)
 
 
@@ -122,7 +121,7 @@ def run_codesign(spec: CodesignSpec, out: str | Path, workers: int | None = None
     study = search(spec, out, progress)
     entries = predictions(study)
     chosen = finalists(spec, entries)
-    jobs = [(DEFAULT, None)] + [(f"trial_{e['trial']}", e) for e in chosen]
+    jobs = [(DEFAULT, None)] + [(f"trial_{e['trial']}", e) for e in chosen] if chosen else []
     missing = any(f"envelope:{key}" not in study.user_attrs for key, _ in jobs)
     verified = {}
     bar = Progress(len(jobs), 0, progress, "verify", "envelopes")

@@ -32,6 +32,7 @@ from fivebar_drake.core.files import read_input_text
 from fivebar_drake.core.validation import ParameterError, check_number, require
 from fivebar_drake.core.yaml_files import load_spec_file
 from fivebar_drake.envelope.spec import EnvelopeSpec, spec_from_dict as envelope_from_dict
+from fivebar_drake.robots.quadruped.config import with_changes
 from fivebar_drake.sweep.spec import Varied
 
 KEYS = ("variables", "requirements", "objectives", "budget")
@@ -95,6 +96,13 @@ def spec_from_dict(data, folder: Path, source: str = "") -> CodesignSpec:
              if GEARBOX in variables else ())
     vary = tuple(_varied(str(k), v) for k, v in variables.items() if k not in (MOTOR, GEARBOX))
     envelope, accept = _requirements(data.get("requirements"), folder, source)
+    for v in vary:                  # each path and value alone against the base parameters
+        for value in (v.values or (v.low, v.high)):
+            try:
+                with_changes(envelope.maneuvers[0].params, {v.path: value})
+            except ParameterError as err:
+                raise ParameterError(f"variables.{v.path} = {value!r}: {err.message}",
+                                     f"variables.{v.path}") from None
     objectives = data.get("objectives", ["actuator_mass_kg"])
     require(isinstance(objectives, list) and objectives and len(set(objectives)) == len(
         objectives) and all(o in OBJECTIVES for o in objectives), "objectives", objectives,

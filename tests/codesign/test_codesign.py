@@ -1,0 +1,226 @@
+"""The co-design (`fivebar-drake codesign`): a small co-design on a local Dask cluster whose
+recommended design passes its simulated envelope (read back from the finalist's envelope.json),
+is the lightest finalist that does, and whose parameter file runs `analyze` and `simulate`;
+predicted figures set beside the simulated ones as the envelopes report them; an interrupted
+search resumed into the same folder giving the trials of an uninterrupted one; a spec no
+candidate meets (exit 1, the requirement and the best margin named); bad specs refused (exit 2,
+the field named, nothing written)."""
+
+import json
+import math
+import re
+
+import pytest
+
+from fivebar_drake.cli import main
+from fivebar_drake.codesign import search as search_module
+from fivebar_drake.codesign.designs import design_params
+from fivebar_drake.codesign.spec import load_codesign_spec
+from fivebar_drake.core.actuators import actuator_mass_kg, catalog
+from fivebar_drake.robots.quadruped.config import load_params
+
+ENVELOPE = """\
+    scenario: {stand_s: 0.2, ramp_s: 0.5}
+    maneuvers:
+      - {name: trot, gait: trot, gait_frequency_hz: 2.0, gait_a_m: 0.03, duration_s: 2.2}
+"""
+DROP = "      - {name: drop, gait: {kind: drop, height_m: 0.05}, duration_s: 1.2}\n"
+SPEC = """\
+variables:
+  motor: [tmotor_mn5212_kv340, cubemars_ak80_9]
+  motor.gear_ratio: [8.0, 12.0]
+requirements:
+  accept: warn
+  envelope:
+""" + ENVELOPE + DROP + "budget: {trials: 6, finalists: 2}\n"
+SEARCH_ONLY = """\
+variables:
+  motor: [default_assumed, tmotor_mn5212_kv340, maxon_ec45_flat_70w_24v]
+  motor.gear_ratio: [4.0, 14.0]
+  leg.ce_m: [0.135, 0.145, 0.155]
+requirements:
+  envelope:
+""" + ENVELOPE + "budget: {trials: 9, seed: 3}\n"
+NOBODY = """\
+variables:
+  motor: [maxon_ec45_flat_70w_24v]
+  motor.gear_ratio: [4.0, 5.0]
+requirements:
+  envelope:
+""" + ENVELOPE + "budget: {trials: 4}\n"
+ACCEPT = ("pass", "warn")
+
+
+def write(folder, text, name="spec.yaml"):
+    path = folder / name
+    path.write_text(text)
+    return path
+
+
+@pytest.fixture(scope="module")
+def codesign(tmp_path_factory):
+    """The small co-design through the command line on a local cluster of 2 workers: (exit
+    code, its folder, design.json)."""
+    folder = tmp_path_factory.mktemp("codesign")
+    code = main(["codesign", str(write(folder, SPEC)), "--out", str(folder / "out"),
+                 "--workers", "2"])
+    return code, folder / "out", json.loads((folder / "out" / "design.json").read_text())
+
+
+def envelope_sfs(folder) -> dict:
+    """Per maneuver: the worst motor's safety factor and the verdict, from envelope.json."""
+    report = json.loads((folder / "envelope.json").read_text())
+    return {name: (min(m["checks"]["torque"]["sf"] for m in e["motors"].values()), e["verdict"])
+            for name, e in report["maneuvers"].items()}
+
+
+def test_the_recommended_design_passes_in_simulation_and_is_the_lightest_that_does(codesign):
+    code, out, report = codesign
+    assert code == 0 and report["recommended"] is not None
+    first = (out / "design.md").read_text().splitlines()[0]
+    assert first.startswith(f"Recommended design: {report['recommended']['name']} — ")
+    mass = {f["key"]: actuator_mass_kg(f["design"]["motor"], f["design"]["motor.gear_ratio"],
+                                       f["design"]["gearbox"]) for f in report["finalists"]}
+    passing = {key for key in mass if all(v in ACCEPT for _, v in envelope_sfs(
+        out / "finalists" / key).values())}
+    assert report["recommended"]["key"] == min(passing, key=mass.get)
+    assert {f["key"] for f in report["finalists"] if f["simulated"]["passes"]} == passing
+    for key in ("default", *mass):
+        assert (out / "finalists" / key / "drop" / "run.rrd").is_file()
+
+
+def test_predicted_and_simulated_figures_side_by_side(codesign):
+    _, out, report = codesign
+    for finalist in report["finalists"]:
+        simulated = envelope_sfs(out / "finalists" / finalist["key"])
+        rows = {c["maneuver"]: c for c in finalist["comparison"]}
+        assert set(rows) == {"trot", "drop"}
+        assert rows["trot"]["level"] == "closed form" and rows["drop"]["level"] == "floor"
+        for name, row in rows.items():
+            assert row["simulated_sf"] == pytest.approx(simulated[name][0])
+            difference = row["predicted_sf"] / simulated[name][0] - 1.0
+            assert row["flagged"] == (abs(difference) > 0.10)
+            flag = "FLAG" if row["flagged"] else ""
+            assert re.search(rf"\| {finalist['key']} \| {name} \| .*\| "
+                             + re.escape(f"{difference:+.0%} | {flag} |"),
+                             (out / "design.md").read_text())
+        # the floor bounds what any controller needs: the motors' peak over it is an upper
+        # bound on the simulated safety factor
+        assert rows["drop"]["predicted_sf"] >= simulated["drop"][0]
+
+
+def test_the_margins_table_holds_the_default_designs_figures(codesign):
+    _, out, _ = codesign
+    text = (out / "design.md").read_text()
+    for name, (sf, verdict) in envelope_sfs(out / "finalists" / "default").items():
+        assert re.search(rf"\| {name} \| verdict \| \w+ \| \| {verdict} \| \|", text)
+        assert re.search(rf"\| {name} \| torque \| [\d.]+ \| [\d.]+ \| {sf:.2f} \| "
+                         rf"{sf / 1.5:.2f} \|", text)       # sf_warn: warn is accepted
+
+
+def test_design_toml_is_the_recommended_design_and_runs(codesign, tmp_path):
+    _, out, report = codesign
+    design = report["recommended"]["design"]
+    loaded = load_params(out / "design.toml")
+    spec = load_codesign_spec(out.parent / "spec.yaml")
+    assert loaded.motor == design_params(spec.envelope.maneuvers[0].params, design).motor
+    entry = catalog()[design["motor"]]
+    assert loaded.motor.torque_constant_Nm_per_A == entry.torque_constant_Nm_per_A.value
+    assert loaded.robot.motors_kg == pytest.approx(8 * actuator_mass_kg(
+        design["motor"], design["motor.gear_ratio"], design["gearbox"]))
+    assert main(["analyze", "--config", str(out / "design.toml"), "--out",
+                 str(tmp_path / "a")]) == 0
+    assert main(["simulate", "--config", str(out / "design.toml"), "--duration", "0.3",
+                 "--out", str(tmp_path / "s")]) in (0, 1)      # too short for a verdict
+    summary = json.loads((tmp_path / "s" / "summary.json").read_text())
+    assert summary["completed"] and not summary["error"]
+
+
+def test_an_interrupted_search_resumes_to_the_trials_of_an_uninterrupted_one(tmp_path,
+                                                                               monkeypatch):
+    spec = load_codesign_spec(write(tmp_path, SEARCH_ONLY))
+    (tmp_path / "whole").mkdir()
+    whole = search_module.search(spec, tmp_path / "whole", progress=False)
+    calls, evaluate = [], search_module.evaluate
+
+    def cut_at_the_fifth(spec, values):
+        calls.append(values)
+        if len(calls) == 5:
+            raise KeyboardInterrupt
+        return evaluate(spec, values)
+
+    monkeypatch.setattr(search_module, "evaluate", cut_at_the_fifth)
+    (tmp_path / "cut").mkdir()
+    with pytest.raises(KeyboardInterrupt):
+        search_module.search(spec, tmp_path / "cut", progress=False)
+    monkeypatch.undo()
+    states = [t.state.name for t in search_module.open_study(spec, tmp_path / "cut").trials]
+    assert states == ["COMPLETE"] * 4 + ["RUNNING"]
+    resumed = search_module.search(spec, tmp_path / "cut", progress=False)
+
+    def trials(study):
+        return [(t.params, t.values, t.state.name, t.user_attrs["prediction"]["margin"])
+                for t in study.trials]
+
+    assert trials(resumed) == trials(whole) and len(whole.trials) == spec.trials
+    assert len({t.params["motor"] for t in whole.trials}) > 1        # it explored
+    assert (search_module.best_predicted(resumed, spec)
+            == search_module.best_predicted(whole, spec))
+
+
+def test_a_spec_no_candidate_meets_names_the_requirement_and_the_best_margin(tmp_path, capsys):
+    out = tmp_path / "out"
+    assert main(["codesign", str(write(tmp_path, NOBODY)), "--out", str(out)]) == 1
+    err = capsys.readouterr().err
+    found = re.search(r"no candidate meets trot (\w+) .*the best, (.+), reaches a predicted "
+                      r"margin of ([\d.]+)", err)
+    assert found, err
+    report = json.loads((out / "design.json").read_text())
+    margins = {c["name"]: c["maneuvers"]["trot"]["margins"][found.group(1)]
+               for c in report["candidates"]}
+    assert max(margins.values()) < 1.0
+    assert found.group(2) == max(margins, key=margins.get)
+    assert float(found.group(3)) == pytest.approx(max(margins.values()), abs=0.005)
+    assert not (out / "design.toml").exists() and not (out / "finalists").exists()
+    assert (out / "design.md").read_text().startswith("No design recommended: no candidate")
+    # another spec into the same folder: refused, the journal kept
+    other = write(tmp_path, NOBODY.replace("trials: 4", "trials: 5"), "other.yaml")
+    assert main(["codesign", str(other), "--out", str(out)]) == 2
+    assert "another co-design" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("change, words", [
+    (("[tmotor_mn5212_kv340, cubemars_ak80_9]", "[tmotor_mn5212, cubemars_ak80_9]"),
+     ["variables.motor", "tmotor_mn5212"]),
+    (("motor.gear_ratio: [8.0, 12.0]", "motor.gear_ratio: [12.0, 8.0]"),
+     ["variables.motor.gear_ratio", "low < high"]),
+    (("motor.gear_ratio: [8.0, 12.0]", "leg.ce_mm: [0.1, 0.2]"),
+     ["variables.leg.ce_mm", "no such field"]),
+    (("motor.gear_ratio: [8.0, 12.0]", "leg.ce_m: [-0.1, 0.2]"), ["variables.leg.ce_m"]),
+    (("gait: trot,", "gait: moonwalk,"), ["requirements.envelope.maneuvers[0]", "moonwalk"]),
+    (("accept: warn", "accept: fail"), ["requirements.accept"]),
+    (("trials: 6", "trials: 0"), ["budget.trials"]),
+    (("budget:", "objectives: [speed]\nbudget:"), ["objectives", "speed"]),
+])
+def test_bad_specs_are_refused_naming_the_field(tmp_path, capsys, change, words):
+    spec = write(tmp_path, SPEC.replace(*change))
+    assert main(["codesign", str(spec), "--out", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err
+    assert str(spec) in err and all(w in err for w in words), err
+    assert not (tmp_path / "out").exists()
+
+
+def test_a_design_carries_its_actuators_mass_and_motor(tmp_path):
+    spec = load_codesign_spec(write(tmp_path, SEARCH_ONLY))
+    base = spec.envelope.maneuvers[0].params
+    design = {"motor": "odrive_d5065_270kv", "gearbox": "two_stage_timing_belt",
+              "motor.gear_ratio": 10.0, "leg.ce_m": 0.15}
+    params = design_params(base, design)
+    assert params.robot.motors_kg == pytest.approx(
+        8 * actuator_mass_kg("odrive_d5065_270kv", 10.0, "two_stage_timing_belt"))
+    assert params.leg.ce_m == 0.15 and params.motor.gear_ratio == 10.0
+    assert params.motor.gear_efficiency == pytest.approx(0.95**2)
+    assert params.motor.thermal_resistance_K_W == base.motor.thermal_resistance_K_W
+    assert math.isclose(params.motor.peak_current_A,
+                        catalog()["odrive_d5065_270kv"].peak_current_A.value)
+
