@@ -9,9 +9,9 @@ import fivebar_drake
 PACKAGE = Path(fivebar_drake.__file__).parent
 # a module may import from its own layer and the layers before it; analysis, simulation and
 # optimal are side by side and do not import each other; the studies wrap the pipeline (the 5-bar's study)
-LAYERS = {"core": 0, "mechanisms": 1, "robots": 2, "analysis": 3, "simulation": 3, "optimal": 3,
-          "pipeline": 4, "studies": 5, "catalog": 6, "sweep": 6, "envelope": 7, "codesign": 8,
-          "cli": 9, "__main__": 10}
+LAYERS = {"core": 0, "mechanisms": 1, "robots": 2, "analysis": 3, "optimal": 3, "simulation": 4,
+          "pipeline": 5, "studies": 6, "catalog": 7, "sweep": 7, "envelope": 8, "codesign": 9,
+          "cli": 10, "__main__": 11}
 
 
 def module_name(path: Path) -> str:

@@ -5,8 +5,8 @@ foot is down).
 
 Model (sagittal rigid body, fixed contact schedule and footholds). The centre of mass moves in
 the x-z plane (x forward, z up) and the body pitches by theta about +y (y left: a positive theta
-lowers the nose); it neither rolls nor yaws. Its motion repeats every period at the gait's mean
-forward speed. Each leg's foot is down during the path's stance (its phase and duty factor) at a
+lowers the nose; within max_pitch_rad); it neither rolls nor yaws. Its motion repeats every
+period at the gait's mean forward speed. Each leg's foot is down during the path's stance (its phase and duty factor) at a
 fixed foothold: where the path puts it at mid-stance with the body on its nominal course (steady
 speed, the gait's height, level). The ground forces on the feet that are down are free in the
 leg planes, (F_x, F_z) per foot with F_z >= 0 inside the friction cone, zero on the others, and
@@ -56,9 +56,17 @@ PROGRESS = 1e-4         # this fraction of its cost
 TRUST_END_M = 2e-5      # converged: the trust region below this
 STEP_M, STEP_RAD = 1e-5, 1e-5   # finite differences of the torques
 CACHE_SIZE = 64
-# ASSUMPTION: the body pitches by at most this either way (left free, the bound's floor falls on
-# and on as the body rocks by tens of degrees, on swing legs that would hit the ground)
-MAX_PITCH_RAD = math.radians(10.0)
+# ASSUMPTION: the body pitches by at most this share of the tilt an achieved run may have
+# (checks.achieved_max_tilt_deg) either way, leaving the rest to a controller's tracking error
+# (left free, the bound's floor falls on and on as the body rocks by tens of degrees, on swing
+# legs that would hit the ground)
+PITCH_SHARE = 0.5
+
+
+def max_pitch_rad(params: Params) -> float:
+    """The floor's bound on the body's pitch either way (rad): PITCH_SHARE of the tilt an
+    achieved run may have."""
+    return math.radians(PITCH_SHARE * params.checks.achieved_max_tilt_deg)
 
 
 @dataclass(frozen=True)
@@ -304,7 +312,7 @@ def _program(body: Body, mass: float, inertia: float, g: float, state, forces, t
                              np.zeros(cone.count), x)
     centre = np.stack(state, -1).ravel()                # the trust region about the last motion
     radius = np.tile([trust[0], trust[0], trust[1]], knots)
-    pitch = np.tile([np.inf, np.inf, MAX_PITCH_RAD], knots)   # and the pitch's bound
+    pitch = np.tile([np.inf, np.inf, max_pitch_rad(body.params)], knots)   # the pitch's bound
     prog.AddBoundingBoxConstraint(np.maximum(centre - radius, -pitch),
                                   np.minimum(centre + radius, pitch),
                                   x[lay.p(0, 0):lay.p(0, 0) + 3 * knots])
@@ -386,7 +394,7 @@ def _solve(params: Params, path, payload_kg: float, free_height: bool,
         last = min(last, cost)
     if not np.isfinite(last):
         raise ParameterError(f"no {path.kind} motion found within the legs' reach and [limits] "
-                             f"(the body's pitch within {math.degrees(MAX_PITCH_RAD):g} deg)",
+                             f"(the body's pitch within {math.degrees(max_pitch_rad(params)):g} deg)",
                              "gait", "parameter file")
     torques = _grid(body, _torques(body, state, forces))
     floor = _value(torques, thermal)

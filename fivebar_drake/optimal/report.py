@@ -16,7 +16,7 @@ from fivebar_drake.core.footpath import Drop, Jump as JumpPath
 from fivebar_drake.core.validation import ParameterError, check_number
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.optimal.recording import RECORDING_FILE, write_recording
-from fivebar_drake.optimal.gait_floor import KINDS, MAX_PITCH_RAD, gait_floor
+from fivebar_drake.optimal.gait_floor import KINDS, gait_floor, max_pitch_rad
 from fivebar_drake.optimal.vertical_jump import (Jump, highest_drop, landing_floor,
                                                  point_mass_bound, push, reach, stroke,
                                                  torque_floor)
@@ -139,7 +139,7 @@ def gait_limits(params: Params, kind: str, payload_kg: float = 0.0) -> dict:
             "thermal_margin": continuous / thermal.rms_current_A if continuous else None,
             "frequency_hz": params.gait.frequency_hz,
             "scope": f"stance legs at the {kind}'s speed, period and duty factor, the body "
-                     f"free to surge, heave and pitch (within {math.degrees(MAX_PITCH_RAD):g} deg); the "
+                     f"free to surge, heave and pitch (within {math.degrees(max_pitch_rad(params)):g} deg); the "
                      "swing legs' torques are not in the floor"}
 
 

@@ -177,7 +177,7 @@ def add_controller(builder: DiagramBuilder, scenario: Scenario, params: Params, 
     returns (controller, motor model)."""
     gait = GaitSource.add_to(builder, params.gait, scenario.gait, scenario.phases_rad,
                              scenario.stand_s, scenario.ramp_s, scenario.load_transfer_s)
-    controller = scenario.controller.add_to(builder, params, layout, scenario.load_transfer_s)
+    controller = scenario.controller.add_to(builder, params, layout, scenario)
     speed_index = np.zeros(layout.state.actuators.size, dtype=int)    # joint speed of each actuator
     speed_index[layout.state.actuators.ravel()] = layout.state.v_index.ravel() + layout.state.nq
     motor = builder.AddNamedSystem("motor_model", MotorModel(

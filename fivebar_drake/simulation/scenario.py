@@ -34,6 +34,7 @@ from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.closure import CLOSURES, Closure, CompliantBushing
 from fivebar_drake.robots.quadruped.plant import default_plant_config
 from fivebar_drake.robots.quadruped.legs import LEGS, path_phases
+from fivebar_drake.simulation import tracking  # noqa: F401  (registers the tracking controller)
 from fivebar_drake.simulation.systems import CONTROLLERS, MIN_TIME_STEP_S, Controller, FootLeg
 
 
@@ -83,7 +84,7 @@ class Scenario:
                                    "its stability bound)")
     target_loop_gap_m: float = _doc(4e-6, "the bushing's design loop gap under the trot's load")
     controller: Controller = _doc(None, f"leg controller, one of {', '.join(CONTROLLERS)} "
-                                        "(simulation/systems.py), by kind or as a mapping; its "
+                                        "(simulation/systems.py, simulation/tracking.py), by kind or as a mapping; its "
                                         "fields (below) may also be given at the top level",
                                   factory=FootLeg)
     motor_period_s: float = _doc(0.001, "update period of the motor model")
@@ -192,6 +193,7 @@ class Scenario:
             number(f"scenario.payload_offset_m[{i}]", value, -MAX_LENGTH_M, MAX_LENGTH_M)
         number("scenario.slope_deg", self.slope_deg, -MAX_SLOPE_DEG, MAX_SLOPE_DEG,
                why="steeper, the feet slip at any friction this robot has")
+        self.controller.check_scenario(self)
         check_simulator_config(self.simulator_config, "scenario.simulator_config")
 
     def load_params(self) -> Params:

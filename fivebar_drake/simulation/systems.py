@@ -66,10 +66,14 @@ class Controller(Variant):
         check_number(f"{field}.control_delay_periods", self.control_delay_periods, 0,
                      integer=True)
 
-    def add_to(self, builder, params: Params, layout: RobotLayout,
-               transfer_s: float) -> LeafSystem:
-        """Add the controller's block (named "leg_controller") to the DiagramBuilder; transfer_s
-        (s): the scenario's load_transfer_s, over which a foot takes up its load."""
+    def check_scenario(self, scenario) -> None:
+        """Check that this controller can drive the scenario (its gait, phases, ...), raising
+        ParameterError naming the scenario's field; any scenario by default."""
+
+    def add_to(self, builder, params: Params, layout: RobotLayout, scenario) -> LeafSystem:
+        """Add the controller's block (named "leg_controller") to the DiagramBuilder for the
+        scenario (simulation/scenario.Scenario: its gait, load_transfer_s over which a foot takes
+        up its load, payload, stand and ramp times)."""
         raise NotImplementedError
 
 
@@ -276,6 +280,6 @@ class FootLeg(Controller):
                             self.swing_bandwidth_hz, self.body_bandwidth_hz, self.damping_ratio)
 
     def add_to(self, builder, params: Params, layout: RobotLayout,
-               transfer_s: float) -> FootLegController:
+               scenario) -> FootLegController:
         return builder.AddNamedSystem("leg_controller", FootLegController(
-            params, layout, self.gains(params, layout), self, transfer_s))
+            params, layout, self.gains(params, layout), self, scenario.load_transfer_s))

@@ -10,7 +10,7 @@ import pytest
 from pydrake.multibody.plant import MultibodyPlant
 
 from fivebar_drake.core.footpath import evaluate, foot_path
-from fivebar_drake.optimal.gait_floor import KNOTS, MAX_PITCH_RAD, gait_floor, whole_body
+from fivebar_drake.optimal.gait_floor import KNOTS, gait_floor, max_pitch_rad, whole_body
 from fivebar_drake.pipeline import run_simulation, summarize_run
 from fivebar_drake.robots.quadruped.config import load_params, with_path_defaults
 from fivebar_drake.robots.quadruped.legs import LEGS, hip_positions
@@ -105,7 +105,7 @@ def test_the_motion_obeys_newton_and_euler(params, kind):
                                atol=1e-3 * scale * 0.1)
     np.testing.assert_allclose((y * fz).sum(0), 0.0, atol=1e-6)            # roll
     np.testing.assert_allclose((y * fx).sum(0), 0.0, atol=1e-6)            # yaw
-    assert np.abs(floor.pitch_rad).max() <= MAX_PITCH_RAD + 1e-5       # the solver's tolerance
+    assert np.abs(floor.pitch_rad).max() <= max_pitch_rad(params) + 1e-5       # the solver's tolerance
     assert np.abs(floor.torque_Nm).max() == pytest.approx(floor.floor_Nm)
     assert floor.moment_residual_Nm < 1e-3 * floor.moment_scale_Nm + 1e-6
     assert abs(np.mean(floor.z_m)) < 1e-9 and abs(np.mean(floor.pitch_rad)) < 1e-9

@@ -234,7 +234,7 @@ def test_the_bound_demand_beyond_the_limit_is_the_early_rear_landing(monkeypatch
     scenario, params = record.scenario, record.params
     _, _, layout = add_robot(DiagramBuilder(), params, check_run(scenario, params),
                              scenario.plant_config)
-    law = scenario.controller.add_to(DiagramBuilder(), params, layout, scenario.load_transfer_s)
+    law = scenario.controller.add_to(DiagramBuilder(), params, layout, scenario)
     rear_a, limit = layout.state.actuators[2:, 0], params.motor.braking_peak_torque_Nm
     beyond = 0
     for references, state, loads, memory, t in ticks:

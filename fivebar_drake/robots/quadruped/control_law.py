@@ -116,7 +116,7 @@ def _solve2(m, b0, b1, x):
 
 
 @jit
-def _feet_body(k, fx, fy):
+def feet_body(k, fx, fy):
     """Foot points (legs, 3) in the body frame from leg-plane feet (legs,)."""
     out = k.hips_m.copy()
     for leg in range(out.shape[0]):
@@ -178,7 +178,7 @@ def foot_loads(k, state, contact_tau):
 def foot_clearance(k, fx, fy, state, r_wb):
     """Height (legs,) in m of each foot's lowest point above flat ground at z = 0, from the
     body's pose and the leg-plane feet fx, fy (m): the kinematic estimate."""
-    feet_b = _feet_body(k, fx, fy)
+    feet_b = feet_body(k, fx, fy)
     out = np.empty(fx.shape[0])
     for leg in range(fx.shape[0]):
         out[leg] = (state[k.state.body_q + 6] + feet_b[leg, 0] * r_wb[2, 0]
@@ -276,7 +276,7 @@ def ground_forces(k, body, weights, share, fx, fy, state, r_wb):
                         + k.gains.dz * (vz_des - v_w[2])])
     force_b = r_bw @ force_w
     force_b[0] += k.gains.dx * (vx_des - v_b[0])
-    r = _feet_body(k, fx, fy) - k.com_m
+    r = feet_body(k, fx, fy) - k.com_m
     # unknowns per foot: ground force along body x and z; rows: Fx, Fz, Mx, My, Mz
     a = np.zeros((5, 2 * n))
     for i in range(n):

@@ -1,0 +1,55 @@
+"""The tracking controller (simulation/tracking.py) on the Drake Diagram: the bound tracked
+against the foot/leg controller's, and the scenarios it refuses."""
+
+import pytest
+
+from fivebar_drake.core.validation import ParameterError
+from fivebar_drake.optimal.gait_floor import gait_floor
+from fivebar_drake.pipeline import run_simulation, summarize_run
+from fivebar_drake.simulation.scenario import load_scenario
+
+
+def worst_p99(summary):
+    return max(m["demand_p99_Nm"] for motors in summary["legs"].values()
+               for m in motors.values())
+
+
+@pytest.mark.slow
+def test_the_tracked_bound_asks_less_than_the_foot_leg_controllers():
+    """4 s of the default bound (tracking from the ramp's end, blended in over a period): the
+    run is achieved, the tracking controller's worst demand p99 lies below the foot/leg
+    controller's on the same bound, and no lower than the bound's floor."""
+    runs = {kind: summarize_run(run_simulation(load_scenario(
+        gait="bound", duration_s=4.0, controller={"kind": kind}), progress=False))
+        for kind in ("tracking", "foot_leg")}
+    tracked = runs["tracking"]
+    assert tracked["verdict"] != "not_achieved"
+    assert worst_p99(tracked) < worst_p99(runs["foot_leg"])
+    a = tracked["any_controller"]
+    assert a["floor_Nm"] <= a["asked_Nm"]
+
+
+@pytest.mark.parametrize("fields, field", [
+    ({"gait": "seed_ellipse"}, "scenario.gait"),
+    ({"gait": "jump"}, "scenario.gait"),
+    ({"gait": "bound", "phases_rad": [0.0, 0.0, 0.0, 0.0]}, "scenario.phases_rad")])
+def test_it_refuses_what_it_cannot_track(fields, field):
+    """A path without a floor, or phases other than the gait's own: refused when the scenario
+    is checked (before anything runs), naming the field."""
+    with pytest.raises(ParameterError) as err:
+        load_scenario(controller={"kind": "tracking"}, **fields)
+    assert err.value.field == field
+
+
+def test_the_plan_is_the_floors_motion():
+    """The controller's plan at the floor's knots is the floor's forces and pitch."""
+    from fivebar_drake.optimal.gait_floor import whole_body
+    from fivebar_drake.simulation.tracking import Plan
+    scenario = load_scenario(gait="bound", controller={"kind": "tracking"})
+    params = scenario.load_params()
+    floor = gait_floor(params, scenario.gait)
+    plan = Plan(floor, params, scenario.gait.stance_speed(params.gait), whole_body(params)[1])
+    for k in (0, 7, 30):
+        forces, body = plan.at(floor.t[k] + 3 * params.gait.period_s)
+        assert forces == pytest.approx(floor.force_N[:, k], abs=1e-9)
+        assert body[3] == pytest.approx(floor.pitch_rad[k], abs=1e-12)
