@@ -1,10 +1,11 @@
-"""The co-design (`fivebar-drake codesign`): a small co-design on a local Dask cluster whose
-recommended design passes its simulated envelope (read back from the finalist's envelope.json),
-is the lightest finalist that does, and whose parameter file runs `analyze` and `simulate`;
-predicted figures set beside the simulated ones as the envelopes report them; an interrupted
-search resumed into the same folder giving the trials of an uninterrupted one; a spec no
-candidate meets (exit 1, the requirement and the best margin named); bad specs refused (exit 2,
-the field named, nothing written)."""
+"""The co-design (`fivebar-drake codesign`): a small co-design on a running Dask scheduler (a
+local cluster started here) whose recommended design passes its simulated envelope (read back
+from the finalist's envelope.json), is the lightest finalist that does, and whose parameter
+file runs `analyze` and `simulate`; predicted figures set beside the simulated ones as the
+envelopes report them; an interrupted search resumed into the same folder giving the trials of
+an uninterrupted one; a finished co-design run again into its folder simulating nothing and
+giving the same design; a spec no candidate meets (exit 1, the requirement and the best margin
+named); bad specs refused (exit 2, the field named, nothing written)."""
 
 import json
 import math
@@ -59,11 +60,15 @@ def write(folder, text, name="spec.yaml"):
 
 @pytest.fixture(scope="module")
 def codesign(tmp_path_factory):
-    """The small co-design through the command line on a local cluster of 2 workers: (exit
-    code, its folder, design.json)."""
+    """The small co-design through the command line on a running scheduler (a local cluster of
+    2 process workers started here): (exit code, its folder, design.json)."""
+    from dask.distributed import LocalCluster
+
     folder = tmp_path_factory.mktemp("codesign")
-    code = main(["codesign", str(write(folder, SPEC)), "--out", str(folder / "out"),
-                 "--workers", "2"])
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                      dashboard_address=":0") as cluster:
+        code = main(["codesign", str(write(folder, SPEC)), "--out", str(folder / "out"),
+                     "--scheduler", cluster.scheduler_address])
     return code, folder / "out", json.loads((folder / "out" / "design.json").read_text())
 
 
@@ -134,6 +139,16 @@ def test_design_toml_is_the_recommended_design_and_runs(codesign, tmp_path):
                  "--out", str(tmp_path / "s")]) in (0, 1)      # too short for a verdict
     summary = json.loads((tmp_path / "s" / "summary.json").read_text())
     assert summary["completed"] and not summary["error"]
+
+
+def test_a_rerun_into_the_same_folder_simulates_nothing_and_gives_the_same_design(codesign):
+    _, out, report = codesign
+    envelopes = sorted((out / "finalists").glob("*/envelope.json"))
+    stamps = [p.stat().st_mtime_ns for p in envelopes]
+    assert len(envelopes) == 3
+    assert main(["codesign", str(out.parent / "spec.yaml"), "--out", str(out)]) == 0
+    assert [p.stat().st_mtime_ns for p in envelopes] == stamps
+    assert json.loads((out / "design.json").read_text()) == report
 
 
 def test_an_interrupted_search_resumes_to_the_trials_of_an_uninterrupted_one(tmp_path,
