@@ -176,24 +176,30 @@ def stance_any_controller(record: SimulationRecord, summary: Summary) -> AnyCont
            "the least a local search found (a lower one may exist)"]
     if record.scenario.slope_deg:
         why.append("the floor is computed on flat ground")
+    joint = gait_floor.fastest_joint(params, path)
+    too_fast = joint > params.motor.no_load_speed_rad_s
+    if too_fast:
+        why.append(f"the path asks a joint for {joint:.2f} rad/s, beyond the motors' no-load "
+                   f"speed {params.motor.no_load_speed_rad_s:.2f} rad/s")
     return verdict_split(path.kind, 0.0, {"stance": (floor.floor_Nm, asked)}, None, why,
-                         summary, params)
+                         summary, params, too_fast)
 
 
 def verdict_split(maneuver: str, height_m: float, phases: dict, ceiling_m: float | None,
-                  why: list[str], summary: Summary, params: Params) -> AnyController:
+                  why: list[str], summary: Summary, params: Params,
+                  too_fast: bool = False) -> AnyController:
     """The summary's any_controller from each phase's (floor N*m or None, asked N*m or None):
     the maneuver's floor (the largest; None if a phase has none), its safety factor (the
     driving peak over it), what the controller asked at most and its cost, and whom a failing
-    verdict blames: any controller where a phase is beyond the motors or the torque check
-    decided and even the floor's safety factor is below checks.sf_warn; else this
-    controller."""
+    verdict blames: any controller where a phase is beyond the motors, the path itself is
+    too_fast for them (a joint beyond their no-load speed), or the torque check decided and even
+    the floor's safety factor is below checks.sf_warn; else this controller."""
     floors = [f for f, _ in phases.values()]
     floor = None if None in floors else max(floors)
     most = max((a for _, a in phases.values() if a is not None), default=None)
     floor_sf = params.motor.peak_torque_Nm / floor if floor else None
-    short = floor is None or (summary["deciding_check"] == "torque"
-                              and floor_sf < params.checks.sf_warn)
+    short = too_fast or floor is None or (summary["deciding_check"] == "torque"
+                                          and floor_sf < params.checks.sf_warn)
     return {"maneuver": maneuver, "height_m": height_m,
             "phases": {p: {"floor_Nm": f, "asked_Nm": a} for p, (f, a) in phases.items()},
             "floor_Nm": floor, "floor_safety_factor": floor_sf, "ceiling_m": ceiling_m,

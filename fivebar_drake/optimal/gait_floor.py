@@ -37,12 +37,12 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import sparse
 
-from fivebar_drake.core.footpath import Trot, foot_path
+from fivebar_drake.core.footpath import Trot, evaluate, foot_path
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.mechanisms.fivebar import KNEES_OUT, limit_tests, link_coms, past_any
-from fivebar_drake.optimal.vertical_jump import quarter_mass_kg
 from fivebar_drake.robots.quadruped.leg_loads import full_model
 from fivebar_drake.robots.quadruped.legs import LEGS, hip_positions
+from fivebar_drake.robots.quadruped.config import with_gait, with_path_defaults
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.sdf import body_height, body_mass_properties
 
@@ -56,6 +56,8 @@ PROGRESS = 1e-4         # this fraction of its cost
 TRUST_END_M = 2e-5      # converged: the trust region below this
 STEP_M, STEP_RAD = 1e-5, 1e-5   # finite differences of the torques
 CACHE_SIZE = 64
+SPEED_STEPS = 6         # bisection steps of the fastest gait's frequency
+SPEED_SAMPLES = 2000    # samples of a period for the path's fastest joint
 # ASSUMPTION: the body pitches by at most this share of the tilt an achieved run may have
 # (checks.achieved_max_tilt_deg) either way, leaving the rest to a controller's tracking error
 # (left free, the bound's floor falls on and on as the body rocks by tens of degrees, on swing
@@ -75,7 +77,8 @@ class GaitFloor:
     motor's RMS torque of the least copper loss) and the motion that has it, at the knots' times
     t (s): the centre of mass's x (forward, less the mean speed's course), z (above its nominal
     height) in m and the pitch theta (rad); the feet's forces (legs, knots, 2) N (x forward,
-    z up; zero in swing); the legs' motor torques (legs, knots, 2) N*m; the floor with the body
+    z up; zero in swing); the legs' motor torques and joint speeds (legs, knots, 2) N*m, rad/s
+    (zero in swing); the floor with the body
     held on its course, level (N*m; None where no forces balance it so: a single pair down);
     whether the mean height was free; the worst motor's RMS current over the period (A, the motor
     law at the stance joint speeds, zero in swing; nan without a thermal model); the largest
@@ -89,6 +92,7 @@ class GaitFloor:
     pitch_rad: np.ndarray
     force_N: np.ndarray
     torque_Nm: np.ndarray
+    speed_rad_s: np.ndarray
     level_Nm: float | None
     free_height: bool
     rms_current_A: float
@@ -399,14 +403,15 @@ def _solve(params: Params, path, payload_kg: float, free_height: bool,
     torques = _grid(body, _torques(body, state, forces))
     floor = _value(torques, thermal)
     residual, scale = _pitch_residual(body, state, forces, inertia)
+    speeds = _joint_speeds(body, state)
     current = math.nan
     if params.motor.has_thermal_model:
-        current = float(np.sqrt(np.mean(params.motor.currents(
-            torques, _joint_speeds(body, state)) ** 2, axis=1)).max())
+        current = float(np.sqrt(np.mean(params.motor.currents(torques, speeds) ** 2,
+                                        axis=1)).max())
     level_floor = None if held is None else _value(_grid(body, _torques(body, *held[:2])),
                                                    thermal)
     return GaitFloor(floor, t, state[0], state[1], state[2], _grid(body, forces), torques,
-                     level_floor, free_height, current, residual, scale, programs, inertia,
+                     speeds, level_floor, free_height, current, residual, scale, programs, inertia,
                      mass)
 
 
@@ -459,3 +464,58 @@ def _pitch_residual(body: Body, state, forces, inertia: float) -> tuple[float, f
     second = (np.roll(state[2], -1) - 2.0 * state[2] + np.roll(state[2], 1)) / dt**2
     predicted = 0.5 * (moment + np.roll(moment, 1))
     return float(np.abs(inertia * second - predicted).max()), float(np.abs(moment).max())
+
+
+def within_envelope(params: Params, floor: GaitFloor) -> bool:
+    """Whether the floor's stance torques, with the motors' friction at their joint speeds, lie
+    inside the actuator's envelope at those speeds in both quadrants."""
+    motor = params.motor
+    delivered = floor.torque_Nm + motor.friction(floor.speed_rad_s)
+    upper, lower = motor.limits(floor.speed_rad_s)
+    return bool(np.all((delivered <= upper + 1e-9) & (delivered >= lower - 1e-9)))
+
+
+def fastest_joint(params: Params, path) -> float:
+    """The largest joint speed (rad/s) along the path over a period (SPEED_SAMPLES), from its
+    exact foot velocity: J_F^-1 v at each pose."""
+    leg, gait = params.fivebar_leg, params.gait
+    points = evaluate(gait, path, np.arange(SPEED_SAMPLES) / SPEED_SAMPLES * gait.period_s)
+    jf = leg.tool_jacobian(leg.inverse(points.pos, KNEES_OUT))
+    return float(np.abs(np.linalg.solve(jf, points.vel[..., None])).max())
+
+
+def fastest_gait(params: Params, kind: str, payload_kg: float = 0.0) -> dict:
+    """The fastest gait of this kind the legs and motors allow for any controller, at its own
+    stride and duty factor (the path's gait defaults over the parameter file's): the highest
+    frequency (Hz) and speed (m/s) whose floor (gait_floor) lies inside the envelope at its
+    stance joint speeds (within_envelope) and whose path keeps every joint, swing included,
+    below the motors' no-load speed (the path scaled in time: joint speeds grow with the
+    frequency, so that limit is f * no-load / the fastest joint at f, fastest_joint). Bisection (SPEED_STEPS)
+    up from the gait's own frequency (the floor grows with the frequency); limited_by names what stopped it ("speed", "torque", or
+    "its own frequency": the gait itself does not pass, frequency nan)."""
+    base = with_path_defaults(params, kind)
+    path, f0 = foot_path(kind), base.gait.frequency_hz
+    joint = fastest_joint(base, path)
+    top = f0 * params.motor.no_load_speed_rad_s / joint
+
+    def passes(f: float) -> bool:
+        try:
+            return within_envelope(base, gait_floor(with_gait(base, frequency_hz=f), path,
+                                                    payload_kg))
+        except ParameterError:
+            return False
+
+    low, limited = f0, "torque"
+    if not passes(low):
+        low, limited = math.nan, "its own frequency"
+    elif passes(top):
+        low, limited = top, "speed"
+    else:
+        high = top
+        for _ in range(SPEED_STEPS):
+            middle = 0.5 * (low + high)
+            low, high = (middle, high) if passes(middle) else (low, middle)
+    speed = path.stance_speed(with_gait(base, frequency_hz=low).gait) if low == low else math.nan
+    return {"frequency_hz": low, "speed_m_s": speed, "limited_by": limited,
+            "speed_limit_frequency_hz": top, "gait_frequency_hz": f0,
+            "gait_speed_m_s": path.stance_speed(base.gait)}

@@ -16,7 +16,7 @@ from fivebar_drake.core.footpath import Drop, Jump as JumpPath
 from fivebar_drake.core.validation import ParameterError, check_number
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.optimal.recording import RECORDING_FILE, write_recording
-from fivebar_drake.optimal.gait_floor import KINDS, gait_floor, max_pitch_rad
+from fivebar_drake.optimal.gait_floor import KINDS, fastest_gait, gait_floor, max_pitch_rad
 from fivebar_drake.optimal.vertical_jump import (Jump, highest_drop, landing_floor,
                                                  point_mass_bound, push, reach, stroke,
                                                  torque_floor)
@@ -26,6 +26,7 @@ from fivebar_drake.robots.quadruped.params import Params
 OPTIMAL_FILES = ("optimal_jump.png", RECORDING_FILE, "optimal.md",
                  "optimal.json")                                   # the JSON last: complete
 MARGIN_LANDING_M = 0.005   # the max jump's landing stops this short of its crouch
+FASTEST = ("trot", "bound")   # the gaits whose fastest the report gives
 REPRODUCED = 0.15   # a published jump figure is reproduced within this relative difference: the
 #                     presets' own numbers (masses, currents) are estimates to about this
 
@@ -110,6 +111,7 @@ def jump_limits(params: Params, height_m: float | None = None,
         result["floor_why_none"] = err.message
     result["drop"] = drop_limits(params, payload_kg)
     result["gaits"] = {kind: gait_limits(params, kind, payload_kg) for kind in KINDS}
+    result["fastest"] = {kind: fastest_gait(params, kind, payload_kg) for kind in FASTEST}
     result["published"] = published_jump(params, result["ceiling"])
     result["answer"] = answer(result, params)
     return result, jumps
@@ -199,7 +201,15 @@ def answer(r: dict, params: Params) -> str:
            f"; its thermal floor {t['thermal_floor_rms_current_A']:.2f} A RMS, "
            f"{t['thermal_margin']:.2f} of the continuous {t['continuous_current_A']:.2f} A")
         + "." for kind, t in r["gaits"].items())
-    return first + second + third + fourth
+    fifth = "".join(
+        f" The fastest {kind} at its stride and duty factor: "
+        + (f"none (its own {f['gait_frequency_hz']:g} Hz does not pass)"
+           if f["limited_by"] == "its own frequency" else
+           f"{f['speed_m_s']:.3f} m/s ({f['frequency_hz']:.2f} Hz, against its "
+           f"{f['gait_speed_m_s']:.3f} m/s), limited by the joints' "
+           + ("no-load speed" if f["limited_by"] == "speed" else "torque in stance"))
+        + "." for kind, f in r["fastest"].items())
+    return first + second + third + fourth + fifth
 
 
 def markdown(r: dict) -> str:
@@ -224,6 +234,20 @@ def markdown(r: dict) -> str:
               f"{b['hip_apex_above_standing_m'] * 1e3:.1f} mm above standing."]
     if r["floor_why_none"]:
         lines += ["", f"Floor: none — {r['floor_why_none']}."]
+    lines += ["", "## Gaits", "", "| gait | Hz | floor (N·m) | heave (mm) | pitch (deg, "
+              "peak to peak) | held level (N·m) | height free (N·m) | thermal floor (A RMS) | "
+              "fastest (m/s) |", "|---|---|---|---|---|---|---|---|---|"]
+    for kind, t in r["gaits"].items():
+        fast = r["fastest"].get(kind)
+        level = t["level_floor_Nm"]
+        lines.append(f"| {kind} | {t['frequency_hz']:g} | {t['floor_Nm']:.2f} | "
+                     f"{t['height_swing_m'] * 1e3:.0f} | {t['pitch_swing_deg']:.1f} | "
+                     f"{'none' if level is None else f'{level:.2f}'} | "
+                     f"{t['free_height_floor_Nm']:.2f} | "
+                     f"{t['thermal_floor_rms_current_A']:.2f} | "
+                     + ("—" if fast is None else "none" if fast["limited_by"] ==
+                        "its own frequency" else f"{fast['speed_m_s']:.3f} "
+                        f"({fast['limited_by']})") + " |")
     if r.get("max_jump_simulated"):
         m = r["max_jump_simulated"]
         lines += ["", f"Simulated (the package's controller on the jump maneuver planned at the "

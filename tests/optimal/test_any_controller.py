@@ -59,3 +59,14 @@ def test_a_path_without_a_floor_has_none_and_a_run_without_demand_asks_nothing()
                                                    closure="ball"), progress=False))
     a = s["any_controller"]
     assert a["floor_Nm"] > 0.0 and a["asked_Nm"] is None and a["controller_cost"] is None
+
+
+@pytest.mark.slow
+def test_a_trot_faster_than_the_motors_turn_fails_for_any_controller():
+    """At 1.5 Hz the trot's path asks a joint beyond the motors' no-load speed (its fastest is
+    about 1.37 Hz): whatever check decided, no controller could follow it."""
+    s = summarize_run(run_simulation(load_scenario(gait="trot", gait_frequency_hz=1.5,
+                                                   duration_s=4.5), progress=False))
+    a = s["any_controller"]
+    assert s["verdict"] in ("fail", "not_achieved") and a["fails_for"] == "any controller"
+    assert "no-load speed" in a["why"]

@@ -10,9 +10,12 @@ import pytest
 from pydrake.multibody.plant import MultibodyPlant
 
 from fivebar_drake.core.footpath import evaluate, foot_path
-from fivebar_drake.optimal.gait_floor import KNOTS, gait_floor, max_pitch_rad, whole_body
+from fivebar_drake.mechanisms.fivebar import sample_gait
+from fivebar_drake.optimal.gait_floor import (KNOTS, fastest_gait, gait_floor, max_pitch_rad,
+                                              whole_body, within_envelope)
 from fivebar_drake.pipeline import run_simulation, summarize_run
-from fivebar_drake.robots.quadruped.config import load_params, with_path_defaults
+from fivebar_drake.robots.quadruped.config import (load_params, with_changes, with_gait,
+                                                   with_path_defaults)
 from fivebar_drake.robots.quadruped.legs import LEGS, hip_positions
 from fivebar_drake.robots.quadruped.plant import add_model, set_standing_pose
 from fivebar_drake.robots.quadruped.sdf import body_height
@@ -130,6 +133,31 @@ def test_the_orderings_a_floor_keeps(params):
     assert 0.0 < thermal.rms_current_A < params.motor.law.peak_current
     assert gait_floor(params, "trot", payload_kg=1.0).floor_Nm > trot.floor_Nm
     assert gait_floor(params, "jump") is None
+
+
+def test_the_fastest_trot_runs_its_joints_at_the_no_load_speed(params):
+    """The default trot is limited by speed: at the fastest frequency, the path sampled
+    finely, its joints' speeds by central differences of its poses (the analysis's method), has
+    its fastest joint at the motors' no-load speed (within 0.2 %), and its floor is inside the
+    envelope. A motor with a third more speed (a
+    gear 3/4 as large, so its torque falls too) lets the trot go faster."""
+    fast = fastest_gait(params, "trot")
+    assert fast["limited_by"] == "speed" and fast["frequency_hz"] > params.gait.frequency_hz
+    at = with_gait(params, frequency_hz=fast["frequency_hz"],
+                   samples=3000)
+    joint = np.abs(sample_gait(at.leg, at.gait, "trot").qd).max()
+    assert joint == pytest.approx(params.motor.no_load_speed_rad_s, rel=2e-3)
+    assert within_envelope(at, gait_floor(at, "trot"))
+    assert fast["speed_m_s"] == pytest.approx(
+        2 * params.gait.a_m * fast["frequency_hz"] / params.gait.duty_factor)
+    quick = with_changes(params, {"motor.gear_ratio": 0.75 * params.motor.gear_ratio})
+    assert fastest_gait(quick, "trot")["frequency_hz"] > fast["frequency_hz"]
+
+
+def test_a_motor_too_weak_for_the_gait_has_no_fastest(params):
+    weak = with_changes(params, {"motor.peak_current_A": 0.3 * params.motor.law.peak_current})
+    fast = fastest_gait(weak, "bound")
+    assert fast["limited_by"] == "its own frequency" and math.isnan(fast["speed_m_s"])
 
 
 @pytest.mark.slow
