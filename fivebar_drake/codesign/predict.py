@@ -9,7 +9,8 @@
     its landing on the maneuver's own strokes; the predicted safety factor is the motors' peak
     over that floor (no controller does better, the package's asks more).
 
-The other maneuvers (walk, bound, pronk, stand-up) have no prediction here: the simulation
+The duty cycle's thermal margin is predicted as the least closed-form thermal margin of its
+maneuvers (duty_cycle). The other maneuvers (walk, bound, pronk, stand-up) have no prediction here: the simulation
 alone judges them. A requirement's margin is the figure over what the accepted verdict needs
 (>= 1 meets it): the safety factor over checks.sf_pass (sf_warn when warn is accepted), the
 least speed margin over checks.speed_margin_warn (1), the thermal current margin over
@@ -31,6 +32,7 @@ from fivebar_drake.optimal import vertical_jump
 from fivebar_drake.robots.quadruped.params import Params
 
 SCREENED = ("trot",)              # gait kinds level (a) predicts
+DUTY = "duty cycle"               # its row beside the maneuvers (no maneuver name has a space)
 CHECKS = ("torque", "speed", "thermal")
 
 
@@ -93,6 +95,20 @@ def floors(maneuver: Maneuver, params: Params, accept) -> dict:
             "margins": {"torque": sf / needs(params, accept)["torque"]}}
 
 
+def duty_cycle(spec: CodesignSpec, entry: dict) -> dict | None:
+    """The duty cycle's thermal margin, predicted as the least closed-form thermal margin of its
+    maneuvers that have one (a steady trot's winding: the cycle's hottest part when it runs
+    long against the winding's time constant); None without a duty cycle or such a maneuver."""
+    steps = {s.maneuver for s in spec.envelope.duty_cycle}
+    margins = [entry["maneuvers"][name]["margins"]["thermal"] for name in steps
+               if entry["maneuvers"].get(name, {}).get("level") == "closed form"
+               and "thermal" in entry["maneuvers"][name]["margins"]]
+    if not margins:
+        return None
+    return {"level": "closed form (its maneuvers' steady state)",
+            "margins": {"thermal": min(margins)}}
+
+
 def max_jump_height(params: Params) -> float:
     """The highest vertical jump the legs and motors allow (m above standing, any controller:
     the ceiling over the leg's whole reach, optimal/vertical_jump.push)."""
@@ -132,6 +148,9 @@ def predict(spec: CodesignSpec, designs: list[dict]) -> list[dict]:
                 entry["maneuvers"][m.name] = floors(m, built[i][m.name], spec.accept)
         if "max_jump_height_m" in spec.objectives:
             entry["objectives"]["max_jump_height_m"] = max_jump_height(built[i][maneuvers[0].name])
+        duty = duty_cycle(spec, entry)
+        if duty is not None:
+            entry["maneuvers"][DUTY] = duty
         entry["margin"], entry["short_of"] = _least(entry)
         entry["meets"] = entry["margin"] >= 1.0 and not any(
             "error" in r for r in entry["maneuvers"].values())

@@ -31,10 +31,12 @@ class CodesignRun:
 
 
 def compare(prediction: dict, sim: dict) -> list[dict]:
-    """Per maneuver a level predicted: the predicted safety factor beside the simulated (the
-    worst motor's), their relative difference and whether it exceeds FLAG."""
+    """Per maneuver whose safety factor a level predicted: the predicted beside the simulated
+    (the worst motor's), their relative difference and whether it exceeds FLAG."""
     rows = []
     for name, p in prediction["maneuvers"].items():
+        if "safety_factor" not in p:
+            continue
         simulated_sf = sim["maneuvers"][name]["figures"].get("torque")
         predicted_sf = p.get("safety_factor")
         diff = (predicted_sf / simulated_sf - 1.0 if predicted_sf is not None and simulated_sf
@@ -93,7 +95,7 @@ def nobody_meets(spec: CodesignSpec, entries: list[dict], finalists: list[dict])
 
 
 def codesign_report(spec: CodesignSpec, entries: list[dict], chosen: list[dict],
-                    verified: dict) -> dict:
+                    verified: dict, factors: dict[str, float]) -> dict:
     """design.json's dictionary (module docstring)."""
     base = spec.envelope.maneuvers[0].params
     default_mass = base.robot.motors_kg / (base.robot.legs * len(MOTORS))
@@ -108,6 +110,7 @@ def codesign_report(spec: CodesignSpec, entries: list[dict], chosen: list[dict],
                           "simulated": verified.get(DEFAULT)},
               "finalists": finalists, "recommended": recommended,
               "failure": "" if recommended else nobody_meets(spec, entries, finalists),
+              "corrections": factors,
               "candidates": entries}
     report["answer"] = answer(spec, report)
     return report
@@ -185,6 +188,11 @@ def markdown(spec: CodesignSpec, report: dict) -> str:
             + f" | {_f(f['margin'])} ({f['short_of']}) | "
             + ("passes" if f["simulated"]["passes"] else "fails")
             + f" | {_f(margin)} ({where}) |")
+    if report["corrections"]:
+        lines += ["", "The finalists were chosen in turn, each predicted margin scaled by what the "
+                  "simulations before showed (the least simulated over predicted margin, below "
+                  "1): " + ", ".join(f"{k} x{v:.2f}" for k, v in report["corrections"].items())
+                  + "."]
     unpredicted = [m.name for m in spec.envelope.maneuvers
                    if not any(m.name in e["maneuvers"] for e in report["candidates"])]
     lines += ["", "## Search", "",
@@ -255,10 +263,11 @@ def pareto_figure(spec: CodesignSpec, report: dict):
 
 
 def write_report(spec: CodesignSpec, out: Path, entries: list[dict], chosen: list[dict],
-                 verified: dict) -> CodesignRun:
+                 verified: dict, factors: dict[str, float]) -> CodesignRun:
     """Write FILES into out (design.toml only with a recommended design; a previous one is
-    removed); returns the CodesignRun."""
-    report = codesign_report(spec, entries, chosen, verified)
+    removed); returns the CodesignRun. factors: the predictions' corrections (run.corrections)
+    the last finalist was chosen with."""
+    report = codesign_report(spec, entries, chosen, verified, factors)
     files = [write_atomic(out / "design.md", markdown(spec, report))]
     (out / "design.toml").unlink(missing_ok=True)
     if report["recommended"] is not None:

@@ -12,20 +12,25 @@ or an existing scheduler), then the report (report.py):
     OUT/pareto.png                the objectives, predicted and verified
 
 A design is verified only when its simulated envelope has every maneuver (and the duty cycle)
-in the accepted verdicts; without finalists nothing is simulated. The finalists are the designs predicted to meet every requirement,
-best first (with several objectives, the predicted Pareto front first), one per motor and
-gearbox type before a second of the same, `budget.finalists` of them. Each envelope's outcome is
-kept in the journal, so a rerun simulates only the finalists that lack one.
+in the accepted verdicts. The finalists are simulated one after the other, `budget.finalists` of
+them at most: each is the best (the first objective; with several, the predicted Pareto front
+first) of the designs not simulated yet that are predicted to meet every requirement once the
+predictions are corrected by what the simulations so far showed: per requirement (a maneuver's
+check), the least ratio of a simulated margin to its predicted one below 1 scales that margin
+of every candidate (a prediction found optimistic is trusted less). With one objective the
+search stops at the first finalist that passes (the next would be worse). Without a design
+predicted to meet the requirements nothing is simulated. Each envelope's outcome is kept in the
+journal, so a rerun simulates only what it lacks, and picks the same finalists.
 """
 
 from __future__ import annotations
 
 import math
-from contextlib import nullcontext
+from contextlib import ExitStack
 from pathlib import Path
 
-from fivebar_drake.codesign.designs import GEARBOX, MOTOR, design_envelope, design_name
-from fivebar_drake.codesign.predict import CHECKS, needs
+from fivebar_drake.codesign.designs import design_envelope, design_name
+from fivebar_drake.codesign.predict import CHECKS, DUTY, needs
 from fivebar_drake.codesign.report import DEFAULT, CodesignRun, write_report
 from fivebar_drake.codesign.search import predictions, ranked, search
 from fivebar_drake.codesign.spec import CodesignSpec
@@ -34,7 +39,6 @@ from fivebar_drake.sweep.engine import (Progress, check_output_folder, check_sch
                                         check_workers, dask_client)
 
 FINALISTS_DIR = "finalists"
-DUTY = "duty cycle"        # its row beside the maneuvers (no maneuver name has a space)
 
 
 def pareto(spec: CodesignSpec, entries: list[dict]) -> list[dict]:
@@ -48,20 +52,35 @@ def pareto(spec: CodesignSpec, entries: list[dict]) -> list[dict]:
         all(a <= b for a, b in zip(key(f), key(e))) and key(f) != key(e) for f in entries)]
 
 
-def finalists(spec: CodesignSpec, entries: list[dict]) -> list[dict]:
-    """The designs to simulate (module docstring)."""
-    meeting = [e for e in entries if e["meets"]]
+def corrections(pairs: list[tuple[dict, dict]]) -> dict[str, float]:
+    """Per requirement ("maneuver check"), the least ratio of the simulated margin to the
+    predicted one over the (prediction, simulated) pairs, where below 1."""
+    out = {}
+    for entry, sim in pairs:
+        for name, predicted in entry["maneuvers"].items():
+            margins = sim["maneuvers"][name]["margins"]
+            for check, margin in predicted["margins"].items():
+                key = f"{name} {check}"
+                if check in margins and margin > 0:
+                    out[key] = min(out.get(key, 1.0), margins[check] / margin)
+    return {k: v for k, v in out.items() if v < 1.0}
+
+
+def corrected(entry: dict, factors: dict[str, float]) -> float:
+    """The entry's least predicted margin with the corrections applied."""
+    return min((margin * factors.get(f"{name} {check}", 1.0)
+                for name, p in entry["maneuvers"].items()
+                for check, margin in p["margins"].items()), default=math.inf)
+
+
+def next_finalist(spec: CodesignSpec, entries: list[dict], done: set[str],
+                  factors: dict[str, float]) -> dict | None:
+    """The next design to simulate (module docstring), or None."""
+    meeting = [e for e in entries if e["meets"] and e["name"] not in done
+               and corrected(e, factors) >= 1.0]
     front = ranked(spec, pareto(spec, meeting)) if len(spec.objectives) > 1 else []
-    order = front + [e for e in ranked(spec, meeting) if e["name"] not in
-                     {f["name"] for f in front}]
-    picked, kinds = [], set()
-    for e in order:
-        kind = (e["design"][MOTOR], e["design"][GEARBOX])
-        if kind not in kinds:
-            kinds.add(kind)
-            picked.append(e)
-    picked += [e for e in order if e not in picked]
-    return picked[:spec.finalists]
+    order = front or ranked(spec, meeting)
+    return order[0] if order else None
 
 
 def simulated(report: dict, spec: CodesignSpec) -> dict:
@@ -94,18 +113,6 @@ def _finite(x) -> float:
     return math.inf if x is None else x
 
 
-def verify(study, spec: CodesignSpec, key: str, design: dict | None, folder: Path,
-           dask) -> dict:
-    """The design's simulated envelope (simulated), from the journal if it has it, else run
-    into folder on the Dask client and kept in the journal."""
-    attr = f"envelope:{key}"
-    if attr not in study.user_attrs:
-        run = run_envelope(design_envelope(spec.envelope, design), folder, progress=False,
-                           client=dask)
-        study.set_user_attr(attr, simulated(run.report, spec))
-    return study.user_attrs[attr]
-
-
 def run_codesign(spec: CodesignSpec, out: str | Path, workers: int | None = None,
                  scheduler: str | None = None, progress: bool = True,
                  client=None) -> CodesignRun:
@@ -120,18 +127,39 @@ def run_codesign(spec: CodesignSpec, out: str | Path, workers: int | None = None
     out.mkdir(parents=True, exist_ok=True)
     study = search(spec, out, progress)
     entries = predictions(study)
-    chosen = finalists(spec, entries)
-    jobs = [(DEFAULT, None)] + [(f"trial_{e['trial']}", e) for e in chosen] if chosen else []
-    missing = any(f"envelope:{key}" not in study.user_attrs for key, _ in jobs)
-    verified = {}
-    bar = Progress(len(jobs), 0, progress, "verify", "envelopes")
-    with dask_client(workers, scheduler, client) if missing else nullcontext() as dask:
-        for key, entry in jobs:
-            verified[key] = verify(study, spec, key, entry and entry["design"],
-                                   out / FINALISTS_DIR / key, dask)
-            passing = ranked(spec, [e for k, e in jobs[1:] if k in verified and
-                                    verified[k]["passes"]])
+    chosen, verified, pairs = [], {}, []
+    bar = Progress(spec.finalists + 1, 0, progress, "verify", "envelopes")
+    with ExitStack() as stack:
+        opened = []                 # the Dask client, opened when a simulation is first needed
+
+        def check(key: str, design: dict | None) -> dict:
+            """The design's simulated envelope, from the journal or run and kept there."""
+            attr = f"envelope:{key}"
+            if attr not in study.user_attrs:
+                if not opened:
+                    opened.append(stack.enter_context(dask_client(workers, scheduler, client)))
+                run = run_envelope(design_envelope(spec.envelope, design),
+                                   out / FINALISTS_DIR / key, progress=False, client=opened[0])
+                study.set_user_attr(attr, simulated(run.report, spec))
+            verified[key] = study.user_attrs[attr]
+            return verified[key]
+
+        while len(chosen) < spec.finalists:
+            entry = next_finalist(spec, entries, {e["name"] for e in chosen},
+                                  corrections(pairs))
+            if entry is None:
+                break
+            if not chosen:
+                bar.add(1, int(not check(DEFAULT, None)["passes"]))
+            chosen.append(entry)
+            pairs.append((entry, check(f"trial_{entry['trial']}", entry["design"])))
+            passing = ranked(spec, [e for e, sim in pairs if sim["passes"]])
             bar.note = "best verified: " + (design_name(passing[0]["design"]) if passing
                                             else "none yet")
-            bar.add(1, int(not verified[key]["passes"]))
-    return write_report(spec, out, entries, chosen, verified)
+            bar.add(1, int(not pairs[-1][1]["passes"]))
+            if passing and len(spec.objectives) == 1:
+                break
+    if 0 < bar.done < bar.total:
+        bar.total = bar.done
+        bar.add(0)                  # the last line, as it ended
+    return write_report(spec, out, entries, chosen, verified, corrections(pairs))
