@@ -42,7 +42,8 @@ from fivebar_drake.core.validation import (MAX_GAIT_FREQUENCY_HZ, MAX_GRAVITY_M_
 from fivebar_drake.core.variants import Variant, by_kind, registrar
 
 
-MAX_MANEUVER_VALUE = 100.0   # a maneuver's lengths (m) and times (s): catches a slip of units
+MAX_MANEUVER_S = 100.0   # a maneuver's times (s); its lengths (m) are held to MAX_LENGTH_M, which
+#                          catches the common slip of units (100 for 100 mm)
 REACH_SPEED_M_S = 0.1   # a landing foot reaches down at this speed at touchdown (early touchdown
 #                         detection joins a descending foot to the support)
 EXTENSION_STOP_S = 0.02  # after takeoff a jump's legs stop extending within this (the foot sinks
@@ -564,8 +565,9 @@ class Maneuver(FootPath):
 
     def check(self, field: str) -> None:
         for f in dataclasses.fields(self):
-            check_number(f"{field}.{f.name}", getattr(self, f.name), 0.0, MAX_MANEUVER_VALUE,
-                         low_open=f.name.endswith("_s"))
+            time = f.name.endswith("_s")
+            check_number(f"{field}.{f.name}", getattr(self, f.name), 0.0,
+                         MAX_MANEUVER_S if time else MAX_LENGTH_M, low_open=time)
 
 
 def hold(duration_s: float, stance: bool, foot) -> tuple:
@@ -591,6 +593,12 @@ class Landing(Maneuver):
     landing_stroke_m: float = 0.06
     recovery_s: float = 0.5
     settle_s: float = 0.4
+
+    def check(self, field: str) -> None:
+        super().check(field)
+        check_number(f"{field}.landing_stroke_m", self.landing_stroke_m, 0.0, MAX_LENGTH_M,
+                     low_open=True, why="the landing stops the body over this stroke: none "
+                                        "would take an infinite force")
 
     def landing(self, gait: Gait, v_td: float) -> list[tuple]:
         """The segments from touchdown at speed v_td (m/s, > 0) to standing."""
@@ -620,11 +628,20 @@ class Jump(Landing):
     retract_m: float = 0.02
 
     def shortfalls(self, gait: Gait, outcome: Outcome, checks: Checks) -> list[str]:
-        """A jump leaves the ground with every foot, and ends standing (Maneuver)."""
+        """A jump leaves the ground with every foot, its body's apex rises at least
+        checks.achieved_height_fraction of height_m above standing, and it ends standing
+        (Maneuver)."""
         m = outcome.maneuver
-        grounded = [] if m is not None and m["jump"] is not None else [
-            "no foot left the ground" + (f" ({m['why_grounded']})" if m else "")]
-        return grounded + super().shortfalls(gait, outcome, checks)
+        jump = None if m is None else m["jump"]
+        if jump is None:
+            missed = ["no foot left the ground" + (f" ({m['why_grounded']})" if m else "")]
+        elif not jump["height_m"] >= checks.achieved_height_fraction * self.height_m:
+            missed = [f"it rose {jump['height_m'] * 1e3:.1f} mm, less than "
+                      f"{checks.achieved_height_fraction:.0%} of the planned "
+                      f"{self.height_m * 1e3:.1f} mm"]
+        else:
+            missed = []
+        return missed + super().shortfalls(gait, outcome, checks)
 
     def takeoff_speed(self, gait: Gait) -> float:
         """Planned takeoff speed (m/s) of the body."""
@@ -632,7 +649,10 @@ class Jump(Landing):
 
     def check(self, field: str) -> None:
         super().check(field)
-        check_number(f"{field}.height_m", self.height_m, self.extension_m, MAX_MANEUVER_VALUE,
+        check_number(f"{field}.crouch_m", self.crouch_m, 0.0 - self.extension_m, MAX_LENGTH_M,
+                     low_open=True, why="the push-off's stroke is crouch_m + extension_m: none "
+                                        "would push in no distance")
+        check_number(f"{field}.height_m", self.height_m, self.extension_m, MAX_LENGTH_M,
                      low_open=True, why=f"the apex lies above the takeoff height "
                                         f"(extension_m = {self.extension_m:g} m)")
 
@@ -675,6 +695,12 @@ class Drop(Landing):
     extension_m: float = 0.04
     landing_stroke_m: float = 0.08
 
+    def check(self, field: str) -> None:
+        super().check(field)
+        check_number(f"{field}.height_m", self.height_m, 0.0, MAX_LENGTH_M, low_open=True,
+                     why="a drop from no height is no landing (and its touchdown speed, 0, "
+                         "divides the landing's time)")
+
     def lift_m(self, gait: Gait) -> float:
         return self.height_m
 
@@ -707,7 +733,7 @@ class StandUp(Maneuver):
         check_number(f"{field}.fold_x_m", self.fold_x_m, -MAX_LENGTH_M, MAX_LENGTH_M)
         check_number(f"{field}.fold_y_m", self.fold_y_m, -MAX_LENGTH_M, MAX_LENGTH_M)
         for name in ("rise_s", "settle_s"):
-            check_number(f"{field}.{name}", getattr(self, name), 0.0, MAX_MANEUVER_VALUE,
+            check_number(f"{field}.{name}", getattr(self, name), 0.0, MAX_MANEUVER_S,
                          low_open=True)
 
     def segments(self, gait: Gait) -> list[tuple]:

@@ -79,8 +79,23 @@ def check_number(field: str, value, low=-math.inf, high=math.inf, *, low_open=Fa
         else:
             kind, allowed = "a finite number", ""
         require(False, field, value, f"must be {kind}{allowed}".rstrip()
-                + (f" ({why})" if why else ""))
+                + (f" ({why})" if why else "") + _millimetres(field, value, low, high))
     return int(value) if integer else float(value)
+
+
+def _millimetres(field: str, value, low: float, high: float) -> str:
+    """A hint where a length (a field ending in _m) is out of range and the same number in
+    millimetres would be inside it: "; lengths are in metres: did you mean 0.105?"."""
+    if not field.endswith("_m") and "_m[" not in field:
+        return ""
+    try:
+        metres = value / 1000.0
+    except TypeError:
+        return ""
+    if math.isfinite(metres) and low <= metres <= high and abs(value) > high:
+        return f"; lengths are in metres: did you mean {metres:g}?"
+    return ""
+
 
 
 def check_lengths(section: str, obj, names, low_open=True) -> None:

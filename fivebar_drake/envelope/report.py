@@ -168,6 +168,10 @@ def answer(maneuvers: dict, sized: dict, duty: dict | None) -> tuple[str, str]:
         return "insufficient", f"No verdict: no maneuver has one.{tail}"
     _, verdict, reason = max(candidates, key=lambda c: c[0])
     label = verdict.upper().replace("_", " ")
+    if missing and verdict in ("pass", "warn"):   # what did not run cannot pass
+        return "insufficient", (f"No verdict for {', '.join(missing)} (see their entries), so "
+                                f"none for the envelope; the others' worst is {label}: "
+                                f"{reason}.")
     return verdict, f"Worst verdict {label}: {reason}.{tail}"
 
 

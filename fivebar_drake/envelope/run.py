@@ -124,6 +124,12 @@ def duty_of(spec: EnvelopeSpec, results: dict[str, ManeuverResult]):
     if lacking:
         return None, None, (f"No duty-cycle temperature: {', '.join(lacking)} did not run or "
                             "has no samples.")
+    unrated = sorted({s.maneuver for s in spec.duty_cycle
+                      if results[s.maneuver].summary["verdict"] == "insufficient"})
+    if unrated:       # its currents would be whatever the run did (a cut run: standing)
+        return None, None, (f"No duty-cycle temperature: {', '.join(unrated)} has no verdict "
+                            "(too short a run for its statistics), so its currents are not "
+                            "the maneuver's.")
     temperature = duty_temperature(params.motor, spec.duty_cycle, {
         name: (r.current, r.current_dt_s) for name, r in results.items() if r.current is not None})
     return temperature, duty_verdict(params.motor, params.checks, temperature, LEGS, MOTORS), ""

@@ -211,3 +211,50 @@ def test_doggo_path_through_the_seams(tmp_path):
     scenario.write_text("gait: {kind: doggo, flight_share: 1.5}\n")
     with pytest.raises(ParameterError, match="flight_share"):
         load_scenario(scenario)
+
+
+def test_a_jump_is_achieved_only_near_the_height_asked():
+    """Issue 33's first class: a jump that left the ground but rose 1.8 mm of the 60 mm asked
+    is not the jump asked for (its shortfall names both heights); 55 mm of 60 (92 %) is."""
+    from fivebar_drake.core.checks import Checks
+    from fivebar_drake.core.footpath import Jump, Outcome
+    from fivebar_drake.robots.quadruped.config import load_params
+
+    params = load_params(None)
+    checks = params.checks
+
+    def missed(height):
+        outcome = Outcome(0.0, 0.2, 0.2, {"jump": {"height_m": height}, "why_grounded": ""})
+        return Jump().shortfalls(params.gait, outcome, checks)
+
+    assert any("rose 1.8 mm" in m and "60.0 mm" in m for m in missed(0.0018))
+    assert missed(0.055) == []
+    strict = Checks(**{**checks.__dict__, "achieved_height_fraction": 0.95})
+    assert Jump().shortfalls(params.gait, Outcome(0.0, 0.2, 0.2, {"jump": {"height_m": 0.055}}),
+                             strict)
+
+
+@pytest.mark.parametrize("gait, field", [
+    ({"kind": "jump", "crouch_m": 0.0, "extension_m": 0.0}, "scenario.gait.crouch_m"),
+    ({"kind": "jump", "landing_stroke_m": 0.0}, "scenario.gait.landing_stroke_m"),
+    ({"kind": "drop", "height_m": 0.0}, "scenario.gait.height_m"),
+    ({"kind": "drop", "landing_stroke_m": 0.0}, "scenario.gait.landing_stroke_m")])
+def test_a_maneuver_length_that_divides_a_time_is_refused_at_zero(gait, field):
+    """Issue 33's third class (and 15: a drop from 0 m crashed): a push-off or landing over no
+    distance, a drop from no height, each refused naming its field."""
+    from fivebar_drake.core.validation import ParameterError
+    from fivebar_drake.simulation.scenario import load_scenario
+
+    with pytest.raises(ParameterError) as err:
+        load_scenario(gait=gait)
+    assert err.value.field == field
+
+
+def test_a_length_in_millimetres_is_refused_with_a_hint():
+    """Issue 33's class 18 and issue 32: 100 (mm) for a 0.1 m drop lands beyond every length's
+    bound, and the message suggests the metres."""
+    from fivebar_drake.core.validation import ParameterError
+    from fivebar_drake.simulation.scenario import load_scenario
+
+    with pytest.raises(ParameterError, match="did you mean 0.1"):
+        load_scenario(gait={"kind": "drop", "height_m": 100})

@@ -354,3 +354,18 @@ def test_a_failed_maneuver_is_reported_and_exits_1(local, tmp_path, monkeypatch,
     assert "No verdict for trot_fast" in report["answer"]
     assert report["sized_by"]["A"]["maneuver"] == "trot"
     assert "did not run or has no samples" in report["duty_cycle_why_none"]
+
+
+def test_an_envelope_without_verdicts_never_passes(tmp_path):
+    """Issue 33's second class: a jump cut shorter than its span (1 s of about 2 s) has no
+    verdict; the envelope of it then has none either (not PASS), and its duty cycle, which
+    would repeat the cut run's currents (standing) for 600 s, is not computed."""
+    spec = write(tmp_path, "maneuvers:\n  - {name: jump, gait: jump, duration_s: 1.0}\n"
+                           "duty_cycle:\n  - {maneuver: jump, duration_s: 600}\n")
+    envelope_run.run_envelope(load_envelope_spec(spec), tmp_path / "out", workers=1,
+                              progress=False)
+    report = envelope(tmp_path / "out")
+    assert report["maneuvers"]["jump"]["verdict"] == "insufficient"
+    assert report["verdict"] == "insufficient" and "No verdict" in report["answer"]
+    assert report["duty_cycle"] is None and "no verdict" in report["duty_cycle_why_none"]
+    assert (tmp_path / "out" / "envelope.md").read_text().count("PASS") == 0
