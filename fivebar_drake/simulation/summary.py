@@ -31,9 +31,11 @@ from fivebar_drake.simulation.maneuver_figures import maneuver_figures
 from fivebar_drake.simulation.run_statistics import (MIN_CYCLES, Window, end_height,
                                                      leg_statistics, limit_report,
                                                      motion_statistics, statistics_window)
-from fivebar_drake.simulation.runner import SimulationRecord
+from fivebar_drake.simulation.runner import DIVERGED_GAP_M, SimulationRecord
 from fivebar_drake.simulation.signals import Signals, StepSignals
 from fivebar_drake.simulation.summary_text import answer, seed_analysis_load
+
+BODY_SINK_M = 0.01   # the body's box this far into the ground: the contact model has failed
 
 MANEUVER_KEYS = ("jump", "landing", "phases", "force_capability")
 
@@ -55,8 +57,8 @@ def summarize(sig: Signals, record: SimulationRecord, seed_analysis: dict,
     outcome = Outcome(motion["mean_forward_speed_m_s"], end_height(sig, window),
                       standing_height(params), maneuver)
     judge(legs, params.checks, achievement(
-        params.checks, scenario.gait.shortfalls(params.gait, outcome, params.checks),
-        motion["max_tilt_deg"], maneuver))
+        params.checks, scenario.gait.shortfalls(params.gait, outcome, params.checks)
+        + broken(sig, params, record.layout.legs), motion["max_tilt_deg"], maneuver))
     sufficient = record.completed and window.cycles >= (MIN_CYCLES if scenario.gait.periodic
                                                         else 1)
     summary = in_schema_order({
@@ -67,6 +69,25 @@ def summarize(sig: Signals, record: SimulationRecord, seed_analysis: dict,
         "limits": limit_report(sig, params, record.layout.legs), "legs": legs})
     summary["answer"] = answer(summary, params)
     return summary
+
+
+def broken(sig: Signals, params: Params, legs) -> list[str]:
+    """What left the model's physics in a run that finished (a run is no evidence where its
+    model broke): a loop open by more than DIVERGED_GAP_M (the closed chain came apart) or the
+    body sunk more than BODY_SINK_M into the ground, each with when."""
+    out = []
+    gap = np.nan_to_num(sig.gap, nan=np.inf)
+    if gap.size and gap.max() > DIVERGED_GAP_M:
+        row, leg = np.unravel_index(int(np.argmax(gap)), gap.shape)
+        out.append(f"the loop of leg {legs[leg]} opened {gap[row, leg] * 1e3:.2f} mm at "
+                   f"t = {sig.t[row]:.2f} s, beyond the {DIVERGED_GAP_M * 1e3:g} mm where the "
+                   "closed chain has come apart")
+    sink = params.body.height_m / 2 - sig.body_p[:, 2]
+    if sink.size and sink.max() > BODY_SINK_M:
+        row = int(np.argmax(sink))
+        out.append(f"the body sank {sink[row] * 1e3:.0f} mm into the ground at t = "
+                   f"{sig.t[row]:.2f} s")
+    return out
 
 
 def what_ran(record: SimulationRecord, window: Window) -> dict:

@@ -191,3 +191,30 @@ def test_a_trot_beyond_its_motors_is_not_achieved(tmp_path, capsys):
     assert worst["checks"]["achieved"]["verdict"] == "not_achieved"
     assert worst["saturated_fraction"] > 0.05
     assert "not achieved" in capsys.readouterr().err
+
+
+def test_a_run_whose_model_broke_is_not_achieved():
+    """Issue 33's fourth class: a loop opened beyond the bound where the closed chain has come
+    apart, or the body sunk into the ground, is named with its time (and then the run is not
+    achieved: summary.broken feeds the achievement); a sound run has nothing to name."""
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    from fivebar_drake.robots.quadruped.config import load_params
+    from fivebar_drake.simulation.runner import DIVERGED_GAP_M
+    from fivebar_drake.simulation.summary import BODY_SINK_M, broken
+
+    params = load_params(None)
+    legs = ("FL", "FR", "RL", "RR")
+    t = np.array([0.1, 0.2, 0.3])
+    sound = SimpleNamespace(t=t, gap=np.full((3, 4), 1e-5),
+                            body_p=np.tile([0.0, 0.0, 0.2], (3, 1)))
+    assert broken(sound, params, legs) == []
+    gap = sound.gap.copy()
+    gap[1, 2] = 1.5 * DIVERGED_GAP_M
+    body = sound.body_p.copy()
+    body[2, 2] = params.body.height_m / 2 - 2 * BODY_SINK_M
+    why = broken(SimpleNamespace(t=t, gap=gap, body_p=body), params, legs)
+    assert len(why) == 2 and "leg RL" in why[0] and "t = 0.20 s" in why[0]
+    assert "sank 20 mm" in why[1] and "t = 0.30 s" in why[1]
