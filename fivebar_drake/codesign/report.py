@@ -237,8 +237,9 @@ def pareto_figure(spec: CodesignSpec, report: dict):
                    zorder=3, **style)
     r = report["recommended"]
     if r is not None:
-        ax.annotate(f"recommended\n{r['name']}", (r["objectives"][first], y(r)),
-                    xytext=(10, -30), textcoords="offset points", fontsize=8,
+        ax.annotate("recommended\n" + r["name"].replace(", ", "\n").replace(" at ", "\nat "),
+                    (r["objectives"][first], y(r)), xytext=(15, -60), textcoords="offset points",
+                    fontsize=8,
                     arrowprops=dict(arrowstyle="->"))
     if first == "actuator_mass_kg":
         ax.axvline(report["default"]["actuator_mass_kg"], color="k", ls="--",
