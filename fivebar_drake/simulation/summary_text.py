@@ -9,6 +9,7 @@ core/verdicts.py; nothing here computes one."""
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 
 from fivebar_drake.core.checks import CHECK_ORDER, demand_unmet, limit_shares_text
@@ -48,6 +49,11 @@ def answer(s: Summary, params: Params) -> str:
         if not s["completed"] and not s["interrupted"]:
             return (f"No verdict: the run stopped early ({s['error']}): the gait, the "
                     "controller or the motors could not carry the robot through it.")
+        if not s["periodic"]:
+            why = (f"the run stopped early ({s['error']})" if not s["completed"] else
+                   f"the run ended at {s['duration_s']:g} s, before the maneuver did")
+            return (f"No verdict: {why}; run the whole maneuver: at least "
+                    f"{s['window_s'][1]:.2f} s.")
         why = (f"the run stopped early ({s['error']})" if not s["completed"] else
                f"it covered {s['cycles_in_window']} whole gait cycles after the ramp, fewer than "
                f"{MIN_CYCLES}")
@@ -59,7 +65,7 @@ def answer(s: Summary, params: Params) -> str:
     head = (f"At {s['gait_frequency_hz']:g} Hz with the {s['gait']} gait" if s["periodic"] else
             f"For the {s['gait']} maneuver")
     seed = (f"Separately, {seed_analysis_load(params)}, gives {s['seed_peak_torque_Nm']:.2f} N·m "
-            "(its peak).")
+            "(its peak)." if s["periodic"] else "")
     if s["verdict"] == "not_achieved":
         why = c["achieved"]["why"]
         if m["saturated_fraction"] > params.checks.achieved_max_limit_fraction:
@@ -70,13 +76,13 @@ def answer(s: Summary, params: Params) -> str:
             need = (f"its demand p99 of {m['demand_p99_Nm']:.2f} N·m (worst motor {leg} {name}) "
                     "is not a need")
         return (f"{head} the motion was NOT ACHIEVED ({why}): {need}; the saturated demand is "
-                f"the controller's error growing, not what the gait takes. {seed}")
+                f"the controller's error growing, not what the gait takes. {seed}").rstrip()
     checks = "; ".join(check_text(k, c[k]) for k in CHECK_ORDER)
     verdict_text = (f"{s['verdict'].upper()}, decided by the {s['deciding_check']} check"
                     if s["verdict"] != "marginal" else
                     f"MARGINAL: {s['step_check']['why']} (step check at half the plant step)")
     static = m["static_trot_Nm"]
-    over = f"over {s['cycles_in_window']} {'cycles' if s['periodic'] else 'maneuver'}"
+    over = f"over {s['cycles_in_window']} cycles" if s["periodic"] else "over the maneuver"
     limited = demand_unmet(c)
     figure = m["p99_torque_Nm"] if limited else m["demand_p99_Nm"]
     t = c["torque"]
@@ -98,7 +104,7 @@ def answer(s: Summary, params: Params) -> str:
     return (f"{head} {need}. "
             f"Verdict {verdict_text}. Checks: {checks}. On the same poses with the same load schedule "
             f"(the robot's weight shared by the feet in stance) the static torque is "
-            f"{static:.2f} N·m: the dynamics add {figure / static - 1:+.0%}. {seed}")
+            f"{static:.2f} N·m: the dynamics add {figure / static - 1:+.0%}. {seed}").rstrip()
 
 
 def check_text(name: str, c: TorqueCheck | SpeedCheck | ThermalCheck) -> str:
@@ -123,25 +129,33 @@ def check_text(name: str, c: TorqueCheck | SpeedCheck | ThermalCheck) -> str:
 def markdown(s: Summary, params: Params) -> str:
     """summary.md of the summary s: the answer, what ran, the motion (and a maneuver's figures
     beside their plan: maneuver_lines), the limits, the torque table and the torque split."""
+    periodic = s["periodic"]
+    over = (f"{s['cycles_in_window']} whole gait cycles" if periodic else "the maneuver")
     lines = [
-        f"# Simulated {s['gait']} gait: dynamic vs static motor torque", "", s["answer"], "",
+        f"# Simulated {s['gait']} {'gait' if periodic else 'maneuver'}: the motor torque it "
+        "needs", "", s["answer"], "",
         f"Simulated {s['duration_s']:.2f} s (requested {s['requested_duration_s']:g} s), "
         f"{s['closure']} closure, time step {s['time_step_s'] * 1e3:.3f} ms, "
-        f"{s['real_time_factor']:.2f}x real time. Statistics over {s['cycles_in_window']} whole "
-        f"gait cycles, t = {s['window_s'][0]:.2f} .. {s['window_s'][1]:.2f} s; every value is a "
+        f"{s['real_time_factor']:.2f}x real time. Statistics over {over}, "
+        f"t = {s['window_s'][0]:.2f} .. {s['window_s'][1]:.2f} s; every value is a "
         f"mean over {s['log_period_s'] * 1e3:g} ms of plant steps.",
     ]
     lines += ["", ran_text(s["ran"])]
     if s["error"]:
         lines += ["", f"**The run stopped early:** {s['error']}"]
-    clear = min(s["swing_clear_fraction"].values())
-    drag = max(s["swing_drag_fraction"].values())
+    motion = (f"largest tilt {s['max_tilt_deg']:.1f} deg; worst loop gap "
+              f"{s['max_loop_gap_m'] * 1e3:.4f} mm")
+    if periodic:
+        clear = min(s["swing_clear_fraction"].values())
+        drag = max(s["swing_drag_fraction"].values())
+        dragged = ("" if not math.isfinite(drag) else
+                   f", on it {drag * 100:.0f} % of mid-swing (worst legs; the rest is early "
+                   "touchdown)")
+        motion = (f"walking: {s['mean_forward_speed_m_s']:.3f} m/s against the gait's "
+                  f"{s['gait_speed_m_s']:.3f} m/s; swing feet clear of the ground "
+                  f"{clear * 100:.0f} % of scheduled swing{dragged}; {motion}")
     lines += [
-        "", f"- walking: {s['mean_forward_speed_m_s']:.3f} m/s against the gait's "
-        f"{s['gait_speed_m_s']:.3f} m/s; largest tilt {s['max_tilt_deg']:.1f} deg; swing feet "
-        f"clear of the ground {clear * 100:.0f} % of scheduled swing, on it {drag * 100:.0f} % of "
-        f"mid-swing (worst legs; the rest is early touchdown); worst loop gap "
-        f"{s['max_loop_gap_m'] * 1e3:.4f} mm", *maneuver_lines(s),
+        "", f"- {motion}", *maneuver_lines(s),
         f"- {limits_text(s['limits'])}",
         *([f"- vertical ground force (every plant step, {s['log_period_s'] * 1e3:g} ms means) "
            f"between {s['vertical_support']['least_share']:.2f} (t = "
@@ -149,9 +163,10 @@ def markdown(s: Summary, params: Params) -> str:
            f"{s['vertical_support']['largest_share']:.2f} (t = "
            f"{s['vertical_support']['largest_at_s']:.3f} s) of the weight"]
           if s.get("vertical_support") else []),
-        "", "| leg | motor | demand p99 | demand peak | applied p99 | RMS | seed static | "
-        "trot static | J^T F peak | dyn/seed | dyn/trot | SF | verdict | clipped | p99 speed "
-        "(rad/s) |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+        "", "| leg | motor | demand p99 | demand peak | applied p99 | RMS | seed's model | "
+        "static, same loads | contact peak | demand / seed's | demand / static | SF | verdict | "
+        "clipped | p99 speed (rad/s) |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for leg, motors in s["legs"].items():
         for name, m in motors.items():
             lines.append(
@@ -181,8 +196,11 @@ def markdown(s: Summary, params: Params) -> str:
               "quadrant (the quadrant of that percentile in brackets), or of the applied torque "
               f"where the motor sat at its limits more than {100 - PERCENTILE:g} % of the time "
               "(clipped, with the limit it sat at most: its demand p99 was not met, and is not a "
-              f"need). Seed static: the seed's G(q) with {params.robot.weight_share_kg:.3f} kg at "
-              "the foot. Per-cycle spreads are in summary.json."]
+              "need). Seed's model: the seed's static torque G(q) on the run's poses with "
+              f"{params.robot.weight_share_kg:.3f} kg at every foot all the time; static, same "
+              "loads: the static torque on the same poses with the robot's weight shared by the "
+              "feet in stance; contact peak: the largest -J_Fᵀ F of the measured ground force. "
+              "Per-cycle spreads are in summary.json."]
     return "\n".join(lines) + "\n"
 
 
