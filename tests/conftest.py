@@ -1,3 +1,5 @@
+import json
+
 import numpy as np
 import pytest
 
@@ -9,6 +11,43 @@ def params():
     return load_params()
 
 
+@pytest.fixture(scope="session")
+def simulated():
+    """run_simulation(load_scenario(**fields)) run once per session for each set of fields: the
+    same scenario serves the modules that check it from different sides (the default trot's
+    4.5 s with the ball closure: tests/simulation/test_simulation.py and tests/test_pipeline.py;
+    its 2.5 s with the bushing: test_recording.py and test_summary_schema.py). The records are
+    shared: read them, never change them."""
+    from fivebar_drake.pipeline import run_simulation
+    from fivebar_drake.simulation.scenario import load_scenario
+
+    records = {}
+
+    def run(**fields):
+        key = json.dumps(fields, sort_keys=True)
+        if key not in records:
+            records[key] = run_simulation(load_scenario(**fields), progress=False)
+        return records[key]
+
+    return run
+
+
 @pytest.fixture()
 def rng():
     return np.random.default_rng(20261121)
+
+
+@pytest.fixture(scope="session")
+def shared_client():
+    """One local Dask cluster (one process worker, one thread) for the sweeps and envelopes of
+    tests that are not about how a cluster starts: a new one costs a fresh worker process
+    (imports, compiled-code caches: 3-8 s). Cluster start-up stays covered by the tests that
+    pass workers (two workers), a scheduler, or run the command line."""
+    from dask.distributed import Client, LocalCluster
+
+    cluster = LocalCluster(n_workers=1, threads_per_worker=1, processes=True,
+                           dashboard_address=":0")
+    client = Client(cluster)
+    yield client
+    client.close()
+    cluster.close()

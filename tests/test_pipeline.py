@@ -72,9 +72,8 @@ def equal(a, b) -> bool:
 
 
 @pytest.fixture(scope="module")
-def record():
-    return run_simulation(load_scenario(duration_s=TEST_DURATION_S, closure="ball"),
-                          progress=False)
+def record(simulated):
+    return simulated(duration_s=TEST_DURATION_S, closure="ball")
 
 
 def test_the_walker_finds_drake_objects():

@@ -46,13 +46,13 @@ def write(tmp_path, text, name="spec.yaml"):
 
 
 @pytest.fixture(scope="module")
-def local(tmp_path_factory):
+def local(tmp_path_factory, shared_client):
     """The test spec's envelope on a local cluster of one worker: (its folder, the spec's path,
     the EnvelopeRun)."""
     folder = tmp_path_factory.mktemp("envelope")
     spec = write(folder, SPEC)
-    run = envelope_run.run_envelope(load_envelope_spec(spec), folder / "local", workers=1,
-                                    progress=False)
+    run = envelope_run.run_envelope(load_envelope_spec(spec), folder / "local",
+                                    client=shared_client, progress=False)
     return folder / "local", spec, run
 
 
@@ -356,14 +356,14 @@ def test_a_failed_maneuver_is_reported_and_exits_1(local, tmp_path, monkeypatch,
     assert "did not run or has no samples" in report["duty_cycle_why_none"]
 
 
-def test_an_envelope_without_verdicts_never_passes(tmp_path):
+def test_an_envelope_without_verdicts_never_passes(tmp_path, shared_client):
     """Issue 33's second class: a jump cut shorter than its span (1 s of about 2 s) has no
     verdict; the envelope of it then has none either (not PASS), and its duty cycle, which
     would repeat the cut run's currents (standing) for 600 s, is not computed."""
     spec = write(tmp_path, "maneuvers:\n  - {name: jump, gait: jump, duration_s: 1.0}\n"
                            "duty_cycle:\n  - {maneuver: jump, duration_s: 600}\n")
-    envelope_run.run_envelope(load_envelope_spec(spec), tmp_path / "out", workers=1,
-                              progress=False)
+    envelope_run.run_envelope(load_envelope_spec(spec), tmp_path / "out",
+                              client=shared_client, progress=False)
     report = envelope(tmp_path / "out")
     assert report["maneuvers"]["jump"]["verdict"] == "insufficient"
     assert report["verdict"] == "insufficient" and "No verdict" in report["answer"]

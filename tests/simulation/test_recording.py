@@ -14,12 +14,11 @@ from pydrake.math import RotationMatrix
 from rerun.chunk import RrdReader
 
 from fivebar_drake.analysis.torques import analyze, seed_results
-from fivebar_drake.pipeline import run_simulation, write_simulation
+from fivebar_drake.pipeline import write_simulation
 from fivebar_drake.simulation.events import CONTACT_N, detect_events, phases
 from fivebar_drake.simulation.plots import Band, StripChart, band_of, extremes
 from fivebar_drake.core.rerun_files import read_series
 from fivebar_drake.simulation.recording import EYE_OFFSET_M
-from fivebar_drake.simulation.scenario import load_scenario
 from fivebar_drake.simulation.signals import signals
 
 LEGS = ("FL", "FR", "RL", "RR")
@@ -124,10 +123,10 @@ def test_seed_results_are_the_analysis_seed_results(params):
 
 
 @pytest.fixture(scope="module")
-def short_run(tmp_path_factory):
+def short_run(tmp_path_factory, simulated):
     """A 2.5 s default trot (0.5 s standing, 1 s ramp, one cycle) written to a folder; the
     write's own wall time (s)."""
-    record = run_simulation(load_scenario(duration_s=2.5), progress=False)
+    record = simulated(gait="trot", duration_s=2.5)
     out = tmp_path_factory.mktemp("short")
     start = time.perf_counter()
     summary, _ = write_simulation(record, out)

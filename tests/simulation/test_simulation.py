@@ -14,7 +14,7 @@ from rerun.chunk import RrdReader
 from fivebar_drake.cli import main
 from fivebar_drake.core.footpath import Trot
 from fivebar_drake.mechanisms.fivebar import UnreachableError, foot_jacobian, forward
-from fivebar_drake.pipeline import run_simulation, summarize_run
+from fivebar_drake.pipeline import summarize_run
 from fivebar_drake.core.rerun_files import read_series
 from fivebar_drake.simulation.scenario import load_scenario
 from fivebar_drake.robots.quadruped.plant import set_standing_pose
@@ -25,18 +25,17 @@ TEST_DURATION_S = 4.5   # 0.5 s standing, 1 s ramp, 3 whole trot cycles
 RPY_DURATION_S = 2.5    # the explicit bushing runs at a quarter of real time: one whole cycle
 
 
-def _run(closure, duration_s=TEST_DURATION_S, **overrides):
-    record = run_simulation(load_scenario(duration_s=duration_s, closure=closure,
-                                          **overrides), progress=False)
+def _run(simulated, closure, duration_s=TEST_DURATION_S):
+    record = simulated(duration_s=duration_s, closure=closure)
     return record.scenario, record.params, record, signals(record), summarize_run(record)
 
 
 @pytest.fixture(scope="module")
-def runs():
+def runs(simulated):
     """The default trot with each closure: closure -> (scenario, params, record, signals,
     summary); bushing_rpy for one whole cycle after the ramp."""
-    return {"ball": _run("ball"), "bushing": _run("bushing"),
-            "bushing_rpy": _run("bushing_rpy", RPY_DURATION_S)}
+    return {"ball": _run(simulated, "ball"), "bushing": _run(simulated, "bushing"),
+            "bushing_rpy": _run(simulated, "bushing_rpy", RPY_DURATION_S)}
 
 
 @pytest.fixture(params=["bushing", "ball"])

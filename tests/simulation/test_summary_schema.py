@@ -14,8 +14,7 @@ import pytest
 
 from fivebar_drake.core.summary_schema import Summary
 from fivebar_drake.mechanisms.fivebar import MOTORS
-from fivebar_drake.pipeline import run_simulation, run_step_check, write_simulation
-from fivebar_drake.simulation.scenario import load_scenario
+from fivebar_drake.pipeline import run_step_check, write_simulation
 
 # as short as gives every group of keys: a trot's first whole cycle after the ramp (its motors'
 # checks), a jump's span after standing (its jump, landing, phases and force capability)
@@ -68,11 +67,11 @@ def mismatches(value, hint, path: str = "summary", in_file: bool = False) -> lis
 
 
 @pytest.fixture(scope="module")
-def written(tmp_path_factory):
+def written(tmp_path_factory, simulated):
     """Per run: (its record, the summary as written, summary.json read back, summary.md)."""
     out = {}
     for name, fields in RUNS.items():
-        record = run_simulation(load_scenario(**fields), progress=False)
+        record = simulated(**fields)
         half = run_step_check(record, progress=False)
         folder = tmp_path_factory.mktemp(name)
         summary, _ = write_simulation(record, folder, half)

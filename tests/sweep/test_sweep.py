@@ -128,9 +128,9 @@ def test_pareto_front():
 
 
 @pytest.mark.slow
-def test_workers_resume_and_failures(tmp_path):
+def test_workers_resume_and_failures(tmp_path, shared_client):
     spec = spec_file(tmp_path, SPEC + "  gait.x_center_m: [0.0, 0.2]\n")   # 0.2 m: out of reach
-    one = run_sweep(spec, tmp_path / "one", workers=1, progress=False)
+    one = run_sweep(spec, tmp_path / "one", client=shared_client, progress=False)   # 1 worker
     two = run_sweep(spec, tmp_path / "two", workers=2, progress=False)
     assert table_text(one) == table_text(two)
     assert one.computed == len(one.rows) == 24
@@ -149,7 +149,7 @@ def test_workers_resume_and_failures(tmp_path):
     # point 2 lost, point 3 cut short while being written (without the cut handled it would
     # count as done)
     table.write_text("".join([lines[0]] + lines[5:] + lines[1:3] + [lines[4][:25]]))
-    again = run_sweep(spec, tmp_path / "one", workers=1, progress=False)
+    again = run_sweep(spec, tmp_path / "one", client=shared_client, progress=False)
     assert again.computed == 2
     assert table_text(again) == table_text(two)
     # the same folder for another sweep is refused
@@ -165,7 +165,7 @@ def free_port() -> int:
 
 
 @pytest.mark.slow
-def test_a_running_scheduler_gives_the_same_table(tmp_path):
+def test_a_running_scheduler_gives_the_same_table(tmp_path, shared_client):
     port = free_port()
     address = f"tcp://127.0.0.1:{port}"
     procs = [subprocess.Popen([sys.executable, "-m", "dask", "scheduler", "--host", "127.0.0.1",
@@ -177,7 +177,7 @@ def test_a_running_scheduler_gives_the_same_table(tmp_path):
                                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
         spec = spec_file(tmp_path)
         remote = run_sweep(spec, tmp_path / "remote", scheduler=address, progress=False)
-        local = run_sweep(spec, tmp_path / "local", workers=1, progress=False)
+        local = run_sweep(spec, tmp_path / "local", client=shared_client, progress=False)
         assert table_text(remote) == table_text(local)
     finally:
         for p in procs:
@@ -205,12 +205,12 @@ def test_sweep_command(tmp_path, capsys):
     # (no scheduler at a well-formed address: test_sweep_hostile.test_bad_scheduler_writes_nothing)
 
 
-def test_simulation_points(tmp_path):
+def test_simulation_points(tmp_path, shared_client):
     pytest.importorskip("dask")
     spec = spec_file(tmp_path, "fidelity: simulation\nduration_s: 0.6\nvary:\n"
                      "  gait.frequency_hz: [1.0]\n  scenario.closure: [ball, bushing]\n")
     start = time.perf_counter()
-    result = run_sweep(spec, tmp_path / "sim", workers=1, progress=False)
+    result = run_sweep(spec, tmp_path / "sim", client=shared_client, progress=False)
     assert time.perf_counter() - start < 600
     assert [r["scenario.closure"] for r in result.rows] == ["ball", "bushing"]
     for r in result.rows:

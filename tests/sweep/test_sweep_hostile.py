@@ -67,9 +67,22 @@ def test_bad_output_folder(tmp_path, capsys, out, words):
     refused(capsys, ["sweep", str(write(tmp_path, SPEC)), "--out", str(target)], *words)
 
 
+@pytest.fixture
+def quick_refusal(monkeypatch):
+    """The sweep's client retries a refused connection until its timeout (10 s) before it gives
+    up; 1 s here, the same failure (OSError "Timed out trying to connect") sooner."""
+    import dask.distributed
+
+    class QuickClient(dask.distributed.Client):
+        def __init__(self, address=None, *args, timeout=None, **kwargs):
+            super().__init__(address, *args, timeout="1s", **kwargs)
+
+    monkeypatch.setattr(dask.distributed, "Client", QuickClient)
+
+
 @pytest.mark.parametrize("address", ["garbage", "http://127.0.0.1:1", "tcp://127.0.0.1",
                                      "tcp://127.0.0.1:1"])
-def test_bad_scheduler_writes_nothing(tmp_path, capsys, address):
+def test_bad_scheduler_writes_nothing(tmp_path, capsys, address, quick_refusal):
     out = tmp_path / "out"
     refused(capsys, ["sweep", str(write(tmp_path, SPEC)), "--out", str(out), "--scheduler",
                      address], "--scheduler")
@@ -81,10 +94,10 @@ def test_workers_bounded(tmp_path, capsys):
             "per core")
 
 
-def test_resume_recognises_what_is_not_its_own(tmp_path, capsys):
+def test_resume_recognises_what_is_not_its_own(tmp_path, capsys, shared_client):
     spec = load_spec(write(tmp_path, SPEC))
     out = tmp_path / "out"
-    first = run_sweep(spec, out, workers=1, progress=False)
+    first = run_sweep(spec, out, client=shared_client, progress=False)
     assert len(first.rows) == 4
     table = (out / "points.csv").read_text()
     lines = table.splitlines(keepends=True)
@@ -95,7 +108,7 @@ def test_resume_recognises_what_is_not_its_own(tmp_path, capsys):
     bad = [rows[0], rows[0], "7" + rows[1][1:], "x" + rows[2][1:], rows[3].rstrip("\n") + ",9\n",
            alien, rows[2][:10]]
     (out / "points.csv").write_text(header + "".join(bad))
-    again = run_sweep(spec, out, workers=1, progress=False)
+    again = run_sweep(spec, out, client=shared_client, progress=False)
     assert [int(r["point"]) for r in again.rows] == [0, 1, 2, 3]
     assert again.computed == 3 and again.dropped == 6
     assert (out / "points.csv").read_text() == table
@@ -143,9 +156,9 @@ def test_verdict_map_costs_no_call_per_point(tmp_path, monkeypatch):
         assert f.read(4) == b"\x89PNG"
 
 
-def test_table_rows_are_point_order(tmp_path):
+def test_table_rows_are_point_order(tmp_path, shared_client):
     spec = load_spec(write(tmp_path, SPEC))
-    result = run_sweep(spec, tmp_path / "o", workers=1, progress=False)
+    result = run_sweep(spec, tmp_path / "o", client=shared_client, progress=False)
     with open(result.table, newline="") as f:
         assert [int(r["point"]) for r in csv.DictReader(f)] == [0, 1, 2, 3]
     assert json.loads((tmp_path / "o" / "sweep.json").read_text())["fingerprint"]
