@@ -345,9 +345,10 @@ def sweep(spec: SweepSpec, out: str | Path, workers: int | None = None,
     from fivebar_drake.sweep.report import summarize_sweep, write_sweep_report
 
     result = run_sweep(spec, out, workers, scheduler, progress, client)
-    sf_pass = result.params.checks.sf_pass
-    summary = summarize_sweep(result.rows, spec.names, sf_pass)
-    written = [result.table, *write_sweep_plots(result.rows, spec.plot, spec.fidelity, sf_pass,
-                                                Path(out)),
+    checks = result.params.checks
+    summary = summarize_sweep(result.rows, spec.names, checks.sf_pass)
+    written = [result.table, *write_sweep_plots(result.rows, spec.plot, spec.fidelity,
+                                                checks.sf_pass, Path(out), spec.names,
+                                                checks.sf_warn),
                write_sweep_report(summary, spec.names, spec.fidelity, Path(out))]
     return result, summary, written
