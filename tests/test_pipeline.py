@@ -177,5 +177,6 @@ def test_write_simulation_never_leaves_a_stale_summary(tmp_path, monkeypatch):
     monkeypatch.undo()
     summary, paths = write_simulation(record, tmp_path)
     assert json.loads((tmp_path / "summary.json").read_text())["duration_s"] == pytest.approx(0.1)
-    assert [p.name for p in paths] == ["sim_torques.png", "sim_motion.png", "run.rrd",
+    assert [p.name for p in paths] == ["sim_torques.png", "sim_motion.png",
+                                       "sim_torque_speed.png", "run.rrd",
                                        "summary.md", "summary.json"]

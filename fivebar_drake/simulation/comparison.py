@@ -7,6 +7,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+from fivebar_drake.core.checks import Checks
 from fivebar_drake.core.files import read_input_text, save_figure, write_atomic
 from fivebar_drake.core.summary_schema import MotorSummary, Summary
 from fivebar_drake.core.validation import ParameterError, require
@@ -151,27 +152,56 @@ def markdown(summaries: list[Labelled]) -> str:
     return "\n".join(lines) + "\n"
 
 
+def _run_name(s: Labelled) -> str:
+    gear = (s.get("motor") or {}).get("gear_ratio")
+    return _label(s) + (f" ({gear:g}:1)" if gear else "")
+
+
 def figure(summaries: list[Labelled]):
+    """Per motor, each run's demand (p99) against that run's own limit (the torque check's, in
+    the quadrant of the figure: a tick over its bar) labelled with its verdict and deciding
+    check, and the speed check's share of the time beyond the envelope against the fail rule."""
     import matplotlib.pyplot as plt
     import numpy as np
 
-    labels = [f"{leg} {m}" for leg in summaries[0]["legs"] for m in MOTORS]
+    legs = summaries[0]["legs"]
+    labels = [f"{leg} {m}" for leg in legs for m in MOTORS]
     x = np.arange(len(labels))
     width = 0.8 / len(summaries)
-    fig, ax = plt.subplots(figsize=(11, 4))
+    fig, (top, low) = plt.subplots(2, 1, figsize=(12, 7.5), sharex=True, height_ratios=(2, 1),
+                                   layout="constrained")
     for k, s in enumerate(summaries):
-        demand = [s["legs"][leg][m]["demand_p99_Nm"] or np.nan
-                  for leg in s["legs"] for m in MOTORS]
-        ax.bar(x + (k - (len(summaries) - 1) / 2) * width, demand, width,
-               label=f"{_label(s)} demand p99 ({s['verdict']})")
-    seed = summaries[0]["seed_peak_torque_Nm"]
-    ax.axhline(seed, color="k", ls="--", lw=1, label=f"seed static {seed:.2f} N·m")
-    ax.axhline(summaries[0]["motor_peak_torque_Nm"], color="r", lw=1, label="motor limit")
-    ax.set(xticks=x, xticklabels=labels, ylabel="torque (N·m)",
-           title="Torque demand per motor, run by run")
-    ax.legend(fontsize=8)
-    ax.grid(alpha=0.3, axis="y")
-    fig.tight_layout()
+        at = x + (k - (len(summaries) - 1) / 2) * width
+        motors = [s["legs"][leg][m] for leg in legs for m in MOTORS]
+        checks = [m.get("checks") or {} for m in motors]
+        demand = [m["demand_p99_Nm"] or np.nan for m in motors]
+        limit = [(c.get("torque") or {}).get("limit_Nm") or s["motor_peak_torque_Nm"] or np.nan
+                 for c in checks]
+        color = f"C{k}"
+        rating = s.get("motor") or {}
+        top.bar(at, demand, width, color=color, alpha=0.75,
+                label=f"{_run_name(s)}: demand p99, verdict {s['verdict'].upper()} "
+                      f"({s.get('deciding_check') or 'no check'})")
+        top.hlines(limit, at - width / 2, at + width / 2, color=color, lw=2.5,
+                   label=f"{_run_name(s)}: its limit, driving "
+                         f"{_num(rating.get('peak_torque_Nm'))} N·m, braking "
+                         f"{_num(rating.get('braking_peak_torque_Nm'))} N·m")
+        for xi, lim, m in zip(at, limit, motors):
+            top.text(xi, lim, f" {str(m.get('verdict')).upper()} ({m.get('deciding_check') or 'no check'})",
+                     rotation=90, ha="center", va="bottom", fontsize=7)
+        beyond = [100 * ((c.get("speed") or {}).get("outside_fraction") or 0.0) for c in checks]
+        low.bar(at, beyond, width, color=color, alpha=0.75, label=_run_name(s))
+    fail = 100 * Checks.speed_outside_fail
+    low.axhline(fail, color="r", lw=1, label=f"the speed check fails beyond {fail:g} %")
+    top.set(ylabel="torque (N·m)", ylim=(0, 1.45 * top.get_ylim()[1]),
+            title="Each run's demand against its own motor's limit: the safety factor is the "
+                  "tick over the bar; the verdict (deciding check) above")
+    low.set(xticks=x, xticklabels=labels, ylabel="time beyond (%)",
+            title="Speed check: share of the time the demand lies beyond the torque–speed "
+                  "envelope")
+    for ax in (top, low):
+        ax.legend(fontsize=7, loc="upper left")
+        ax.grid(alpha=0.3, axis="y")
     return fig
 
 

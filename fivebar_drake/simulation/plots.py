@@ -1,5 +1,5 @@
 """Plots of a simulated run: motor torques against the static predictions and the motor limit,
-loop gap and body motion (PNG).
+loop gap and body motion, the operating points over the motor's torque–speed envelope (PNG).
 
 Each figure is a strip chart: one matplotlib axes holding stacked bands that share the time
 axis, each band with its own quantity, unit and scale (its grid lines labelled in that unit).
@@ -23,6 +23,7 @@ from fivebar_drake.core.summary_schema import Summary
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.simulation.maneuver_figures import capability_along
+from fivebar_drake.simulation.run_statistics import window_rows
 from fivebar_drake.simulation.signals import Signals, StepSignals
 
 PLOT_POINTS = 1500       # points per curve at most (~ the plot's width in pixels)
@@ -179,7 +180,47 @@ def motion_figure(sig: Signals, legs, gait_speed: float) -> plt.Figure:
     return fig
 
 
-SIM_PLOT_FILES = ("sim_torques.png", "sim_motion.png")
+def torque_speed_figure(sig: Signals, legs, params: Params, summary: Summary) -> plt.Figure:
+    """The speed check's picture: per motor (A, B; each leg in its colour) the operating points
+    of the statistics window, the demand at the joint speed folded onto positive speeds (torque
+    along the motion: driving > 0, braking < 0), over the motor's envelope; the points beyond it
+    crossed; each leg's verdict, deciding check and share beyond in the legend."""
+    motor = params.motor
+    win = window_rows(sig.t, summary["window_s"])
+    speed, demand = sig.qd[win], sig.command[win]
+    fastest = max(float(np.max(np.abs(speed), initial=0.0)), motor.no_load_speed_rad_s)
+    w = np.linspace(0.0, 1.1 * fastest, 200)
+    up, lo = motor.limits(w)
+    fig, axes = plt.subplots(1, len(MOTORS), figsize=(12, 5), sharey=True, layout="constrained")
+    for j, (ax, name) in enumerate(zip(axes, MOTORS)):
+        ax.plot(w, up, "r-", lw=1.5, label="envelope, driving (beyond the no-load speed the "
+                "back-EMF forces braking)")
+        ax.plot(w, lo, "r-.", lw=1.2, label="envelope, braking")
+        ax.axhline(0.0, color="0.6", lw=0.6)
+        for i, leg in enumerate(legs):
+            along = np.where(speed[:, i, j] >= 0.0, demand[:, i, j], -demand[:, i, j])
+            _, beyond = motor.speed_margins(demand[:, i, j], speed[:, i, j])
+            m = summary["legs"][leg][name]
+            check = (m.get("checks") or {}).get("speed") or {}
+            ax.scatter(np.abs(speed[:, i, j]), along, s=4, color=LEG_COLORS[i], alpha=0.5,
+                       rasterized=True, label=f"{leg} {name}: {m['verdict'].upper()} "
+                       f"({m['deciding_check'] or 'no check'}), "
+                       f"{check.get('outside_fraction', 0.0):.1%} beyond")
+            ax.scatter(np.abs(speed[beyond, i, j]), along[beyond], s=30, marker="x",
+                       color=LEG_COLORS[i], rasterized=True, zorder=3)
+        ax.set(title=f"motor {name}", xlabel="|joint speed| (rad/s)", xlim=(0, w[-1]),
+               ylabel="demand along the motion (N·m): driving > 0, braking < 0")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7, loc="lower left")
+    fig.suptitle(f"Verdict {summary['verdict'].upper()}, decided by the "
+                 f"{summary.get('deciding_check') or 'no'} check (worst motor "
+                 f"{summary.get('worst_motor') or 'none'}): the demand over the window "
+                 f"{summary['window_s'][0]:.2f} .. {summary['window_s'][1]:.2f} s on the "
+                 "torque–speed plane; x: beyond the envelope")
+    return fig
+
+
+SIM_PLOT_FILES = ("sim_torques.png", "sim_motion.png", "sim_torque_speed.png")
 CAPABILITY_FILE = "force_capability.png"    # jump and drop only
 
 
@@ -189,7 +230,8 @@ def write_sim_plots(sig: Signals, legs, params: Params, summary: Summary,
     a push-off or a landing (from its plant steps); returns their paths."""
     with plt.rc_context(STYLE):               # drawn when saved: the style covers both
         figures = (torque_figure(sig, legs, params, summary["window_s"]),
-                   motion_figure(sig, legs, summary["gait_speed_m_s"]))
+                   motion_figure(sig, legs, summary["gait_speed_m_s"]),
+                   torque_speed_figure(sig, legs, params, summary))
         written = [save_figure(fig, out_dir / name, dpi=90, compress_level=1)
                    for name, fig in zip(SIM_PLOT_FILES, figures)]
         if summary.get("force_capability"):
