@@ -141,7 +141,7 @@ def design_metrics(params: Params, samples: GaitSamples, models: dict[str, Dynam
                                   samples.qdd)
         results["joint_loads"][name] = _load_results(samples, loads[name])
     tb = tbs[GEAR_MODEL]
-    gear = gear_trade(params.motor, tb.total, samples.qd, samples.qdd)
+    gear = gear_trade(params.motor, tb.joint, samples.qd, samples.qdd)
     results["gear_ratio"] = {
         "model": GEAR_MODEL, "search_range": list(RATIO_RANGE), "current": m.gear_ratio,
         "safety_factor_at_current": gear.current_safety, "best": gear.best_ratio,

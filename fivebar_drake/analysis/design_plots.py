@@ -86,9 +86,9 @@ def force_capability_maps(an: Analysis) -> plt.Figure:
     fig.colorbar(mesh, ax=axes, shrink=0.6, label="foot force (N), torque box through J_F^-T")
     limited = " (blank: out of reach or past the leg's limits)" if p.limits.given else ""
     fig.suptitle("Static foot-force capability per assembly mode (motors "
-                 f"±{p.motor.peak_torque_Nm:g} N·m); contours: weight share {weight:.1f} N "
+                 f"±{p.motor.peak_torque_Nm:.2f} N·m)\ncontours: weight share {weight:.1f} N "
                  f"(white), trot peak {trot:.1f} N (cyan); green: gait path and home point"
-                 + limited)
+                 + limited, wrap=True)
     return fig
 
 
@@ -204,7 +204,7 @@ def gear_ratio(an: Analysis) -> plt.Figure:
     tb = an.torques[GEAR_MODEL]
     fig, ax = plt.subplots(figsize=(8, 5))
     for name, flags in EFFECTS.items():
-        sf = safety_factors(p.motor, tb.total, an.samples.qd, an.samples.qdd, g.ratios, *flags)
+        sf = safety_factors(p.motor, tb.joint, an.samples.qd, an.samples.qdd, g.ratios, *flags)
         ax.plot(g.ratios, np.min(sf, axis=1), label=f"{name} (worst motor)",
                 **EFFECT_STYLE[name])
     ax.axvline(p.motor.gear_ratio, color="k", ls=":",

@@ -106,10 +106,11 @@ def _evaluate_group(designs: list[Params], path: str, model: str) -> list[dict]:
         load = share[:, None] * np.array([p.robot.total_mass_kg * p.robot.gravity_m_s2
                                           for p in designs])
     loads = dataclasses.replace(full_model(first), foot_load_N=load)
-    total = first.fivebar_leg.torques(loads, pose, qd, qdd).total          # (N, designs, 2)
+    joint = first.fivebar_leg.torques(loads, pose, qd, qdd).joint          # (N, designs, 2)
     rows = []
-    for i, p in enumerate(designs):
-        figures = motor_figures(p.motor, p.checks, total[:, i], qd[:, i])
+    for i, p in enumerate(designs):     # each design's motors add their own rotors
+        total = joint[:, i] + p.motor.reflected_inertia_kg_m2 * qdd[:, i]
+        figures = motor_figures(p.motor, p.checks, total, qd[:, i])
         checks = figures.pop("checks")
         if p.motor.has_thermal_model:    # the winding at the cycle's RMS current
             heat = thermal_margin(p.motor, figures["rms_current_A"])

@@ -1,10 +1,11 @@
 """Forces in the hinges of the closed chain (what bearings and link sections are sized from): a
 planar Newton-Euler solve of the four links at each sample, independent of the Lagrangian
-torques of the dynamics module (which it must reproduce: virtual work).
+torques of the dynamics module (which it must reproduce: virtual work, less the rotors' reflected
+inertia, which acts on the motor's side of the joint).
 
 Unknowns per pose (12): the hinge forces F_A (ground on AC), F_B (ground on BD), F_C (AC on CE),
-F_D (BD on DE), F_E (CE on DE), N, leg plane, and the motor torques tau_A on AC, tau_B on BD
-(N*m, counter-clockwise). Equations (12): for each link, m a_G = sum F + m g and
+F_D (BD on DE), F_E (CE on DE), N, leg plane, and the torques tau_A on AC, tau_B on BD the
+gearboxes deliver to the links (N*m, counter-clockwise). Equations (12): for each link, m a_G = sum F + m g and
 Izz alpha = sum (r - r_G) x F (+ tau), with the foot load (upward ground force) on DE at F.
 Accelerations: a_G = Jv q'' + bias, alpha = Jw q'' + bias (jacobians module).
 """
@@ -31,7 +32,7 @@ LINK_ENDS = {"AC": ("A", "C"), "BD": ("B", "D"), "CE": ("C", "E"), "DE": ("D", "
 @dataclass(frozen=True)
 class JointLoads:
     """forces (..., 5, 2) N of the hinges JOINT_NAMES on their downstream link (JOINT_LINKS),
-    motor torques (..., 2) N*m, and the inputs each link's balance needs: points (..., 6, 2) m
+    torques the gearboxes deliver to the links AC, BD (..., 2) N*m, and the inputs each link's balance needs: points (..., 6, 2) m
     of A, B, C, D, E, F, COMs (..., 4, 2) m, COM accelerations (..., 4, 2) m/s^2, angular
     accelerations (..., 4) rad/s^2, foot load (...) N."""
 

@@ -54,7 +54,7 @@ def motor_results(params: Params, samples: GaitSamples, tb: TorqueBreakdown, j: 
         "static_peak_at": sample_at(samples, k_static),
         "dynamic_to_static_ratio": peak / float(static[k_static]),
         "rms_torque_Nm": float(np.sqrt(np.mean(tb.total[:, j] ** 2))),
-        "peak_inertial_Nm": float(np.max(np.abs(tb.inertial[:, j] + tb.coriolis[:, j]))),
+        "peak_inertial_Nm": float(np.max(np.abs(tb.total[:, j] - tb.static[:, j]))),
         "safety_factor": sf,
         "verdict": verdict(params.checks, sf),
         "peak_speed_rad_s": float(speed[k_speed]),

@@ -87,7 +87,7 @@ def duty_verdict(motor: BldcMotor, checks: Checks, duty: DutyTemperature, legs,
         rise = peak - motor.ambient_C
         equivalent = (math.sqrt(rise / (motor.copper_loss_W(1.0) * motor.thermal_resistance_K_W))
                       if rise > 0 else 0.0)
-        check = thermal_check(checks, motor.thermal_continuous_current_A, equivalent)
+        check = thermal_check(checks, motor.rated_continuous_current_A, equivalent)
         out[name] = {"peak_C": peak, "leg": legs[leg], "at_s": float(duty.t[row]),
                      "end_C": float(temp[-1].max()), "equivalent_current_A": equivalent,
                      "margin": check["margin"], "verdict": check["verdict"]}

@@ -124,7 +124,7 @@ def signals(record: SimulationRecord) -> Signals:
     trot_static = static_torques(params.leg, params.links,
                                  dataclasses.replace(full, foot_load_N=loads), pose, lj)
     links = torques(params.leg, params.links, dataclasses.replace(full, foot_load_N=0.0), pose, qd,
-                    qdd, lj).total
+                    qdd, lj).joint
     rotor = params.motor.reflected_inertia_kg_m2 * qdd
     return Signals(
         t=t, body_p=st[:, lay.state.body_q + 4:lay.state.body_q + 7], body_quat=quat,

@@ -71,3 +71,24 @@ def test_readings_at_the_current_ratio(params):
         np.testing.assert_allclose(sf[0], [pick(r["A"]), pick(r["B"])], rtol=1e-12)
     assert an.metrics.gear.current_safety <= min(r["A"]["torque_speed_margin"],
                                                  r["B"]["torque_speed_margin"])
+
+
+def test_the_verdict_counts_the_reflected_rotor_inertia(params):
+    """Issue 33's seventh class: with a heavy rotor (0.01 kg m^2: 0.64 kg m^2 at 8:1) the full
+    model's torque check fails, and its safety factor is the gear trade's at the current ratio
+    with the rotor added to the links' torque (the trade's own, separate reading); the seed's
+    model, which has no rotor, is unchanged by it."""
+    from fivebar_drake.analysis.torques import analyze
+    from fivebar_drake.robots.quadruped.config import with_changes
+
+    heavy = with_changes(params, {"motor.rotor_inertia_kg_m2": 0.01})
+    an, light = analyze(heavy), analyze(params)
+    tb, s = an.torques["full"], an.samples
+    full = an.results["results"]["full"]
+    sf = safety_factors(heavy.motor, tb.joint, s.qd, s.qdd, [heavy.motor.gear_ratio], False, True)
+    np.testing.assert_allclose(sf[0], [full["A"]["checks"]["torque"]["sf"],
+                                       full["B"]["checks"]["torque"]["sf"]], rtol=1e-12)
+    assert max(full[m]["checks"]["torque"]["sf"] for m in "AB") < 1.0
+    assert full["A"]["verdict"] == "fail"
+    seed, seed_light = an.results["results"]["seed"], light.results["results"]["seed"]
+    assert seed["A"]["peak_torque_Nm"] == seed_light["A"]["peak_torque_Nm"]

@@ -29,7 +29,9 @@ class DynamicsModel:
 
     izz: Izz per link (kg*m^2); link_weight_sign: +1 for G_links = +m g Jv^T [0, 1]^T (physical),
     -1 for the seed's m g Jv^T [0, -1]^T; coriolis: include c(q, q_dot); foot_load_N: upward
-    ground force on the foot (N), a number or one per sample; gravity_m_s2: g."""
+    ground force on the foot (N), a number or one per sample; gravity_m_s2: g;
+    rotor_inertia_kg_m2: each motor's rotor reflected to the output (N^2 J_rotor), its torque
+    N^2 J q_ddot added to the motor's (0: the seed's model has none)."""
 
     name: str
     description: str
@@ -38,6 +40,7 @@ class DynamicsModel:
     coriolis: bool
     foot_load_N: float | np.ndarray
     gravity_m_s2: float
+    rotor_inertia_kg_m2: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -48,6 +51,7 @@ class TorqueBreakdown:
     coriolis: np.ndarray       # c(q, q_dot), zero where the model drops it
     link_weight: np.ndarray    # gravity on the four links
     foot_load: np.ndarray      # the weight share carried at the foot
+    rotor: np.ndarray          # N^2 J_rotor q_ddot: the rotors, reflected (zero without)
 
     @property
     def static(self) -> np.ndarray:
@@ -55,8 +59,14 @@ class TorqueBreakdown:
         return self.link_weight + self.foot_load
 
     @property
-    def total(self) -> np.ndarray:
+    def joint(self) -> np.ndarray:
+        """Torque the gearboxes deliver to the links (the motors' less the rotors' own)."""
         return self.inertial + self.coriolis + self.static
+
+    @property
+    def total(self) -> np.ndarray:
+        """The motors' torque at the output: the links' and the rotors'."""
+        return self.joint + self.rotor
 
 
 @jit
@@ -180,9 +190,9 @@ def torques(leg: LegGeometry, links: dict[str, LinkInertia], model: DynamicsMode
     (lj, bias: the poses' LinkJacobians and bias_accelerations at qd, if already computed)."""
     lj = lj or link_jacobians(leg, links, pose)
     link_weight, foot_load = _static(links, model, lj)
-    inertial = np.einsum("...ij,...j->...i", _mass_matrix(links, model.izz, lj),
-                         np.asarray(qdd, dtype=float))
+    qdd = np.asarray(qdd, dtype=float)
+    inertial = np.einsum("...ij,...j->...i", _mass_matrix(links, model.izz, lj), qdd)
     cor = (coriolis(leg, links, model.izz, pose, qd, lj, bias) if model.coriolis
            else np.zeros_like(inertial))
     return TorqueBreakdown(inertial=inertial, coriolis=cor, link_weight=link_weight,
-                           foot_load=foot_load)
+                           foot_load=foot_load, rotor=model.rotor_inertia_kg_m2 * qdd)

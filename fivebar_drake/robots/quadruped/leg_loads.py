@@ -24,15 +24,18 @@ def seed_model(params: Params) -> DynamicsModel:
 
 
 def full_model(params: Params) -> DynamicsModel:
-    """Physically consistent: link weights held up (+[0, 1]), Coriolis kept, Izz_AC thin rod."""
+    """Physically consistent: link weights held up (+[0, 1]), Coriolis kept, Izz_AC thin rod,
+    the rotors' inertia reflected through the gearbox (N^2 J_rotor on each motor)."""
     return DynamicsModel(
         name="full",
-        description="physically consistent: tau = M q'' + c(q, q') + G, link weights held up "
-                    "(+[0, 1]), foot load m_leg g J_F^T [0, -1], Izz of AC = thin rod m L^2/12",
+        description="physically consistent: tau = (M + N^2 J_rotor) q'' + c(q, q') + G, link "
+                    "weights held up (+[0, 1]), foot load m_leg g J_F^T [0, -1], Izz of AC = "
+                    "thin rod m L^2/12, the rotors reflected through the gearbox",
         izz=physical_izz(params.leg, params.links),
         link_weight_sign=1.0, coriolis=True,
         foot_load_N=params.robot.weight_share_kg * params.robot.gravity_m_s2,
-        gravity_m_s2=params.robot.gravity_m_s2)
+        gravity_m_s2=params.robot.gravity_m_s2,
+        rotor_inertia_kg_m2=params.motor.reflected_inertia_kg_m2)
 
 
 def trot_model(params: Params, path: FootPath | str, t, phases_rad=TROT_PHASES_RAD,
@@ -48,4 +51,5 @@ def trot_model(params: Params, path: FootPath | str, t, phases_rad=TROT_PHASES_R
                     "schedule has in stance (half on each foot of a diagonal pair alone, a quarter "
                     "while all four are down), none in swing",
         izz=physical_izz(params.leg, params.links), link_weight_sign=1.0, coriolis=True,
-        foot_load_N=np.asarray(foot_load_N, dtype=float), gravity_m_s2=params.robot.gravity_m_s2)
+        foot_load_N=np.asarray(foot_load_N, dtype=float), gravity_m_s2=params.robot.gravity_m_s2,
+        rotor_inertia_kg_m2=params.motor.reflected_inertia_kg_m2)

@@ -63,8 +63,8 @@ def test_coriolis_matches_christoffel_symbols_and_skew_symmetry(params, rng):
 
 @pytest.mark.parametrize("model_fn, balances", [(full_model, True), (seed_model, False)])
 def test_power_balance(params, model_fn, balances):
-    """tau . qd = d/dt (kinetic + potential energy of the links) along a smooth motion, energy
-    computed from link geometry only. The seed's link-weight sign breaks the balance."""
+    """tau . qd = d/dt (kinetic + potential energy of the links, kinetic of the rotors reflected
+    through the gearbox) along a smooth motion, energy computed from link geometry only. The seed's link-weight sign breaks the balance."""
     t = np.linspace(0.0, 1.0, 4001)
     dt = t[1] - t[0]
     q0 = forward(params.leg, [[-1.7, -0.3]]).q[0]
@@ -81,7 +81,8 @@ def test_power_balance(params, model_fn, balances):
     w = np.gradient(ang, dt, axis=0)
     g = params.robot.gravity_m_s2
     energy = 0.5 * np.sum(m[:, None] * v**2, (-1, -2)) + 0.5 * np.sum(izz * w**2, -1) \
-        + g * np.sum(m * com[..., 1], -1)
+        + g * np.sum(m * com[..., 1], -1) \
+        + 0.5 * model.rotor_inertia_kg_m2 * np.sum(qd**2, -1)      # the rotors, reflected
     power_in = np.sum(tau * qd, -1)[5:-5]
     power_store = np.gradient(energy, dt)[5:-5]
     err = np.max(np.abs(power_in - power_store)) / np.max(np.abs(power_store))

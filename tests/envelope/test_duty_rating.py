@@ -1,0 +1,36 @@
+"""One continuous rating everywhere (issue 33's sixth class): the duty cycle's thermal check
+holds the winding's equivalent current to the same continuous current as every maneuver's
+thermal check (the datasheet's continuous_current_A when given, else the thermal model's)."""
+
+import math
+
+import numpy as np
+import pytest
+
+from fivebar_drake.envelope.duty_cycle import DutyTemperature, duty_verdict
+from fivebar_drake.robots.quadruped.config import load_params, with_changes
+
+
+@pytest.mark.parametrize("share", [None, 0.5])
+def test_the_duty_cycle_uses_the_motors_one_continuous_rating(share):
+    params = load_params(None)
+    thermal = params.motor.thermal_continuous_current_A
+    if share is not None:
+        params = with_changes(params, {"motor.continuous_current_A": share * thermal})
+    motor = params.motor
+    held = 0.8 * thermal                                   # the current the winding saw
+    rise = motor.copper_loss_W(held) * motor.thermal_resistance_K_W
+    temperature = np.full((2, 4, 2), motor.ambient_C)
+    temperature[1] += rise
+    duty = duty_verdict(motor, params.checks, DutyTemperature(np.array([0.0, 1e4]), temperature,
+                                                              np.array([0.0, 1e4])),
+                        ("FL", "FR", "RL", "RR"), ("A", "B"))
+    rating = motor.rated_continuous_current_A
+    assert rating == (thermal if share is None else share * thermal)
+    a = duty["motors"]["A"]
+    assert a["equivalent_current_A"] == pytest.approx(held, rel=1e-9)
+    assert a["margin"] == pytest.approx(rating / held, rel=1e-9)
+    assert duty["verdict"] == ("fail" if rating < held else
+                               "warn" if rating / held < params.checks.thermal_margin_warn
+                               else "pass")
+    assert not math.isnan(a["margin"])
