@@ -26,6 +26,7 @@ from fivebar_drake.simulation.maneuver_figures import capability_along
 from fivebar_drake.simulation.run_statistics import window_rows
 from fivebar_drake.simulation.signals import Signals, StepSignals
 
+COINCIDE = 0.02          # capability curves within this share of the panel's scale: one curve
 PLOT_POINTS = 1500       # points per curve at most (~ the plot's width in pixels)
 BAND_FILL = 0.86         # the share of its band a strip's range takes (the rest: a gap)
 # hinting off: glyphs drawn as outlined (a sixth less drawing time, no visible change at 90 dpi)
@@ -240,12 +241,35 @@ def write_sim_plots(sig: Signals, legs, params: Params, summary: Summary,
     return written
 
 
+def coinciding(curves, tolerances) -> list[list[int]]:
+    """Groups of legs (column indices, in order) whose curves (arrays (steps, legs)) agree with
+    the group's first leg within each curve's tolerance at every step (NaN where both are)."""
+    groups: list[list[int]] = []
+    for i in range(curves[0].shape[1]):
+        group = next((g for g in groups if all(
+            np.allclose(c[:, i], c[:, g[0]], rtol=0.0, atol=tol, equal_nan=True)
+            for c, tol in zip(curves, tolerances))), None)
+        if group is None:
+            groups.append([i])
+        else:
+            group.append(i)
+    return groups
+
+
+def _least(ratio, at) -> str:
+    if ratio is None:
+        return "n/a (no foot loaded)"
+    return f"{ratio:.2f}" + (f" ({at['leg']}, {at['phase']}, t = {at['t_s']:.2f} s)" if at else "")
+
+
 def capability_figure(sig: StepSignals, legs, params: Params,
                       summary: Summary) -> plt.Figure:
     """Along the push-off and the landing (a panel each), per leg against its foot's height
     in the leg plane (the stroke): the measured ground force and the force the motors hold
     along it, within the torque box and within the envelope at the joint speeds, at every
-    plant step (maneuver_figures.capability_along)."""
+    plant step (maneuver_figures.capability_along). Legs whose curves coincide (within
+    COINCIDE of the panel's scale, 1 mm of height) are drawn once and named together; each panel
+    is scaled to its curves."""
     phases = {}
     if summary.get("jump"):
         j = summary["jump"]
@@ -254,25 +278,36 @@ def capability_figure(sig: StepSignals, legs, params: Params,
         ld = summary["landing"]
         phases["landing"] = (sig.t > ld["touchdown_s"]) & (sig.t <= ld["end_s"])
     along = capability_along(sig, params, phases, legs)["phases"]
-    fig, axes = plt.subplots(1, len(along), figsize=(6 * len(along), 4.5), squeeze=False)
-    fig.subplots_adjust(left=0.08, right=0.98, bottom=0.12, top=0.88, wspace=0.2)
+    fig, axes = plt.subplots(1, len(along), figsize=(6 * len(along), 5), squeeze=False,
+                             layout="constrained")
     for ax, (name, a) in zip(axes[0], along.items()):
-        for i, leg in enumerate(legs):
-            color = f"C{i}"
-            y = a["foot_y_m"][:, i] * 1e3
-            ax.plot(y, a["required_N"][:, i], color=color, lw=2, label=f"{leg} required")
-            ax.plot(y, a["box_N"][:, i], color=color, ls="--", lw=1,
-                    label="torque box" if i == 0 else None)
-            ax.plot(y, a["envelope_N"][:, i], color=color, ls=":", lw=1,
-                    label="envelope at the joint speeds" if i == 0 else None)
+        y = a["foot_y_m"] * 1e3
+        curves = (a["required_N"], a["box_N"], a["envelope_N"])
+        finite = np.concatenate([c[np.isfinite(c)] for c in curves])
+        needed = a["required_N"][np.isfinite(a["required_N"])]
+        top = min(3.0 * needed.max(), 1.1 * finite.max()) if needed.size else 1.0
+        for group in coinciding((y, *curves), (1.0, *[COINCIDE * top] * 3)):
+            i, color = group[0], f"C{group[0]}"
+            who = ", ".join(legs[k] for k in group)
+            if len(group) > 1:
+                who += f" ({'all' if len(group) == len(legs) else len(group)} coincide: one curve)"
+            ax.plot(y[:, i], a["required_N"][:, i], color=color, lw=2, label=f"{who}: required")
+            ax.plot(y[:, i], a["box_N"][:, i], color=color, ls="--", lw=1)
+            ax.plot(y[:, i], a["envelope_N"][:, i], color=color, ls=":", lw=1)
+        ax.plot([], [], "k--", lw=1, label="held within the torque box")
+        ax.plot([], [], "k:", lw=1, label="held within the envelope at the joint speeds")
         ax.set_title(name)
         ax.set_xlabel("foot height in the leg plane y (mm)")
         ax.set_ylabel("ground force on the foot (N)")
-        top = np.nanmax(a["required_N"]) if np.isfinite(a["required_N"]).any() else 1.0
-        ax.set_ylim(0, 3 * top)
+        ax.set_ylim(0, top)
         ax.legend(fontsize=7)
     fc = summary["force_capability"]
-    fig.suptitle(f"Force capability along the {summary['gait']}: least available / required "
-                 f"{fc['least_ratio_box']:.2f} (torque box), {fc['least_ratio_envelope']:.2f} "
-                 "(envelope)")
+    fig.suptitle(
+        f"Force capability along the {summary['gait']}: the ground force each foot needs (solid)"
+        " and the force its two motors can hold in that direction, statically within their "
+        "peak torques (the torque box, dashed) and at the joint speeds within the torque-speed "
+        "envelope (dotted).\nThe least ratio held / needed over the legs and the stroke: "
+        f"{_least(fc['least_ratio_box'], fc.get('least_box_at'))} in the torque box, "
+        f"{_least(fc['least_ratio_envelope'], fc.get('least_envelope_at'))} in the envelope; "
+        "below 1 the motors could not hold that force there.", wrap=True, fontsize=8)
     return fig

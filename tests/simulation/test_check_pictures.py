@@ -8,6 +8,7 @@ import pytest
 
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.simulation.comparison import figure
+from fivebar_drake.simulation.plots import coinciding
 from fivebar_drake.simulation.run_statistics import window_rows
 
 matplotlib.use("Agg")
@@ -56,4 +57,34 @@ def test_every_run_draws_its_torque_speed_check(simulated):
             assert text.startswith(f"{leg} {name}: {m['verdict'].upper()} "
                                    f"({m['deciding_check']})")
     assert summary["verdict"].upper() in fig.texts[0].get_text()
+    matplotlib.pyplot.close(fig)
+
+
+def test_coinciding_legs_are_drawn_once():
+    t = np.linspace(0.0, 1.0, 50)
+    curves = np.stack([t, t + 0.001, 2 * t, t], axis=1)          # legs 0, 1, 3 coincide
+    with_nan = curves.copy()
+    with_nan[:5] = np.nan                                          # unloaded: NaN alike
+    assert coinciding((curves, with_nan), (0.01, 0.01)) == [[0, 1, 3], [2]]
+
+
+def test_force_capability_names_every_leg_once_and_fits(simulated):
+    from fivebar_drake.pipeline import _review
+    from fivebar_drake.simulation.plots import capability_figure
+
+    record = simulated(gait="jump", duration_s=2.6)
+    _, steps, summary = _review(record)
+    fig = capability_figure(steps, record.layout.legs, record.params, summary)
+    fig.canvas.draw()
+    box = fig.bbox
+    title = fig.get_suptitle()
+    assert "least ratio held / needed" in title and "below 1 the motors could not" in title
+    extent = fig._suptitle.get_window_extent()
+    assert box.x0 <= extent.x0 and extent.x1 <= box.x1           # not cut off
+    for ax in fig.axes:
+        named = [t.get_text().split(":")[0].split(" (")[0] for t in ax.get_legend().get_texts()
+                 if t.get_text().endswith("required")]
+        assert sorted(", ".join(named).split(", ")) == sorted(record.layout.legs)
+        drawn = np.concatenate([line.get_ydata() for line in ax.get_lines()])
+        assert ax.get_ylim()[1] <= 1.1 * np.nanmax(drawn) + 1e-9     # scaled to its data
     matplotlib.pyplot.close(fig)
