@@ -546,3 +546,19 @@ def test_any_scenario_value_is_refused_cleanly_or_accepted(tmp_path, name, value
         load_run(path)
     except ParameterError as err:
         assert str(path) in str(err) and ("scenario" in str(err) or "gait" in str(err))
+
+
+def test_the_step_checks_second_run_is_checked_before_anything_runs(tmp_path, capsys):
+    """Issue 33's ninth class: a 1 us plant step with --step-check would run, then fail on its
+    0.5 us half step after the folder was cleared; now the half step's checks come first: exit
+    2 naming --step-check and the field, nothing simulated, the folder as it was."""
+    scenario = tmp_path / "s.yaml"
+    scenario.write_text("time_step_s: 1.0e-6\nduration_s: 0.5\n")
+    out = tmp_path / "run"
+    out.mkdir()
+    (out / "summary.json").write_text("{}")
+    assert main(["simulate", "--scenario", str(scenario), "--step-check", "--out",
+                 str(out)]) == 2
+    err = capsys.readouterr().err
+    assert "--step-check" in err and "scenario.time_step_s" in err and "step check:" not in err
+    assert sorted(p.name for p in out.iterdir()) == ["summary.json"]

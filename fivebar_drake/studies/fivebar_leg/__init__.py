@@ -4,12 +4,14 @@ the trotting robot, through fivebar_drake.pipeline (the Study contract of studie
 
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
 from typing import Callable, NamedTuple
 
 from fivebar_drake import pipeline
 from fivebar_drake.core.files import say
 from fivebar_drake.core.validation import ParameterError
+from fivebar_drake.core.yaml_files import load_yaml
 from fivebar_drake.robots.quadruped.config import load_params
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.simulation.builder import check_run
@@ -30,7 +32,8 @@ class Simulated(NamedTuple):
 
 
 def with_sets(params: Params, sets: list[str] | None) -> Params:
-    """The parameters with the command line's --set FIELD=VALUE edits, their foot paths checked
+    """The parameters with the command line's --set FIELD=VALUE edits (each VALUE read as a
+    sweep's spec reads it: YAML, so integers and lists too), their foot paths checked
     (ParameterError naming the command line)."""
     if not sets:
         return params
@@ -42,10 +45,9 @@ def with_sets(params: Params, sets: list[str] | None) -> Params:
         if not sep or not field:
             raise ParameterError(f"--set {item}: write FIELD=VALUE, e.g. motor.gear_ratio=11.5",
                                  "--set", "command line")
-        try:
-            changes[field.strip()] = float(text)
-        except ValueError:
-            changes[field.strip()] = text.strip()
+        # the value as a sweep's spec gives it: YAML 1.2 (a number, an integer, a list, a word)
+        changes[field.strip()] = load_yaml(text, "command line (--set)",
+                                           f" (--set {item})")
     try:
         params = with_changes(params, changes)
         check_gait_reachable(params)          # the edited leg, gait or limits
@@ -89,8 +91,17 @@ def load_simulation(config: str | Path | None, duration_s: float | None,
     scenario_, params = load_run(scenario, duration_s=duration_s, closure=closure, gait=gait,
                                  params_file=config)
     params = with_sets(params, sets)
-    if sets:
-        check_run(scenario_, params)         # the edited robot, before the folder is touched
+    if sets or step_check:                   # the edited robot, before the folder is touched
+        design = check_run(scenario_, params)
+    if step_check:                           # and the step check's run at half the step
+        half = dataclasses.replace(scenario_, time_step_s=design.time_step_s / 2)
+        try:
+            half.validate()
+            check_run(half, params)
+        except ParameterError as err:
+            raise ParameterError(f"--step-check runs again at half the plant step "
+                                 f"({half.time_step_s:g} s), which fails its checks: "
+                                 f"{err.message}", err.field, err.source) from None
     return Plan((scenario_, params, bool(step_check)))
 
 
