@@ -29,7 +29,7 @@ taken level (cos theta ~ 1 to 1e-3 at the few degrees of pitch).
 
 from __future__ import annotations
 
-import functools
+import dataclasses
 import math
 import pickle
 from dataclasses import dataclass
@@ -361,18 +361,35 @@ def gait_floor(params: Params, path=None, payload_kg: float = 0.0, free_height: 
                thermal: bool = False) -> GaitFloor | None:
     """The gait's floor (module docstring) for a path of KINDS (default the trot); None for
     another kind. The centre of mass's mean height is the gait's own (its feet at y_home when
-    level) unless free_height. Cached per process by (design, path, payload, free_height,
-    thermal)."""
+    level) unless free_height. The floor does not depend on the motor (only its RMS current
+    does, computed here for params.motor): cached per process by the rest of the design, the
+    path, payload, free_height and thermal, so the designs of a sweep or a co-design that
+    differ only in their motor or gear share it."""
     path = foot_path(path or Trot())
     if path.kind not in KINDS:
         return None
-    return _cached(pickle.dumps((params, path, float(payload_kg), bool(free_height),
-                                 bool(thermal))))
+    key = pickle.dumps((params.leg, params.links, params.robot, params.gait, params.body,
+                        params.checks.achieved_max_tilt_deg, path, float(payload_kg),
+                        bool(free_height), bool(thermal)))
+    floor = _FLOORS.get(key)
+    if floor is None:
+        floor = _solve(params, path, float(payload_kg), bool(free_height), bool(thermal))
+        if len(_FLOORS) >= CACHE_SIZE:
+            _FLOORS.pop(next(iter(_FLOORS)))              # the oldest
+        _FLOORS[key] = floor
+    return dataclasses.replace(floor, rms_current_A=_rms_current(params.motor, floor))
 
 
-@functools.lru_cache(maxsize=CACHE_SIZE)
-def _cached(key: bytes) -> GaitFloor:
-    return _solve(*pickle.loads(key))
+_FLOORS: dict[bytes, GaitFloor] = {}     # gait_floor's cache, oldest first
+
+
+def _rms_current(motor, floor: GaitFloor) -> float:
+    """The worst motor's RMS current (A) over the floor's period: the motor law at the stance
+    joint speeds, zero in swing; nan without a thermal model."""
+    if not motor.has_thermal_model:
+        return math.nan
+    return float(np.sqrt(np.mean(motor.currents(floor.torque_Nm, floor.speed_rad_s) ** 2,
+                                 axis=1)).max())
 
 
 def _solve(params: Params, path, payload_kg: float, free_height: bool,
@@ -404,15 +421,11 @@ def _solve(params: Params, path, payload_kg: float, free_height: bool,
     floor = _value(torques, thermal)
     residual, scale = _pitch_residual(body, state, forces, inertia)
     speeds = _joint_speeds(body, state)
-    current = math.nan
-    if params.motor.has_thermal_model:
-        current = float(np.sqrt(np.mean(params.motor.currents(torques, speeds) ** 2,
-                                        axis=1)).max())
     level_floor = None if held is None else _value(_grid(body, _torques(body, *held[:2])),
                                                    thermal)
     return GaitFloor(floor, t, state[0], state[1], state[2], _grid(body, forces), torques,
-                     speeds, level_floor, free_height, current, residual, scale, programs, inertia,
-                     mass)
+                     speeds, level_floor, free_height, math.nan, residual, scale, programs,
+                     inertia, mass)
 
 
 def _torques(body: Body, state, forces) -> np.ndarray:

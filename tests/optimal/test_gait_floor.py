@@ -174,3 +174,19 @@ def test_the_floor_is_below_what_the_controller_asked(kind, duration):
     if summary["verdict"] in ("fail", "not_achieved"):
         assert a["fails_for"] in ("this controller", "any controller")
     assert not math.isnan(a["floor_safety_factor"])
+
+
+def test_a_floor_is_the_same_for_any_motor(params):
+    """The floor does not depend on the motor (only its current does): solved afresh for
+    another motor and gear it is the same, so the cache shares it (no new solve) and only the
+    RMS current changes."""
+    from fivebar_drake.optimal import gait_floor as module
+
+    other = with_changes(params, {"motor.gear_ratio": 11.5, "motor.peak_current_A": 2.0})
+    first = gait_floor(params, "trot")
+    solved = module._solve(other, foot_path("trot"), 0.0, False, False)
+    assert solved.floor_Nm == pytest.approx(first.floor_Nm, rel=1e-12)
+    count = len(module._FLOORS)
+    shared = gait_floor(other, "trot")
+    assert len(module._FLOORS) == count and shared.floor_Nm == first.floor_Nm
+    assert shared.rms_current_A != first.rms_current_A
