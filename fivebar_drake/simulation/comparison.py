@@ -175,8 +175,8 @@ def figure(summaries: list[Labelled]):
         motors = [s["legs"][leg][m] for leg in legs for m in MOTORS]
         checks = [m.get("checks") or {} for m in motors]
         demand = [m["demand_p99_Nm"] or np.nan for m in motors]
-        limit = [(c.get("torque") or {}).get("limit_Nm") or s["motor_peak_torque_Nm"] or np.nan
-                 for c in checks]
+        # the torque check's limit, in the quadrant of its figure (no check: none drawn)
+        limit = [(c.get("torque") or {}).get("limit_Nm") or np.nan for c in checks]
         color = f"C{k}"
         rating = s.get("motor") or {}
         top.bar(at, demand, width, color=color, alpha=0.75,
@@ -186,8 +186,8 @@ def figure(summaries: list[Labelled]):
                    label=f"{_run_name(s)}: its limit, driving "
                          f"{_num(rating.get('peak_torque_Nm'))} N·m, braking "
                          f"{_num(rating.get('braking_peak_torque_Nm'))} N·m")
-        for xi, lim, m in zip(at, limit, motors):
-            top.text(xi, lim, f" {str(m.get('verdict')).upper()} ({m.get('deciding_check') or 'no check'})",
+        for xi, lim, d, m in zip(at, limit, demand, motors):
+            top.text(xi, np.nanmax([lim, d, 0.0]), f" {str(m.get('verdict')).upper()} ({m.get('deciding_check') or 'no check'})",
                      rotation=90, ha="center", va="bottom", fontsize=7)
         beyond = [100 * ((c.get("speed") or {}).get("outside_fraction") or 0.0) for c in checks]
         low.bar(at, beyond, width, color=color, alpha=0.75, label=_run_name(s))

@@ -159,7 +159,9 @@ def draw_pareto(rows: list[dict], fidelity: str, sf_pass: float, sf_warn=None, v
     in_speed = [n for n in varied if n in SPEED_FROM[fidelity]]
     hidden = [n for n in shown if n != marked]
     note = ([f"the speed shows {', '.join(in_speed)}"] if in_speed else []) + (
-        [f"not shown: {', '.join(hidden)}"] if hidden else [])
+        [f"not shown: {', '.join(hidden)}"] if hidden else []) + (
+        [f"{len(rows) - len(ok)} points without a safety factor (failed) not drawn"]
+        if len(rows) > len(ok) else [])
     ax.set_title("; ".join(note), fontsize=8, loc="left")
     ax.set_xlabel(SPEED_LABEL[fidelity])
     ax.set_ylabel("worst motor's safety factor")
