@@ -23,7 +23,8 @@ import traceback
 from importlib.metadata import version
 
 from fivebar_drake import catalog
-from fivebar_drake.core.files import check_output_file, prepare_output_dir, say
+from fivebar_drake.core.files import (check_output_file, check_path_name, prepare_output_dir,
+                                      say)
 from fivebar_drake.core.footpath import PATHS
 from fivebar_drake.core import plugins
 from fivebar_drake.core.interrupts import Interrupted, Signals
@@ -510,6 +511,8 @@ def main(argv=None) -> int:
         if getattr(args, "out", None) == "":
             raise ParameterError("--out = '': an empty path; give a folder or file name (or "
                                  "leave --out out for the default)", "--out", "command line")
+        if getattr(args, "out", None):
+            check_path_name(args.out, "--out")
         with Signals(stop_gently=args.command == "simulate") as signals:
             return args.run(args, signals)
     except ParameterError as err:

@@ -562,3 +562,33 @@ def test_the_step_checks_second_run_is_checked_before_anything_runs(tmp_path, ca
     err = capsys.readouterr().err
     assert "--step-check" in err and "scenario.time_step_s" in err and "step check:" not in err
     assert sorted(p.name for p in out.iterdir()) == ["summary.json"]
+
+
+@pytest.mark.parametrize("argv", [
+    ["envelope", "SPEC", "--out", "LONG"], ["compare", "RUN", "RUN", "--out", "LONG.md"],
+    ["sweep", "SPEC", "--out", "LONG"], ["optimal", "--out", "LONG"],
+    ["analyze", "--out", "LONG"], ["simulate", "--out", "LONG/x"]])
+def test_an_output_name_too_long_for_the_file_system_is_exit_2(argv, tmp_path, capsys):
+    """Issue 33's twentieth class: a 300-byte folder name (the file system takes 255) was a
+    bug report (exit 3) in envelope and compare; every command refuses it naming --out,
+    before anything is read or made."""
+    long = str(tmp_path / ("x" * 300))
+    spec = tmp_path / "spec.yaml"
+    spec.write_text("maneuvers:\n  - {name: trot, gait: trot}\n")
+    argv = [a.replace("LONG", long).replace("SPEC", str(spec)).replace("RUN", str(tmp_path))
+            for a in argv]
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert "--out" in err and "255 bytes" in err and len(err) < 1000
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["spec.yaml"]
+
+
+def test_an_error_quotes_at_most_a_few_hundred_characters_of_a_value(tmp_path, capsys):
+    """Issue 33's nineteenth class: a duty cycle of 30 000 steps (over its 1000) echoed whole
+    gave a message of megabytes; now under 1 kB, naming the field and the count."""
+    spec = tmp_path / "big.yaml"
+    spec.write_text("maneuvers:\n  - {name: trot, gait: trot}\nduty_cycle:\n"
+                    + "  - {maneuver: trot, duration_s: 1}\n" * 30000)
+    assert main(["envelope", str(spec), "--out", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err
+    assert "duty_cycle" in err and "characters" in err and len(err) < 1000

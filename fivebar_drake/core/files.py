@@ -16,6 +16,7 @@ from pathlib import Path
 from fivebar_drake.core.validation import ParameterError
 
 
+NAME_MAX, PATH_MAX = 255, 4096   # bytes: Linux's (and most file systems') limits
 TEMP_PREFIX = ".fivebar-tmp-"   # temporary files of an atomic write, named so a later run removes them
 MAX_INPUT_BYTES = 10_000_000    # an input file (parameters, scenario, spec, summary) is a few kB;
 #                                 this bounds what a wrong file (a log, a data dump) costs
@@ -50,6 +51,18 @@ def read_input_text(path, what: str) -> str:
     except UnicodeDecodeError as err:
         raise ParameterError(f"the {what} is not UTF-8 text (byte 0x{data[err.start]:02x} at "
                              f"offset {err.start})", source=str(path)) from None
+
+
+def check_path_name(path, option: str) -> None:
+    """ParameterError naming `option` where the file system cannot hold the path's name: a
+    part longer than NAME_MAX bytes or the whole longer than PATH_MAX (checked before any
+    folder is made or read)."""
+    text = os.fsencode(os.path.abspath(path))
+    longest = max((len(part) for part in text.split(b"/")), default=0)
+    if longest > NAME_MAX or len(text) > PATH_MAX:
+        raise ParameterError(f"{option}: a name of {longest} bytes in a path of {len(text)}: "
+                             f"the file system takes names up to {NAME_MAX} bytes and paths up "
+                             f"to {PATH_MAX}", option, "command line")
 
 
 def prepare_output_dir(path, option: str, previous_outputs=()) -> Path:

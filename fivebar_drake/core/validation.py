@@ -46,9 +46,18 @@ class ParameterError(ValueError):
 
 
 def require(ok: bool, field: str, value, rule: str) -> None:
-    """ParameterError "field = value: rule" unless ok."""
+    """ParameterError "field = value: rule" unless ok; a value, or a rule quoting one, longer
+    than MAX_ECHO characters is cut there (a list of a million steps is not echoed whole)."""
     if not ok:
-        raise ParameterError(f"{field} = {value!r}: {rule}", field)
+        raise ParameterError(f"{field} = {_echo(repr(value))}: {_echo(rule)}", field)
+
+
+MAX_ECHO = 200   # characters of a value (or a rule) an error message quotes
+
+
+def _echo(text: str) -> str:
+    """text, or its first MAX_ECHO characters and how many there were."""
+    return text if len(text) <= MAX_ECHO else f"{text[:MAX_ECHO]}... ({len(text)} characters)"
 
 
 def check_number(field: str, value, low=-math.inf, high=math.inf, *, low_open=False,
