@@ -315,9 +315,11 @@ def _compare(args, signals) -> int:
     import matplotlib
 
     matplotlib.use("Agg")
-    from fivebar_drake.simulation.comparison import check_outputs, write_comparison
+    from fivebar_drake.simulation.comparison import (check_outputs, load_summaries,
+                                                     write_comparison)
 
-    check_outputs(args.runs, args.out)            # before the folder is made
+    check_outputs(args.runs, args.out)            # the outputs and every run read and checked
+    load_summaries(args.runs)                     # before the folder is made
     out = check_output_file(args.out, "--out")
     for path in write_comparison(args.runs, out):
         say(f"wrote {path}")

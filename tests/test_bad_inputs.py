@@ -388,6 +388,17 @@ CASES = {
                                "give a .md file name"),
     "compare over an input named .md": (lambda t: ["compare", good_run(t), "--out",
                                                    str(t / "run")], "--out", "is a folder"),
+    # issue 33's eleventh class: any file in a run's folder is the run's
+    "compare over an input's summary.md": (lambda t: ["compare", good_run(t), "--out",
+                                                      str(t / "run" / "summary.md")], "--out",
+                                           "never writes into a run's folder"),
+    "compare into an input's subfolder": (lambda t: ["compare", good_run(t), "--out",
+                                                     str(t / "run" / "sub" / "c.md")], "--out",
+                                          "never writes into a run's folder"),
+    # issue 33's twelfth class: the runs are read before the output's folder is made
+    "compare a missing run into new folders": (lambda t: ["compare", str(t / "nowhere"),
+                                                          "--out", str(t / "new" / "c.md")],
+                                               "nowhere", "not found"),
     "compare beside a folder named like its PNG": (c_png_folder, "--out", "c.png is a folder"),
 }
 
@@ -409,6 +420,7 @@ def test_bad_input_exits_2_with_a_named_message(case, tmp_path, capsys):
     assert not (tmp_path / "out" / "summary.json").exists()
     assert not (tmp_path / "out" / "report.json").exists()
     assert not (tmp_path / "out" / "leg.sdf").exists()
+    assert not (tmp_path / "new").exists()
     messages = [line for line in err.splitlines() if line.startswith("fivebar-drake")]
     assert len(messages) <= 1, err                        # one message
 

@@ -207,7 +207,7 @@ def figure(summaries: list[Labelled]):
 
 def check_outputs(run_dirs, out_md: Path) -> Path:
     """The PNG's path beside out_md, after checking the outputs (ParameterError naming --out):
-    out_md is a .md file, neither output is a folder or one of the inputs."""
+    out_md is a .md file, neither output is a folder, an input or inside an input's folder."""
     out_md = Path(out_md)
     where = f"--out {out_md}"
     if out_md.is_dir():
@@ -217,15 +217,15 @@ def check_outputs(run_dirs, out_md: Path) -> Path:
                              f"written beside it, {out_md.with_suffix('.png').name})", "--out",
                              where)
     png = out_md.with_suffix(".png")
-    inputs = {(Path(run) / "summary.json").resolve() for run in run_dirs}
+    runs = [Path(r).resolve() for r in run_dirs]
     for path in (out_md, png):
         if path.is_dir():
             raise ParameterError(f"{path} is a folder: the comparison writes {out_md.name} and "
                                  f"{png.name}", "--out", where)
-        if path.resolve() in inputs or any(path.resolve() == Path(r).resolve()
-                                           for r in run_dirs):
-            raise ParameterError(f"{path} is one of the inputs: the comparison never writes "
-                                 "over a run", "--out", where)
+        inside = [r for r in runs if path.resolve() == r or path.resolve().is_relative_to(r)]
+        if inside:       # every file in a run's folder is the run's (summary.md, plots, ...)
+            raise ParameterError(f"{path} lies in the input run {inside[0]}: the comparison "
+                                 "never writes into a run's folder", "--out", where)
     return png
 
 

@@ -101,11 +101,12 @@ def check_scheduler(address: str) -> None:
 
 def check_output_folder(out: Path) -> None:
     """ParameterError unless out is (or can be made as) a folder this process can write in;
-    nothing is left behind by the check (a folder it had to make is removed again)."""
+    nothing is left behind by the check (the folders it had to make, every level, are removed
+    again)."""
     where = f"--out {out}"
     if out.exists() and not out.is_dir():
         raise ParameterError("is a file; the output must be a folder", source=where)
-    made = not out.exists()
+    made = [p for p in (out, *out.parents) if not p.exists()]      # deepest first
     try:
         out.mkdir(parents=True, exist_ok=True)
         with tempfile.NamedTemporaryFile(dir=out):
@@ -114,8 +115,9 @@ def check_output_folder(out: Path) -> None:
         raise ParameterError(f"cannot create or write into this folder: "
                              f"{err.strerror or err}", source=where) from None
     finally:
-        if made and out.is_dir() and not any(out.iterdir()):
-            out.rmdir()
+        for folder in made:               # every level the check made, not only the last
+            if folder.is_dir() and not any(folder.iterdir()):
+                folder.rmdir()
 
 
 def _refuse(out: Path, name: str, why: str) -> ParameterError:

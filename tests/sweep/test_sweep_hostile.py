@@ -83,10 +83,12 @@ def quick_refusal(monkeypatch):
 @pytest.mark.parametrize("address", ["garbage", "http://127.0.0.1:1", "tcp://127.0.0.1",
                                      "tcp://127.0.0.1:1"])
 def test_bad_scheduler_writes_nothing(tmp_path, capsys, address, quick_refusal):
-    out = tmp_path / "out"
+    """Refused naming --scheduler; the output folders the check made, every level of a new
+    nested --out, are gone again (issue 33's twelfth class: only the last level was)."""
+    out = tmp_path / "new" / "a" / "b"
     refused(capsys, ["sweep", str(write(tmp_path, SPEC)), "--out", str(out), "--scheduler",
                      address], "--scheduler")
-    assert not (out / "sweep.json").exists()
+    assert not (tmp_path / "new").exists()
 
 
 def test_workers_bounded(tmp_path, capsys):
