@@ -24,7 +24,7 @@ from importlib.metadata import version
 
 from fivebar_drake import catalog
 from fivebar_drake.core.files import (check_output_file, check_path_name, prepare_output_dir,
-                                      say)
+                                      release_folders, say)
 from fivebar_drake.core.footpath import PATHS
 from fivebar_drake.core import plugins
 from fivebar_drake.core.interrupts import Interrupted, Signals
@@ -528,6 +528,8 @@ def main(argv=None) -> int:
         return 130
     except Exception as err:  # noqa: BLE001  (anything else is a bug: logged, never a traceback)
         return _internal_error(err, argv)
+    finally:
+        release_folders()                   # the output folders this command held
 
 if __name__ == "__main__":
     sys.exit(main())

@@ -604,3 +604,33 @@ def test_an_error_quotes_at_most_a_few_hundred_characters_of_a_value(tmp_path, c
     assert main(["envelope", str(spec), "--out", str(tmp_path / "out")]) == 2
     err = capsys.readouterr().err
     assert "duty_cycle" in err and "characters" in err and len(err) < 1000
+
+
+def test_a_folder_in_use_by_another_run_is_refused_and_a_killed_run_leaves_no_lock(tmp_path,
+                                                                                  capsys):
+    """Issue 33's eighth class: one folder, one run. While another process holds an output
+    folder (as a running command does: core/files.lock_folder), a command into it exits 2
+    naming --out and writes nothing; once that process is killed (SIGKILL: no clean-up) the
+    folder is free again."""
+    import signal
+    import time
+
+    out = tmp_path / "models"
+    holder = subprocess.Popen([sys.executable, "-c",
+                               "import sys, time\n"
+                               "from fivebar_drake.core.files import prepare_output_dir\n"
+                               f"prepare_output_dir({str(out)!r}, '--out')\n"
+                               "print('held', flush=True)\n"
+                               "time.sleep(60)\n"], stdout=subprocess.PIPE, text=True)
+    try:
+        assert holder.stdout.readline().strip() == "held"
+        assert main(["models", "--out", str(out)]) == 2
+        err = capsys.readouterr().err
+        assert "--out" in err and "another fivebar-drake run" in err
+        assert not any(p.suffix == ".sdf" for p in out.iterdir())
+    finally:
+        holder.send_signal(signal.SIGKILL)
+        holder.wait()
+    time.sleep(0.1)
+    assert main(["models", "--out", str(out)]) == 0
+    assert any(p.suffix == ".sdf" for p in out.iterdir())

@@ -29,6 +29,7 @@ import math
 from contextlib import ExitStack
 from pathlib import Path
 
+from fivebar_drake.core.files import lock_folder
 from fivebar_drake.codesign.designs import design_envelope, design_name
 from fivebar_drake.codesign.predict import CHECKS, DUTY, needs
 from fivebar_drake.codesign.report import DEFAULT, CodesignRun, write_report
@@ -125,6 +126,7 @@ def run_codesign(spec: CodesignSpec, out: str | Path, workers: int | None = None
         check_scheduler(scheduler)
     check_output_folder(out)
     out.mkdir(parents=True, exist_ok=True)
+    lock_folder(out, "--out")
     study = search(spec, out, progress)
     entries = predictions(study)
     chosen, verified, pairs = [], {}, []

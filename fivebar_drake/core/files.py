@@ -6,6 +6,7 @@ file or the new complete one, never a truncated one), console lines that survive
 from __future__ import annotations
 
 import contextlib
+import fcntl
 import math
 import os
 import stat
@@ -17,6 +18,7 @@ from fivebar_drake.core.validation import ParameterError
 
 
 NAME_MAX, PATH_MAX = 255, 4096   # bytes: Linux's (and most file systems') limits
+LOCK_NAME = ".fivebar-lock"      # the file an output folder's run holds (lock_folder)
 TEMP_PREFIX = ".fivebar-tmp-"   # temporary files of an atomic write, named so a later run removes them
 MAX_INPUT_BYTES = 10_000_000    # an input file (parameters, scenario, spec, summary) is a few kB;
 #                                 this bounds what a wrong file (a log, a data dump) costs
@@ -65,9 +67,39 @@ def check_path_name(path, option: str) -> None:
                              f"to {PATH_MAX}", option, "command line")
 
 
+def lock_folder(path, option: str) -> None:
+    """Hold folder `path` (an existing output folder, given with `option`) for this process
+    until release_folders: ParameterError naming the option where another process holds it. An
+    advisory lock on LOCK_NAME in it (flock): the system drops it when its holder exits or is
+    killed, so a killed run never leaves it stuck; this process may take it again."""
+    key = os.path.realpath(path)
+    if key in _LOCKS:
+        return
+    fd = os.open(os.path.join(key, LOCK_NAME), os.O_RDWR | os.O_CREAT, 0o644)
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except OSError:
+        os.close(fd)
+        raise ParameterError("another fivebar-drake run is writing into this folder: wait for it "
+                             "to finish, or choose another folder", option,
+                             f"{option} {path}") from None
+    _LOCKS[key] = fd
+
+
+def release_folders() -> None:
+    """Let go of every folder this process holds (lock_folder)."""
+    for fd in _LOCKS.values():
+        os.close(fd)
+    _LOCKS.clear()
+
+
+_LOCKS: dict[str, int] = {}   # the folders this process holds (lock_folder): path -> descriptor
+
+
 def prepare_output_dir(path, option: str, previous_outputs=()) -> Path:
-    """Make sure folder `path` (given with command-line `option`) exists and is writable, and
-    remove the files of a previous run (the names in previous_outputs, and temporary files of an
+    """Make sure folder `path` (given with command-line `option`) exists and is writable, hold
+    it for this run (lock_folder: another process's run in it is refused), and remove the files
+    of a previous run (the names in previous_outputs, and temporary files of an
     interrupted write), so no stale file can pass for this run's. ParameterError otherwise."""
     path = Path(path)
     where = f"{option} {path}"
@@ -82,6 +114,7 @@ def prepare_output_dir(path, option: str, previous_outputs=()) -> Path:
     except OSError as err:
         raise ParameterError(f"cannot create or write into this folder: {err.strerror}",
                              source=where) from None
+    lock_folder(path, option)
     for name in previous_outputs:
         (path / name).unlink(missing_ok=True)
     for stale in path.glob(TEMP_PREFIX + "*"):

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from urllib.parse import urlsplit
 
-from fivebar_drake.core.files import read_input_text, say, write_atomic
+from fivebar_drake.core.files import lock_folder, read_input_text, say, write_atomic
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.robots.quadruped.config import (check_path, load_params, with_changes,
                                                    with_path_defaults)
@@ -261,6 +261,7 @@ def run_sweep(spec: SweepSpec, out: str | Path, workers: int | None = None,
     computed = 0
     with dask_client(workers, scheduler, client) if todo else nullcontext() as dask:
         out.mkdir(parents=True, exist_ok=True)     # the inputs and the scheduler are good
+        lock_folder(out, "--out")
         if rows is None:
             write_atomic(out / SPEC_FILE, json.dumps({"fingerprint": fingerprint,
                                                       "spec": spec.source, "columns": header},
