@@ -142,6 +142,12 @@ class FootPath(Variant):
         """The NamedTuple of constants `point` takes."""
         raise NotImplementedError
 
+    def gait_fields(self) -> tuple[str, ...]:
+        """The Gait fields this path reads (a scenario's override of another is refused: it
+        would do nothing): a periodic path's stride, step height, centre, ground line and
+        frequency."""
+        return ("a_m", "b_m", "x_center_m", "y_home_m", "frequency_hz")
+
     def stance_start(self, gait: Gait) -> float:
         """Cycle phase u at which the stance begins (it ends at u = 1; 0: no swing)."""
         raise NotImplementedError
@@ -296,6 +302,10 @@ class Trot(FootPath):
         """The duty factor: this path's, or the parameter file's."""
         return gait.duty_factor if self.duty_factor is None else self.duty_factor
 
+    def gait_fields(self) -> tuple[str, ...]:
+        """The periodic path's, and gait.duty_factor unless the path has its own."""
+        return super().gait_fields() + (("duty_factor",) if self.duty_factor is None else ())
+
     def check(self, field: str) -> None:
         if self.duty_factor is not None:
             check_number(f"{field}.duty_factor", self.duty_factor, 0.0, 1.0, low_open=True,
@@ -442,6 +452,9 @@ class Doggo(FootPath):
             check_number(f"{field}.flight_share", self.flight_share, 0.0, 1.0, low_open=True,
                          high_open=True)
 
+    def gait_fields(self) -> tuple[str, ...]:
+        return super().gait_fields() + (("duty_factor",) if self.flight_share is None else ())
+
     def constants(self, gait: Gait) -> DoggoConstants:
         return DoggoConstants(gait.a_m, self.height(gait), self.stance_depth_m, gait.x_center_m,
                               gait.y_home_m, gait.frequency_hz, self.share(gait))
@@ -525,6 +538,11 @@ class Maneuver(FootPath):
 
     def leg_phase(self, leg: str) -> float:
         return 0.0
+
+    def gait_fields(self) -> tuple[str, ...]:
+        """A maneuver starts from the gait's home point (x_center, y_home); no stride,
+        frequency or duty factor."""
+        return ("x_center_m", "y_home_m")
 
     def segments(self, gait: Gait) -> list[tuple]:
         """[(duration s, stance, x (p0, v0, a0, p1, v1, a1), y (the same)), ...] in m, m/s,

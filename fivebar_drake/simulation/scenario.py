@@ -180,6 +180,17 @@ class Scenario:
                self.controller.control_period_s, why="the motor model samples every command of "
                                                      "the controller (scenario.control_period_s)")
         number("scenario.load_transfer_s", self.load_transfer_s, 0.0)
+        used = self.gait.gait_fields()
+        for f in dataclasses.fields(self):      # an override the path never reads does nothing
+            name = f.name[len("gait_"):]
+            if f.name.startswith("gait_") and getattr(self, f.name) is not None:
+                require(name in used, f"scenario.{f.name}", getattr(self, f.name),
+                        f"the {self.gait.kind} path does not read gait.{name}"
+                        + (f" (set its own: gait: {{kind: {self.gait.kind}, {name}: ...}})"
+                           if name in {g.name for g in dataclasses.fields(self.gait)} else ""))
+        require(self.phases_rad is None or self.gait.periodic
+                or list(self.phases_rad) == list(path_phases(self.gait)), "scenario.phases_rad",
+                self.phases_rad, f"a {self.gait.kind} moves all legs together: no phases")
         if self.phases_rad is None:
             self.phases_rad = list(path_phases(self.gait))
         require(len(self.phases_rad) == len(LEGS), "scenario.phases_rad", self.phases_rad,

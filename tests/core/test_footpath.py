@@ -258,3 +258,29 @@ def test_a_length_in_millimetres_is_refused_with_a_hint():
 
     with pytest.raises(ParameterError, match="did you mean 0.1"):
         load_scenario(gait={"kind": "drop", "height_m": 100})
+
+
+@pytest.mark.parametrize("fields, field", [
+    ({"gait": "walk", "gait_duty_factor": 0.5}, "scenario.gait_duty_factor"),
+    ({"gait": "bound", "gait_duty_factor": 0.6}, "scenario.gait_duty_factor"),
+    ({"gait": "jump", "gait_frequency_hz": 2.0}, "scenario.gait_frequency_hz"),
+    ({"gait": "drop", "gait_a_m": 0.05}, "scenario.gait_a_m"),
+    ({"gait": "jump", "phases_rad": [0.0, 1.0, 0.0, 1.0]}, "scenario.phases_rad")])
+def test_an_override_the_path_never_reads_is_refused(fields, field):
+    """Issue 33's seventeenth class: a walk's or bound's own duty factor holds, a maneuver has
+    no stride, frequency or phases: such an override did nothing, silently; now refused naming
+    the field (and, where the path has its own, how to set it)."""
+    from fivebar_drake.core.validation import ParameterError
+    from fivebar_drake.simulation.scenario import load_scenario
+
+    with pytest.raises(ParameterError) as err:
+        load_scenario(**fields)
+    assert err.value.field == field
+
+
+def test_overrides_the_path_reads_are_taken():
+    from fivebar_drake.simulation.scenario import load_scenario
+
+    assert load_scenario(gait="trot", gait_duty_factor=0.6).load_params().gait.duty_factor == 0.6
+    assert load_scenario(gait="jump", gait_y_home_m=-0.21).load_params().gait.y_home_m == -0.21
+    assert load_scenario(gait={"kind": "walk", "duty_factor": 0.85}).gait.duty_factor == 0.85
