@@ -634,3 +634,18 @@ def test_a_folder_in_use_by_another_run_is_refused_and_a_killed_run_leaves_no_lo
     time.sleep(0.1)
     assert main(["models", "--out", str(out)]) == 0
     assert any(p.suffix == ".sdf" for p in out.iterdir())
+
+
+@pytest.mark.parametrize("setting, field, words", [
+    ("motor.bus_voltage_V=1e-6", "motor.bus_voltage_V", "[1, 1000]"),
+    ("motor.peak_current_A=1e-300", "motor.peak_current_A", "[0.001, 10000]"),
+    ("motor.torque_constant_Nm_per_A=1e-9", "motor.torque_constant_Nm_per_A", "[0.0001, 10]"),
+    ("motor.model=torque_speed_line", "motor.model", "rather than change the model alone")])
+def test_an_absurd_motor_value_is_blamed_on_itself(setting, field, words, capsys):
+    """Issue 33's twenty-first class: a bus of a microvolt, a peak current of 1e-300 A or a
+    torque constant of 1e-9 N m/A were reported as the friction's or the gear ratio's fault;
+    switching a bldc [motor] to a torque-speed line was refused with a list that holds it."""
+    assert main(["analyze", "--set", setting, "--out", "unused"]) == 2
+    err = capsys.readouterr().err
+    assert f"{field} = " in err and words in err and "friction" not in err
+    assert not Path("unused").exists()

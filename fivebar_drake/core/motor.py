@@ -55,10 +55,13 @@ from fivebar_drake.core.validation import (MAX_GEAR_RATIO, MAX_ROTOR_INERTIA_KG_
 # Bounds, as loose as the others (validation.py): they catch a slip (milliohms as ohms, minutes
 # as seconds, Kelvin as Celsius), not a design.
 MAX_TORQUE_CONSTANT_NM_A = 10.0     # motor side; a large servo is ~1 N m/A
+MIN_TORQUE_CONSTANT_NM_A = 1e-4     # the smallest hobby outrunners are ~2e-3 N m/A
 MAX_RESISTANCE_OHM = 1000.0         # a small hobby motor's winding is ~10 ohm
 MIN_RESISTANCE_OHM = 1e-4           # a large QDD motor's phase is ~0.02 ohm
 MAX_BUS_VOLTAGE_V = 1000.0          # legged robots run 12-100 V
+MIN_BUS_VOLTAGE_V = 1.0             # no motor drive runs on less (a single Li-ion cell: 3.7 V)
 MAX_CURRENT_A = 10_000.0            # the largest QDD drives take ~100 A
+MIN_CURRENT_A = 1e-3                # a milliamp turns no leg (the smallest drives give ~1 A)
 MAX_THERMAL_RESISTANCE_K_W = 1000.0  # a bare 20 mm motor is ~20 K/W
 MAX_THERMAL_TIME_CONSTANT_S = 1e5   # a large motor's housing: about an hour
 MIN_AMBIENT_C, MAX_AMBIENT_C = -60.0, 100.0
@@ -450,11 +453,16 @@ class BldcMotor(Motor):
     model: str = "bldc"
 
     def __post_init__(self):
-        require(self.model == "bldc", "motor.model", self.model, f"one of {list(MODELS)}")
-        for name, high in (("torque_constant_Nm_per_A", MAX_TORQUE_CONSTANT_NM_A),
-                           ("bus_voltage_V", MAX_BUS_VOLTAGE_V),
-                           ("peak_current_A", MAX_CURRENT_A)):
-            check_number(f"motor.{name}", getattr(self, name), 0.0, high, low_open=True)
+        require(self.model == "bldc", "motor.model", self.model,
+                f"one of {list(MODELS)}" if self.model not in MODELS else
+                f"this [motor] gives a bldc motor's fields; a {self.model} motor is described "
+                "by other ones (fivebar_drake/data/default.toml's notes): write its [motor] "
+                "section in a parameter file (--config) rather than change the model alone")
+        for name, low, high in (
+                ("torque_constant_Nm_per_A", MIN_TORQUE_CONSTANT_NM_A, MAX_TORQUE_CONSTANT_NM_A),
+                ("bus_voltage_V", MIN_BUS_VOLTAGE_V, MAX_BUS_VOLTAGE_V),
+                ("peak_current_A", MIN_CURRENT_A, MAX_CURRENT_A)):
+            check_number(f"motor.{name}", getattr(self, name), low, high)
         check_number("motor.winding_resistance_ohm", self.winding_resistance_ohm,
                      MIN_RESISTANCE_OHM, MAX_RESISTANCE_OHM)
         self._check_fields()

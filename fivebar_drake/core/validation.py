@@ -46,18 +46,20 @@ class ParameterError(ValueError):
 
 
 def require(ok: bool, field: str, value, rule: str) -> None:
-    """ParameterError "field = value: rule" unless ok; a value, or a rule quoting one, longer
-    than MAX_ECHO characters is cut there (a list of a million steps is not echoed whole)."""
+    """ParameterError "field = value: rule" unless ok; a value longer than MAX_ECHO characters
+    (a rule longer than MAX_RULE: one quoting values) is cut there (a list of a million steps
+    is not echoed whole)."""
     if not ok:
-        raise ParameterError(f"{field} = {_echo(repr(value))}: {_echo(rule)}", field)
+        raise ParameterError(f"{field} = {_echo(repr(value), MAX_ECHO)}: "
+                             f"{_echo(rule, MAX_RULE)}", field)
 
 
-MAX_ECHO = 200   # characters of a value (or a rule) an error message quotes
+MAX_ECHO, MAX_RULE = 200, 700   # characters of a value, and of a rule, an error quotes
 
 
-def _echo(text: str) -> str:
-    """text, or its first MAX_ECHO characters and how many there were."""
-    return text if len(text) <= MAX_ECHO else f"{text[:MAX_ECHO]}... ({len(text)} characters)"
+def _echo(text: str, most: int) -> str:
+    """text, or its first `most` characters and how many there were."""
+    return text if len(text) <= most else f"{text[:most]}... ({len(text)} characters)"
 
 
 def check_number(field: str, value, low=-math.inf, high=math.inf, *, low_open=False,

@@ -130,7 +130,9 @@ def _base_scenario(value, folder: Path) -> tuple[str | None, dict]:
 def _maneuver(i: int, item, base: tuple[str | None, dict], duration, config,
               folder: Path) -> Maneuver:
     """The maneuver maneuvers[i], checked as simulate checks a run; its errors name the
-    maneuver (those of a file it reads name that file)."""
+    maneuver and the field where it was given: the maneuver's own (maneuvers[i].FIELD), the
+    spec's scenario (scenario.FIELD) or its duration_s (those of a file it reads name that
+    file)."""
     where = f"maneuvers[{i}]"
     require(isinstance(item, dict) and isinstance(item.get("name"), str), where, item,
             "must be a mapping with a name, e.g. {name: trot_fast, gait: trot, "
@@ -158,7 +160,13 @@ def _maneuver(i: int, item, base: tuple[str | None, dict], duration, config,
         if err.source not in ("", "command line", "built-in scenario"):
             raise                           # the base scenario's file or a parameter file
         inner = err.field[len("scenario."):] if err.field.startswith("scenario.") else ""
-        field_ = f"{where}.{inner}" if inner else where
+        key = inner.split(".")[0].split("[")[0]
+        if key and key not in changes and key in base[1]:        # from the spec's scenario
+            field_ = f"scenario.{inner}"
+        elif key == "duration_s" and "duration_s" not in changes and duration is not None:
+            field_ = "duration_s"                                # the spec's own duration
+        else:
+            field_ = f"{where}.{inner}" if inner else where
         message = (field_ + err.message[len(err.field):] if inner and
                    err.message.startswith(err.field) else f"{where}: {err.message}")
         raise ParameterError(f"{message} (maneuver {name!r})", field_) from None

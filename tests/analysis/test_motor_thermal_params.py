@@ -14,7 +14,7 @@ CASES = {
                               "3.35889] (at most peak_current_A)"),
     "no torque constant": ("torque_constant_Nm_per_A = 0.20674833578317203",
                            "torque_constant_Nm_per_A = 0",
-                           "motor.torque_constant_Nm_per_A = 0.0: must be in (0, 10]"),
+                           "motor.torque_constant_Nm_per_A = 0.0: must be in [0.0001, 10]"),
     "milliohms as ohms": ("winding_resistance_ohm = 2.0", "winding_resistance_ohm = 1000.5",
                           "motor.winding_resistance_ohm = 1000.5: must be in [0.0001, 1000]"),
     "negative thermal resistance": ("thermal_resistance_K_W = 15.0",

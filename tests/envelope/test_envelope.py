@@ -96,6 +96,12 @@ def summary(folder):
     ("maneuvers:\n  - {name: t}\nrepeat: 2\n", ["repeat", "unknown key"]),
     ("scenario: {gait_frequency_hz: 50}\nmaneuvers:\n  - {name: t}\n",
      ["maneuver 't'", "gait_frequency_hz"]),
+    # issue 33's twenty-first class: the field named where it was given
+    ("scenario: {log_period_s: -1}\nmaneuvers:\n  - {name: t}\n",
+     ["scenario.log_period_s = -1", "maneuver 't'"]),
+    ("duration_s: 1.0e9\nmaneuvers:\n  - {name: t}\n", ["duration_s = 1000000000", "<= 1000"]),
+    ("scenario: {log_period_s: 0.002}\nmaneuvers:\n  - {name: t, log_period_s: -1}\n",
+     ["maneuvers[0].log_period_s = -1"]),
 ])
 def test_bad_specs_exit_2_and_write_nothing(tmp_path, capsys, text, words):
     out = tmp_path / "out"
