@@ -69,9 +69,12 @@ def answer(s: Summary, params: Params) -> str:
     if s["verdict"] == "not_achieved":
         why = c["achieved"]["why"]
         if m["saturated_fraction"] > params.checks.achieved_max_limit_fraction:
+            below = m["unsaturated_demand_p99_Nm"]
             need = (f"the motors need more than they give (worst motor {leg} {name}, at "
-                    f"{limit_shares_text(m['limit_shares'])}; below its limits its demand p99 is "
-                    f"{m['unsaturated_demand_p99_Nm']:.2f} N·m)")
+                    f"{limit_shares_text(m['limit_shares'])}; "
+                    + (f"below its limits its demand p99 is {below:.2f} N·m)"
+                       if below is not None and math.isfinite(below) else
+                       "it was at a limit in every sample)"))
         else:
             need = (f"its demand p99 of {m['demand_p99_Nm']:.2f} N·m (worst motor {leg} {name}) "
                     "is not a need")
