@@ -649,3 +649,15 @@ def test_an_absurd_motor_value_is_blamed_on_itself(setting, field, words, capsys
     err = capsys.readouterr().err
     assert f"{field} = " in err and words in err and "friction" not in err
     assert not Path("unused").exists()
+
+
+def test_set_takes_what_a_sweep_takes():
+    """Issue 33's sixteenth class: --set reads its value as a sweep's spec (YAML): an integer
+    field and a list field are set; a fraction for an integer is still refused."""
+    from fivebar_drake.robots.quadruped.config import load_params
+    from fivebar_drake.studies.fivebar_leg import with_sets
+
+    params = with_sets(load_params(None), ["gait.samples=120", "leg.motor_a_m=[-0.05, 0.0]"])
+    assert params.gait.samples == 120 and tuple(params.leg.motor_a_m) == (-0.05, 0.0)
+    with pytest.raises(ParameterError, match="gait.samples"):
+        with_sets(load_params(None), ["gait.samples=12.5"])
