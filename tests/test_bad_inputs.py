@@ -661,3 +661,17 @@ def test_set_takes_what_a_sweep_takes():
     assert params.gait.samples == 120 and tuple(params.leg.motor_a_m) == (-0.05, 0.0)
     with pytest.raises(ParameterError, match="gait.samples"):
         with_sets(load_params(None), ["gait.samples=12.5"])
+
+
+def test_compare_tells_same_named_runs_apart(tmp_path):
+    """Issue 33's twenty-third class: two envelopes' `drop` maneuvers were both labelled
+    "drop"; each run is labelled by as many parent folders as it takes to tell them apart."""
+    from fivebar_drake.simulation.comparison import load_summaries
+
+    runs = []
+    for parent in ("gear8", "gear11"):
+        folder = tmp_path / parent / "drop"
+        folder.mkdir(parents=True)
+        (folder / "summary.json").write_text(summary_text())
+        runs.append(str(folder))
+    assert [s["label"] for s in load_summaries(runs)] == ["gear8/drop", "gear11/drop"]

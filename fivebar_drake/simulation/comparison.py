@@ -34,10 +34,11 @@ def load_summaries(run_dirs) -> list[Labelled]:
     """summary.json of each run folder, in order; ParameterError naming the file if one is
     missing or is not a summary of `fivebar-drake simulate`."""
     out = []
-    for run in run_dirs:
+    labels = _labels([Path(run).resolve() for run in run_dirs])
+    for run, label in zip(run_dirs, labels):
         path = Path(run) / "summary.json"
         try:
-            out.append({**_summary(path), "label": Path(run).resolve().name})
+            out.append({**_summary(path), "label": label})
         except ParameterError as err:
             raise ParameterError(f"{err.message} (a run folder of `fivebar-drake simulate "
                                  f"--out {run}` holds it)", err.field, str(path)) from None
@@ -91,6 +92,16 @@ def _summary(path: Path) -> Summary:
 
 def _num(value, fmt=".2f") -> str:
     return "n/a" if value is None else format(value, fmt)
+
+
+def _labels(folders: list[Path]) -> list[str]:
+    """Each run's label: its folder's name, with as many parent folders as it takes to tell the
+    runs apart (two envelopes' `drop` folders: `a/drop`, `b/drop`)."""
+    for depth in range(1, max(len(f.parts) for f in folders) + 1):
+        labels = ["/".join(f.parts[-depth:]) for f in folders]
+        if len(set(labels)) == len(labels) or len(set(folders)) < len(folders):
+            return labels
+    return [str(f) for f in folders]
 
 
 def _label(s: Labelled) -> str:
