@@ -30,13 +30,14 @@ from contextlib import ExitStack
 from pathlib import Path
 
 from fivebar_drake.core.files import lock_folder
+from fivebar_drake.core.progress import Progress
 from fivebar_drake.codesign.designs import design_envelope, design_name
 from fivebar_drake.codesign.predict import CHECKS, DUTY, needs
 from fivebar_drake.codesign.report import DEFAULT, CodesignRun, write_report
 from fivebar_drake.codesign.search import predictions, ranked, search
 from fivebar_drake.codesign.spec import CodesignSpec
 from fivebar_drake.envelope.run import run_envelope
-from fivebar_drake.sweep.engine import (Progress, check_output_folder, check_scheduler,
+from fivebar_drake.sweep.engine import (check_output_folder, check_scheduler,
                                         check_workers, dask_client)
 
 FINALISTS_DIR = "finalists"

@@ -16,7 +16,7 @@ from fivebar_drake.codesign.designs import design_of
 from fivebar_drake.codesign.predict import predict
 from fivebar_drake.codesign.spec import GEARBOX, MOTOR, CodesignSpec
 from fivebar_drake.core.validation import ParameterError
-from fivebar_drake.sweep.engine import Progress
+from fivebar_drake.core.progress import Progress
 
 JOURNAL_FILE = "codesign.journal"
 STUDY = "codesign"

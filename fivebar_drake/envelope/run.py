@@ -20,6 +20,7 @@ import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from fivebar_drake.core.progress import Progress
 from fivebar_drake.core.files import prepare_output_dir, say, write_atomic
 from fivebar_drake.core.interrupts import Interrupted
 from fivebar_drake.core.validation import ParameterError
@@ -32,7 +33,7 @@ from fivebar_drake.envelope.spec import EnvelopeSpec
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.pipeline import SIMULATION_FILES
 from fivebar_drake.robots.quadruped.legs import LEGS
-from fivebar_drake.sweep.engine import (Progress, check_output_folder, check_scheduler,
+from fivebar_drake.sweep.engine import (check_output_folder, check_scheduler,
                                         check_workers, dask_client, finished_tasks)
 
 ENVELOPE_FILES = PLOT_FILES + REPORT_FILES            # envelope.json last

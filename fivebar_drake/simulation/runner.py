@@ -14,6 +14,7 @@ import numpy as np
 from pydrake.systems.analysis import ApplySimulatorConfig, Simulator
 
 from fivebar_drake.core.files import say
+from fivebar_drake.core.progress import Progress
 from fivebar_drake.core.motor import clip_flags
 from fivebar_drake.core.rotation import tilt_deg
 from fivebar_drake.core.validation import ParameterError
@@ -43,7 +44,6 @@ def load_run(path: "str | Path | None" = None, **overrides) -> tuple[Scenario, P
 
 FALL_TILT_DEG = 45.0   # a body tilted further has fallen: the run stops
 SLICE_S = 0.01         # simulated time between checks for divergence and a stop request
-PROGRESS_LINES = 20    # progress lines over a run
 DIVERGED_GAP_M = 1e-3  # a loop open by more than this (1 % of a link) has come apart
 
 
@@ -154,7 +154,7 @@ def simulate(scenario: Scenario, params: Params, progress=True, log_actuation=Fa
          f"time step {setup.design.time_step_s * 1e3:.3f} ms")
     start, error, interrupted = time.perf_counter(), "", ""
     slices = max(1, math.ceil(duration / SLICE_S - 1e-9))
-    every = max(1, slices // PROGRESS_LINES)
+    bar = Progress(duration, 0.0, progress, "simulate", "s simulated", failures=False)
     try:
         for k in range(1, slices + 1):
             t = min(k * SLICE_S, duration)
@@ -171,9 +171,8 @@ def simulate(scenario: Scenario, params: Params, progress=True, log_actuation=Fa
                 tell(f"{interrupted} received: stopped at t = {t:.2f} s; writing what was "
                      "simulated")
                 break
-            if k % every == 0 or k == slices:
-                wall = time.perf_counter() - start
-                tell(f"  t = {t:6.2f} s / {duration:g} s  ({t / wall:4.2f}x real time)")
+            bar.note = f"{t / (time.perf_counter() - start):.2f}x real time"
+            bar.add(t - bar.done)
     except RuntimeError as err:   # Drake's own errors: a divergence
         error = divergence(str(err), context.get_time(), scenario, params, setup.layout,
                            setup.design, interval_table(setup, params, context))

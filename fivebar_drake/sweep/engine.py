@@ -17,13 +17,13 @@ import json
 import os
 import sys
 import tempfile
-import time
 from contextlib import contextmanager, nullcontext
 from dataclasses import dataclass
 from pathlib import Path
 from urllib.parse import urlsplit
 
 from fivebar_drake.core.files import lock_folder, read_input_text, say, write_atomic
+from fivebar_drake.core.progress import Progress
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.robots.quadruped.config import (check_path, load_params, with_changes,
                                                    with_path_defaults)
@@ -35,7 +35,6 @@ from fivebar_drake.sweep.spec import SweepSpec
 
 TABLE_FILE, SPEC_FILE = "points.csv", "sweep.json"
 ANALYSIS_CHUNK = 500      # analysis points per task: whole groups of the vectorised evaluation
-PROGRESS_EVERY_S = 1.0
 WORKERS_PER_CORE = 4      # process workers beyond a few per core only queue for the cores, and
 #                           each simulation worker holds ~0.6 GB (a Drake plant and its run)
 SCHEDULER_SCHEMES = ("tcp", "tls", "ws", "wss", "ucx")   # Dask's comm protocols
@@ -172,36 +171,6 @@ def _previous_rows(fingerprint: str, out: Path, header: list[str],
         seen.add(point)
         rows.append(row)
     return rows, len(records) - len(rows) + (complete != text)
-
-
-class Progress:
-    """A progress line on stderr: items (points, maneuvers) done of all, failures, time left
-    (from the mean rate so far) and a note (e.g. the best design so far); redrawn in place on a
-    terminal, else one line per PROGRESS_EVERY_S * 10."""
-
-    def __init__(self, total: int, done: int, enabled: bool, job: str = "sweep",
-                 items: str = "points"):
-        self.total, self.done, self.failed, self.enabled = total, done, 0, enabled
-        self.job, self.items, self.note = job, items, ""
-        self.start, self.first, self.shown = time.perf_counter(), done, 0.0
-        self.tty = sys.stderr.isatty()
-
-    def add(self, count: int, failed: int = 0) -> None:
-        """count more items done, `failed` of them failed."""
-        self.done += count
-        self.failed += failed
-        now = time.perf_counter()
-        every = PROGRESS_EVERY_S * (1 if self.tty else 10)
-        if self.enabled and (now - self.shown >= every or self.done == self.total):
-            self.shown = now
-            elapsed, new = now - self.start, self.done - self.first
-            left = elapsed / new * (self.total - self.done) if new else float("nan")
-            bar = "#" * int(30 * self.done / self.total)
-            line = (f"{self.job} [{bar:<30}] {self.done}/{self.total} {self.items}, "
-                    f"{self.failed} failed, {elapsed:.0f} s, ~{left:.0f} s left"
-                    + (f"; {self.note}" if self.note else ""))
-            print(("\r" + line) if self.tty else line, end="" if self.tty and
-                  self.done < self.total else "\n", file=sys.stderr, flush=True)
 
 
 @contextmanager

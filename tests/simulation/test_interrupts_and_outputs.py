@@ -9,6 +9,7 @@ import signal
 import subprocess
 import sys
 import time
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -44,7 +45,7 @@ def test_signal_stops_simulate_and_keeps_what_it_has(tmp_path, signum, code):
     while time.monotonic() < deadline:                   # wait for stepping to be under way
         line = proc.stderr.readline()
         err_lines.append(line)
-        if "t = " in line and "real time" in line or not line:
+        if "s simulated" in line and "real time" in line or not line:   # the progress line
             break
     assert "real time" in err_lines[-1], "".join(err_lines)
     proc.send_signal(signum)
@@ -67,7 +68,9 @@ def test_signal_stops_simulate_and_keeps_what_it_has(tmp_path, signum, code):
     assert rows == pytest.approx(summary["duration_s"] / summary["log_period_s"], abs=2)
     assert (out / "sim_torques.png").read_bytes()[:4] == b"\x89PNG"
     assert "interrupted" in (out / "summary.md").read_text()
-    assert f"open the recording with: rerun '{out / 'run.rrd'}'" in stdout
+    viewer = Path(sys.executable).parent / "rerun"           # the venv's, runnable as is
+    assert f"open the recording with: {viewer} '{out / 'run.rrd'}'" in stdout
+    assert viewer.exists()
 
 
 def test_interrupted_write_leaves_the_old_or_the_new_file(tmp_path):

@@ -4,6 +4,7 @@ fivebar_drake.pipeline: analysis/report.py, simulation/summary_text.py)."""
 from __future__ import annotations
 
 import shlex
+import sys
 from pathlib import Path
 
 from fivebar_drake.core.summary_schema import Summary
@@ -46,10 +47,13 @@ def simulation_lines(summary: Summary) -> list[str]:
     for leg, motors in s["legs"].items():
         lines.append("  " + leg + ": " + ", ".join(
             f"{m} demand p99 {v['demand_p99_Nm']:.2f} N m (RMS {v['rms_torque_Nm']:.2f}, "
-            f"SF {v['safety_factor']:.2f}, {v['verdict']})" for m, v in motors.items()))
+            f"SF {v['safety_factor']:.2f}, {v['verdict']}"
+            + (f" by {v['checks']['deciding_check']}" if v.get("checks") else "") + ")"
+            for m, v in motors.items()))
     lines.append(limits_text(s["limits"]))
-    lines.append(f"verdict: {s['verdict'].upper()} (worst motor {s['worst_motor']}, "
-                 f"{s['deciding_check']} check)")
+    lines.append(f"verdict: {s['verdict'].upper()}" + (
+        f" (worst motor {s['worst_motor']}, decided by the {s['deciding_check']} check)"
+        if s["deciding_check"] else " (no verdict: see the answer below)"))
     if s["step_check"]:
         sc = s["step_check"]
         lines.append(f"step check at {sc['half_time_step_s']:g} s: worst demand p99 change "
@@ -62,7 +66,11 @@ def simulation_lines(summary: Summary) -> list[str]:
 
 
 def recording_line(path: Path) -> str:
-    return f"open the recording with: rerun {shlex.quote(str(path))}"
+    """How to open the recording: the rerun viewer installed beside this Python (the venv's,
+    which works without activating it), else `rerun` on the PATH."""
+    beside = Path(sys.executable).parent / "rerun"
+    viewer = shlex.quote(str(beside)) if beside.exists() else "rerun"
+    return f"open the recording with: {viewer} {shlex.quote(str(path))}"
 
 
 def simulation_warnings(params: Params) -> list[str]:
