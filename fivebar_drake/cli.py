@@ -1,9 +1,9 @@
 """Command line of fivebar_drake:
 
-  fivebar-drake analyze  [--mechanism NAME] [--gait {seed_ellipse,trot}] [--config FILE]
+  fivebar-drake analyze  [--mechanism NAME] [--gait NAME] [--config FILE]
                          [--set FIELD=VALUE ...] [--out DIR]
   fivebar-drake simulate [--mechanism NAME] [--scenario FILE] [--config FILE]
-                         [--set FIELD=VALUE ...] [--gait {trot,seed_ellipse}] [--duration S]
+                         [--set FIELD=VALUE ...] [--gait NAME] [--duration S]
                          [--closure {bushing,bushing_rpy,ball}] [--step-check] [--out DIR]
   fivebar-drake sweep    SPEC.yaml [--out DIR] [--workers N] [--scheduler ADDRESS]
   fivebar-drake envelope [SPEC.yaml] [--out DIR] [--workers N] [--scheduler ADDRESS]
@@ -11,7 +11,10 @@
   fivebar-drake optimal  [--config FILE] [--set FIELD=VALUE ...] [--height M] [--payload KG]
                          [--simulate] [--out DIR]
   fivebar-drake compare  RUN_DIR [RUN_DIR ...] [--out FILE]
-  fivebar-drake models   [--scenario FILE] [--config FILE] [--out DIR]"""
+  fivebar-drake models   [--scenario FILE] [--config FILE] [--out DIR]
+
+(fivebar-drake COMMAND --help lists each option's choices: analyze's 6 foot paths, simulate's
+gaits and maneuvers, the closures, the mechanisms.)"""
 
 from __future__ import annotations
 
@@ -375,8 +378,8 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--out", metavar="DIR",
                    help="output folder; a previous analysis's files in it are replaced "
                         "(default: out/analysis for the 5-bar leg, out/NAME for another)")
-    s = command("simulate", _simulate, "Drake simulation of the trotting quadruped, or of "
-                "another mechanism")
+    s = command("simulate", _simulate, "Drake simulation of the quadruped's gaits and "
+                "maneuvers, or of another mechanism")
     s.add_argument("--mechanism", **mechanism)
     s.add_argument("--scenario", metavar="FILE",
                    help="scenario file (YAML, fields of fivebar_drake.simulation.scenario.Scenario, see "
