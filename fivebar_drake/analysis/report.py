@@ -90,6 +90,25 @@ def _where(at: dict) -> str:
     return f"t = {at['time_s']:.3f} s (sample {at['sample']}), F = ({x:.1f}, {y:.1f}) mm"
 
 
+def answer(analysis: Analysis) -> str:
+    """report.md's first line: each motor's verdict with the check that decided it and its
+    figure against the thresholds, for the physically consistent model under the trot's loading
+    (what the robot's legs carry) and for the seed's model as written."""
+    r, c, motor = analysis.results["results"], analysis.params.checks, analysis.params.motor
+
+    def verdicts(model: str) -> str:
+        return ", ".join(
+            f"{m} {r[model][m]['checks']['verdict'].upper()} by the "
+            f"{r[model][m]['checks']['deciding_check']} check (SF "
+            f"{r[model][m]['checks']['torque']['sf']:.2f})" for m in MOTORS)
+
+    return (f"**Answer:** against the {motor.peak_torque_Nm:.2f} N·m, "
+            f"{motor.no_load_speed_rad_s:.2f} rad/s motors, the physically consistent model "
+            f"with the trot's loading (full_trot): {verdicts('full_trot')}; the seed's model as "
+            f"written: {verdicts('seed')}. Thresholds: SF ≥ {c.sf_pass:g} pass, ≥ {c.sf_warn:g} "
+            f"warn, else fail; the speed and thermal checks below.")
+
+
 def markdown(analysis: Analysis, sampled: dict | None = None) -> str:
     """report.md; sampled: config.sampling_error of the analysed path (computed if None)."""
     if sampled is None:
@@ -99,6 +118,8 @@ def markdown(analysis: Analysis, sampled: dict | None = None) -> str:
     g = p.gait
     lines = [
         f"# 5-bar leg: dynamic torque analysis over the {path.title}",
+        "",
+        answer(analysis),
         "",
         f"Foot path: {path.text(g)}, f = {g.frequency_hz:g} Hz, N = {g.samples} samples "
         f"(central differences: peak joint speed within {sampled['speed']:.1%}, peak "

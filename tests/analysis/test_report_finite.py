@@ -58,3 +58,20 @@ def test_report_is_written_and_finite(name, tmp_path, capsys):
         # two modes put both knees on one point: no assembly, never offered
         assert sorted(home["home_pose_null_why"]) == ["knees_back", "knees_forward"]
         assert all("coincide" in why for why in home["home_pose_null_why"].values())
+
+
+def test_the_report_answers_first():
+    """Issue 32: report.md's first paragraph is the answer: each motor's verdict and deciding
+    check for the trot-loaded full model and the seed's model, as report.json has them."""
+    from fivebar_drake.analysis.report import markdown
+    from fivebar_drake.analysis.torques import analyze
+    from fivebar_drake.robots.quadruped.config import load_params
+
+    an = analyze(load_params(None))
+    first = markdown(an).split("\n\n")[1]
+    assert first.startswith("**Answer:**")
+    for model in ("full_trot", "seed"):
+        for motor in ("A", "B"):
+            c = an.results["results"][model][motor]["checks"]
+            assert (f"{motor} {c['verdict'].upper()} by the {c['deciding_check']} check "
+                    f"(SF {c['torque']['sf']:.2f})") in first
