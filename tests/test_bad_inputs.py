@@ -675,3 +675,24 @@ def test_compare_tells_same_named_runs_apart(tmp_path):
         (folder / "summary.json").write_text(summary_text())
         runs.append(str(folder))
     assert [s["label"] for s in load_summaries(runs)] == ["gear8/drop", "gear11/drop"]
+
+
+def test_compare_answers_first_and_says_when_the_deciding_check_moves(tmp_path):
+    """Issue 32: the comparison's first paragraph gives each run's verdict and deciding check,
+    and says when a change (a gearbox) turned one check's failure into another's."""
+    import json as json_
+
+    from fivebar_drake.simulation.comparison import load_summaries, markdown
+
+    runs = []
+    for name, check in (("gear8", "torque"), ("gear11.5", "speed")):
+        folder = tmp_path / name
+        folder.mkdir()
+        data = json_.loads(summary_text(verdict="fail"))
+        data.update(deciding_check=check, worst_motor="FL A")
+        (folder / "summary.json").write_text(json_.dumps(data))
+        runs.append(str(folder))
+    first = markdown(load_summaries(runs)).split("\n\n")[1]
+    assert first.startswith("**Answer:** gear8: FAIL by the torque check")
+    assert "gear11.5: FAIL by the speed check" in first
+    assert "torque check's fail became a fail of the speed check" in first

@@ -130,8 +130,28 @@ def verdict_table(summaries: list[Labelled]) -> list[str]:
     return lines
 
 
+def answer(summaries: list[Labelled]) -> str:
+    """The comparison in one sentence: each run's verdict and the check that decided it (its
+    worst motor), and, where the deciding check changes from one run to the next, that the
+    change turned one check's failure into another's."""
+    def one(s: Labelled) -> str:
+        check = s.get("deciding_check")
+        return (f"{_label(s)}: {str(s['verdict']).upper()}"
+                + (f" by the {check} check (worst motor {s.get('worst_motor')})" if check
+                   else ""))
+
+    text = "; ".join(one(s) for s in summaries) + "."
+    for a, b in zip(summaries, summaries[1:]):
+        ca, cb = a.get("deciding_check"), b.get("deciding_check")
+        if ca and cb and ca != cb and b["verdict"] in ("fail", "not_achieved"):
+            text += (f" From {_label(a)} to {_label(b)} the {ca} check's {a['verdict']} became "
+                     f"a {b['verdict']} of the {cb} check: the change moved the limit, it did "
+                     "not remove it.")
+    return text
+
+
 def markdown(summaries: list[Labelled]) -> str:
-    lines = ["# Runs side by side", "",
+    lines = ["# Runs side by side", "", f"**Answer:** {answer(summaries)}", "",
              "Each run's demand (the controller's command before saturation, 99th percentile "
              "over its whole gait cycles) and RMS applied torque per motor, beside the static "
              "estimates for the same poses: the seed's (G(q) with the weight share at the foot) "
