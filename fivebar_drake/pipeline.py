@@ -220,7 +220,13 @@ def _review(record: SimulationRecord, half: SimulationRecord | None = None):
     if floor is not None:
         summary["answer"] += " " + any_controller_text(floor)
     summary = in_schema_order({**summary, "any_controller": floor})
-    if half is not None:
+    if half is not None and half.interrupted:    # a step check cut short is none, and says so
+        summary["step_check_interrupted"] = (
+            f"{half.interrupted} stopped the run at half the plant step at t = "
+            f"{half.table['t'][-1] if len(half.table['t']) else 0.0:.2f} s")
+        summary["answer"] += (f" No step check: {summary['step_check_interrupted']} "
+                              "(the verdict above is the plant step's alone).")
+    elif half is not None:
         half_sig, half_steps = _signals(half)
         apply_step_check(summary, summarize(half_sig, half, reference, half_steps),
                          record.params)

@@ -397,6 +397,7 @@ class Summary(TypedDict):
     motor_peak_torque_Nm: float
     motor: MotorRating
     step_check: StepCheck | None
+    step_check_interrupted: str                # why the step check has no result ("": it ran)
     limits: LimitReport
     legs: dict[str, dict[str, MotorSummary]]   # leg -> motor ("A", "B") ->
     any_controller: AnyController | None       # a jump's floor (pipeline.any_controller)

@@ -66,6 +66,7 @@ def summarize(sig: Signals, record: SimulationRecord, seed_analysis: dict,
         "gait_speed_m_s": gait_speed, **maneuver_summary(maneuver),
         "seed_peak_torque_Nm": max(seed_analysis[m]["peak_torque_Nm"] for m in MOTORS),
         "seed_load_model": seed_analysis_load(params), "step_check": None,
+        "step_check_interrupted": "",
         "limits": limit_report(sig, params, record.layout.legs), "legs": legs})
     summary["answer"] = answer(summary, params)
     return summary

@@ -235,3 +235,30 @@ def test_too_few_samples_per_cycle_are_warned(tmp_path, capsys):
     assert report["sampling_error"]["speed"] == pytest.approx(independent, abs=0.05)
     assert independent > 0.3                               # the 2.6x of the issue, roughly
     assert math.isfinite(report["sampling_error"]["acceleration"])
+
+
+@pytest.mark.slow
+def test_an_interrupted_step_check_is_marked_as_such(tmp_path):
+    """Issue 33's fourteenth class: SIGINT during --step-check's second run left step_check
+    null, interrupted false, completed true, indistinguishable from a run without the step
+    check. Now: exit 130, summary.json's step_check_interrupted says what stopped it and when,
+    and the answer says the verdict is the plant step's alone."""
+    out = tmp_path / "run"
+    proc = subprocess.Popen([sys.executable, "-m", "fivebar_drake", "simulate", "--duration",
+                             "8", "--closure", "ball", "--step-check", "--out", str(out)],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    runs = 0
+    while True:                                  # the second run's first progress line
+        line = proc.stderr.readline()
+        if not line:
+            break
+        runs += line.startswith("simulating ")
+        if runs == 2 and "s simulated" in line:
+            proc.send_signal(signal.SIGINT)
+            break
+    _, err = proc.communicate(timeout=300)
+    assert runs == 2 and proc.returncode == 130, err
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["step_check"] is None and summary["completed"]
+    assert summary["step_check_interrupted"].startswith("SIGINT stopped the run at half")
+    assert "No step check" in summary["answer"]

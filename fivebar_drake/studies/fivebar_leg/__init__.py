@@ -116,7 +116,7 @@ def simulate(inputs, progress: bool, stop: Callable[[], str]) -> Simulated:
         say(f"step check: the same run at half the plant step "
             f"({record.design.time_step_s / 2:g} s)")
     half = pipeline.run_step_check(record, progress=progress, stop=stop)
-    return Simulated(record, None if half.interrupted else half)
+    return Simulated(record, half)           # interrupted: the summary says there is no check
 
 
 def write_simulation(run: Simulated, out: Path) -> Written:
@@ -129,5 +129,8 @@ def write_simulation(run: Simulated, out: Path) -> Written:
                    failure=report.failure(run.record, summary),
                    interrupted=(f"{summary['error']}: wrote what was simulated (summary.json: "
                                 "completed false, interrupted true)"
-                                if run.record.interrupted else ""),
+                                if run.record.interrupted else
+                                f"{summary['step_check_interrupted']}: wrote the run without its "
+                                "step check (summary.json: step_check_interrupted)"
+                                if summary["step_check_interrupted"] else ""),
                    timed=False)
