@@ -33,8 +33,8 @@ from fivebar_drake.envelope.spec import EnvelopeSpec
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.pipeline import SIMULATION_FILES
 from fivebar_drake.robots.quadruped.legs import LEGS
-from fivebar_drake.sweep.engine import (check_output_folder, check_scheduler,
-                                        check_workers, dask_client, finished_tasks)
+from fivebar_drake.sweep.engine import (check_output_folder, check_scheduler, check_workers,
+                                        dask_client, finished_tasks, raised_by_task)
 
 ENVELOPE_FILES = PLOT_FILES + REPORT_FILES            # envelope.json last
 
@@ -59,6 +59,11 @@ def check_folders(out: Path, spec: EnvelopeSpec) -> None:
         if folder.exists() and not folder.is_dir():
             raise ParameterError(f"is a file; maneuver {m.name!r} writes its outputs into this "
                                  "folder", source=f"--out {folder}")
+
+
+class ManeuverTaskError(RuntimeError):
+    """A maneuver's task raised inside its worker (not a lost worker: those are failed
+    maneuvers with no verdict)."""
 
 
 def run_envelope(spec: EnvelopeSpec, out: str | Path, workers: int | None = None,
@@ -95,7 +100,12 @@ def run_envelope(spec: EnvelopeSpec, out: str | Path, workers: int | None = None
         raise
     ordered = {m.name: results[m.name] for m in spec.maneuvers}
     report, files = write_envelope(spec, ordered, out)
+    raised = [r for r in ordered.values() if raised_by_task(r.error)]
+    if raised:      # written as failed maneuvers; a task that raised is a bug (exit 3), not a verdict
+        raise ManeuverTaskError(f"maneuver {raised[0].name!r} raised in its worker: "
+                                f"{raised[0].error} (the envelope of the rest is written in {out})")
     return EnvelopeRun(report, ordered, files, written)
+
 
 
 def maneuver_line(result: ManeuverResult) -> str:

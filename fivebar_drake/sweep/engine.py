@@ -14,6 +14,7 @@ from __future__ import annotations
 import csv
 import io
 import json
+import logging
 import os
 import sys
 import tempfile
@@ -192,7 +193,9 @@ def dask_client(workers: int | None, scheduler: str | None, client=None):
                                  "command line") from None
     else:
         client = Client(LocalCluster(n_workers=workers or os.cpu_count(), threads_per_worker=1,
-                                     processes=True, dashboard_address=":0"))
+                                     processes=True, dashboard_address=":0",
+                                     silence_logs=logging.ERROR))   # a task's error is ours
+#                                                                     to report, not its log's
     try:
         yield client
     finally:
@@ -257,6 +260,17 @@ def finished_points(spec: SweepSpec, out: Path) -> tuple[int, int]:
     except ParameterError:
         rows = None
     return len(rows or ()), len(points)
+
+
+# a task that failed because its worker was lost, not because the task raised (retry-worthy)
+LOST_WORKER = ("KilledWorker", "CommClosedError", "StreamClosedError", "FutureCancelledError",
+               "CancelledError", "TimeoutError")
+
+
+def raised_by_task(error: str) -> bool:
+    """Whether a finished_tasks error text is an exception the task itself raised (a bug or
+    a fault in the worker's machine), not a lost worker."""
+    return bool(error) and error.split(":", 1)[0] not in LOST_WORKER
 
 
 def finished_tasks(client, task, args: tuple, chunks: list):

@@ -375,3 +375,22 @@ def test_an_envelope_without_verdicts_never_passes(tmp_path, shared_client):
     assert report["verdict"] == "insufficient" and "No verdict" in report["answer"]
     assert report["duty_cycle"] is None and "no verdict" in report["duty_cycle_why_none"]
     assert (tmp_path / "out" / "envelope.md").read_text().count("PASS") == 0
+
+
+@pytest.mark.slow
+def test_a_maneuver_that_raises_in_its_worker_is_a_bug_report(local, tmp_path, monkeypatch,
+                                                              capsys):
+    """Issue 33's thirteenth class: a task that raised in its worker (a write refused by the
+    worker's machine, a bug) is no "no verdict" of the maneuver: exit 3 with the log of a bug,
+    the envelope of the rest written (that maneuver failed, its error kept). A lost worker stays
+    a failed maneuver (exit 1: test_a_failed_maneuver_is_reported_and_exits_1)."""
+    _, spec_path, run = local
+    without_dask(monkeypatch, run.results["trot"], "OSError: [Errno 27] File too large")
+    out = tmp_path / "raised"
+    assert main(["envelope", str(spec_path), "--out", str(out)]) == 3
+    err = capsys.readouterr().err
+    assert "internal error" in err and "File too large" in err and "trot_fast" in err
+    assert "Traceback" not in err
+    report = envelope(out)
+    assert report["maneuvers"]["trot_fast"]["status"] == "failed"
+    assert "File too large" in report["maneuvers"]["trot_fast"]["error"]
