@@ -218,3 +218,35 @@ def test_a_run_whose_model_broke_is_not_achieved():
     why = broken(SimpleNamespace(t=t, gap=gap, body_p=body), params, legs)
     assert len(why) == 2 and "leg RL" in why[0] and "t = 0.20 s" in why[0]
     assert "sank 20 mm" in why[1] and "t = 0.30 s" in why[1]
+
+
+def test_a_cut_maneuver_is_told_to_run_its_span_and_a_motor_always_at_a_limit_says_so():
+    """Issue 33's twenty-second class: a jump cut short was told to run 3 gait cycles after a
+    ramp it does not have; now its span. And the fifth: a motor at a limit in every sample was
+    reported with "demand p99 is nan N·m"; now it says it was at a limit throughout."""
+    import copy
+
+    from fivebar_drake.simulation.summary_text import answer
+
+    record = run_simulation(load_scenario(gait="jump", duration_s=1.0), progress=False)
+    s = summarize_run(record)
+    assert s["verdict"] == "insufficient"
+    assert "run the whole maneuver: at least" in s["answer"] and "cycles" not in s["answer"]
+    saturated = copy.deepcopy(s)
+    saturated.update(verdict="not_achieved", worst_motor="FL A", periodic=True,
+                     gait_frequency_hz=1.0)
+    m = saturated["legs"]["FL"]["A"]
+    m.update(saturated_fraction=1.0, unsaturated_demand_p99_Nm=math.nan)
+    m["checks"] = {"achieved": {"why": "the motor sat at its limits"}}
+    text = answer(saturated, record.params)
+    assert "nan" not in text and "at a limit in every sample" in text
+
+
+def test_analyze_of_a_motor_whose_gear_trade_meets_a_bound_finishes(tmp_path):
+    """Issue 33's tenth class: k_t 9.9 N m/A (inside its bound) made the gear trade try a ratio
+    whose output passes the torque bound and exit 2 partway, deleting the previous files; the
+    trade now scores such a ratio 0 and the analysis finishes."""
+    out = tmp_path / "analysis"
+    assert main(["analyze", "--set", "motor.torque_constant_Nm_per_A=9.9", "--out",
+                 str(out)]) == 0
+    assert json.loads((out / "report.json").read_text())["results"]["full"]["A"]["verdict"]
