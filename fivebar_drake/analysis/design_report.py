@@ -27,7 +27,7 @@ def design_assumptions(params: Params) -> list[str]:
         "link weights already need (full models).",
         f"Thermal: copper loss 1.5 R i_rms^2, the current i of the torque the motor delivers "
         f"at each sample (the joint's and the output friction; k_t = "
-        f"{m.torque_constant_Nm_per_A:.4g} N m/A, motor side, through the gearbox at "
+        f"{m.torque_constant_Nm_per_A:.4g} N·m/A, motor side, through the gearbox at "
         f"{m.gear_efficiency:g}), R = {m.winding_resistance_ohm:g} ohm constant, one first-order lag "
         f"(R_th = {m.thermal_resistance_K_W:g} K/W, tau = {m.thermal_time_constant_s:g} s) from "
         f"{m.ambient_C:g} C; iron losses left out; these motor values are "
@@ -46,7 +46,7 @@ def design_lines(results: dict, params: Params) -> list[str]:
     fc, m = results["force_capability"], params.motor
     x, y = (v * 1e3 for v in fc["home_foot_m"])
     lines = ["", "## Force capability", "",
-             f"Foot forces the motors (±{fc['peak_torque_Nm']:g} N m) hold statically at the home "
+             f"Foot forces the motors (±{fc['peak_torque_Nm']:g} N·m) hold statically at the home "
              f"foot position ({x:g}, {y:g}) mm, per assembly mode (knees_out: knee C forward, knee D back, the diamond; knees_in: both toward the leg's centre line; knees_forward / knees_back: both knees on one side):", "",
              "| mode | largest vertical (N) | largest horizontal (N) | every direction (N) |",
              "|---|---|---|---|"]
@@ -71,10 +71,10 @@ def design_lines(results: dict, params: Params) -> list[str]:
     lines += ["", "## Torque-speed envelope", "",
               f"Operating points (the torque the motor delivers, joint torque + output friction, "
               f"at the joint speed) against the actuator's envelope in their own quadrant "
-              f"(driving: {m.peak_torque_Nm:g} N m up to the corner speed, zero at the no-load "
+              f"(driving: {m.peak_torque_Nm:g} N·m up to the corner speed, zero at the no-load "
               f"speed {m.no_load_speed_rad_s:.2f} rad/s, beyond which the back-EMF forces "
-              f"braking; braking: {m.braking_peak_torque_Nm:.3g} N m) and the continuous rating "
-              f"{m.continuous_torque_Nm:.3g} N m. Margin: the envelope's torque at the sample's "
+              f"braking; braking: {m.braking_peak_torque_Nm:.3g} N·m) and the continuous rating "
+              f"{m.continuous_torque_Nm:.3g} N·m. Margin: the envelope's torque at the sample's "
               "speed in the direction of its torque over that torque (below 1 exactly outside the "
               "envelope):", "",
               "| motor | model | least margin to the envelope | where |", "|---|---|---|---|"]
@@ -85,10 +85,10 @@ def design_lines(results: dict, params: Params) -> list[str]:
                          f"{_at(v['torque_speed_margin_at'])} |")
     th = results["thermal"]
     lines += ["", "## Thermal check", "",
-              f"Continuous rating {th['continuous_torque_Nm']:.3f} N m (the thermal model's "
+              f"Continuous rating {th['continuous_torque_Nm']:.3f} N·m (the thermal model's "
               f"continuous current {th['thermal_continuous_current_A']:.3f} A);"
               f" winding limit {th['winding_limit_C']:g} C from {th['ambient_C']:g} C.", "",
-              "| motor | model | RMS torque (N m) | RMS / continuous current | copper loss (W) | "
+              "| motor | model | RMS torque (N·m) | RMS / continuous current | copper loss (W) | "
               "steady winding (C) | margin (K) | time to limit |",
               "|---|---|---|---|---|---|---|---|"]
     for motor in MOTORS:
@@ -111,7 +111,7 @@ def design_lines(results: dict, params: Params) -> list[str]:
     gr = results["gear_ratio"]
     side = gr["motor_side"]
     lines += ["", "## Gear-ratio trade", "",
-              f"The same motor (motor side {side['peak_torque_Nm']:.4g} N m, "
+              f"The same motor (motor side {side['peak_torque_Nm']:.4g} N·m, "
               f"{side['no_load_speed_rad_s']:.2f} rad/s, rotor {side['rotor_inertia_kg_m2']:.3g} "
               f"kg m^2) behind ratios {gr['search_range'][0]:g}..{gr['search_range'][1]:g}, on "
               f"the `{GEAR_MODEL}` model, safety factor = least ratio of the envelope's torque in "

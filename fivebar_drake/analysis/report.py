@@ -37,14 +37,14 @@ def assumptions(analysis: Analysis) -> list[str]:
         "the `full` models.",
         motor_assumption(p.motor),
         f"The motor's operating points are the joint's torque plus the output friction it "
-        f"overcomes (Coulomb {p.motor.coulomb_friction_Nm:g} N m, regularised over "
-        f"{FRICTION_SMOOTHING_RAD_S:g} rad/s, and viscous {p.motor.viscous_friction_Nm_s:g} N m "
+        f"overcomes (Coulomb {p.motor.coulomb_friction_Nm:g} N·m, regularised over "
+        f"{FRICTION_SMOOTHING_RAD_S:g} rad/s, and viscous {p.motor.viscous_friction_Nm_s:g} N·m "
         "s/rad: the law the simulation's motor model applies) at the joint speed; the checks "
         "take each against the envelope of its own quadrant (driving: torque and speed of one "
         "sign; braking: opposite signs). The seed's Tables 3-5 keep the joint torque alone.",
         "Joint rates and accelerations are periodic central differences over the N samples "
         "(seed 000 section 5); the IK mode follows seed 000 appendix B from the knees-out mode.",
-        f"Safety factor (Table 5, the seed's) = {p.motor.peak_torque_Nm:g} N m / the peak "
+        f"Safety factor (Table 5, the seed's) = {p.motor.peak_torque_Nm:g} N·m / the peak "
         "|dynamic torque|; the torque check's = 1 / the largest |operating torque| over the "
         "peak-current torque of its quadrant; verdict: SF >= "
         f"{p.checks.sf_pass:g} pass, {p.checks.sf_warn:g} <= SF < {p.checks.sf_pass:g} warn, "
@@ -60,26 +60,26 @@ def assumptions(analysis: Analysis) -> list[str]:
 def motor_assumption(motor) -> str:
     """The actuator model in one sentence, with its output figures."""
     if motor.model != "bldc":
-        return (f"The {motor.peak_torque_Nm:g} N m motor torque is taken at the gearbox output "
+        return (f"The {motor.peak_torque_Nm:g} N·m motor torque is taken at the gearbox output "
                 f"(gear {motor.gear_ratio:g}:1, model = \"{motor.model}\"): a linear "
                 f"torque-speed line from it to the no-load speed {motor.no_load_speed_rad_s:.2f} "
                 f"rad/s ({motor.no_load_speed_rad_s * 60 / (2 * math.pi):.0f} RPM), braking held "
-                f"at {motor.braking_peak_torque_Nm:.3g} N m up to it; beyond it the line goes on "
+                f"at {motor.braking_peak_torque_Nm:.3g} N·m up to it; beyond it the line goes on "
                 "into braking (as a DC motor's).")
     law = motor.law
     corner = (law.phase_voltage - law.resistance * law.peak_current) / (law.back_emf * law.gear)
     return (f"The actuator is a brushless motor behind a {motor.gear_ratio:g}:1 gearbox "
             f"(efficiency {motor.gear_efficiency:g}), from motor-side data ([motor]: k_t = "
-            f"{motor.torque_constant_Nm_per_A:.4g} N m per A of q-axis current, R = "
+            f"{motor.torque_constant_Nm_per_A:.4g} N·m per A of q-axis current, R = "
             f"{motor.winding_resistance_ohm:g} ohm, V_bus = {motor.bus_voltage_V:g} V, I_peak = "
             f"{motor.peak_current_A:.4g} A), the winding's inductance neglected: |i| <= I_peak "
             "and the voltage equation R i + (k_t / 1.5) N w within +-V_bus / sqrt(3) (the phase "
             "amplitude of space-vector modulation), output torque N eta k_t i driving and "
-            f"N k_t i / eta braking. Driving: flat at {motor.peak_torque_Nm:.3g} N m up to the "
+            f"N k_t i / eta braking. Driving: flat at {motor.peak_torque_Nm:.3g} N·m up to the "
             f"corner {corner:.2f} rad/s, then falling to zero at the no-load speed "
             f"{motor.no_load_speed_rad_s:.2f} rad/s "
             f"({motor.no_load_speed_rad_s * 60 / (2 * math.pi):.0f} RPM); braking "
-            f"{motor.braking_peak_torque_Nm:.3g} N m; beyond the no-load speed the back-EMF "
+            f"{motor.braking_peak_torque_Nm:.3g} N·m; beyond the no-load speed the back-EMF "
             "exceeds the phase voltage and forces regenerative braking ((k_t / 1.5) N w - "
             "V_bus / sqrt(3)) / R amperes at least: the motor cannot coast there (README \"The "
             "actuator\").")
@@ -124,7 +124,7 @@ def markdown(analysis: Analysis, sampled: dict | None = None) -> str:
         f"Foot path: {path.text(g)}, f = {g.frequency_hz:g} Hz, N = {g.samples} samples "
         f"(central differences: peak joint speed within {sampled['speed']:.1%}, peak "
         f"acceleration within {sampled['acceleration']:.1%} of {sampled['reference_samples']} "
-        f"samples). Motor: {p.motor.peak_torque_Nm:g} N m, {p.motor.no_load_speed_rad_s:.2f} "
+        f"samples). Motor: {p.motor.peak_torque_Nm:g} N·m, {p.motor.no_load_speed_rad_s:.2f} "
         "rad/s.",
         "",
         *([f"**Warning:** {sampled['warning']}.", ""] if sampled["warning"] else []),
@@ -134,14 +134,14 @@ def markdown(analysis: Analysis, sampled: dict | None = None) -> str:
     ]
     lines += [f"- **{name}**: {text}" for name, text in analysis.results["models"].items()]
     lines += ["", "## Table 3: peak dynamic torque", "",
-              "| motor | model | peak torque (N m) | where in the cycle |", "|---|---|---|---|"]
+              "| motor | model | peak torque (N·m) | where in the cycle |", "|---|---|---|---|"]
     for motor in MOTORS:
         for model in SIDE_BY_SIDE:
             m = r[model][motor]
             lines.append(f"| {motor} | {model} | {m['peak_torque_Nm']:.3f} | "
                          f"{_where(m['peak_at'])} |")
     lines += ["", "## Table 4: static vs dynamic torque", "",
-              "| motor | model | static torque (N m) | peak dynamic torque (N m) | dynamic/static "
+              "| motor | model | static torque (N·m) | peak dynamic torque (N·m) | dynamic/static "
               "| static peak at |", "|---|---|---|---|---|---|"]
     for motor in MOTORS:
         for model in SIDE_BY_SIDE:
@@ -149,11 +149,11 @@ def markdown(analysis: Analysis, sampled: dict | None = None) -> str:
             lines.append(f"| {motor} | {model} | {m['static_torque_Nm']:.3f} | "
                          f"{m['peak_torque_Nm']:.3f} | {m['dynamic_to_static_ratio']:.4f}x | "
                          f"{_where(m['static_peak_at'])} |")
-    lines += ["", f"## Table 5: safety factor against {p.motor.peak_torque_Nm:g} N m", "",
-              f"The seed's: {p.motor.peak_torque_Nm:g} N m over the peak |joint torque|, whatever "
+    lines += ["", f"## Table 5: safety factor against {p.motor.peak_torque_Nm:g} N·m", "",
+              f"The seed's: {p.motor.peak_torque_Nm:g} N·m over the peak |joint torque|, whatever "
               "its quadrant (the torque check below takes each sample against its own "
               "quadrant's limit).", "",
-              "| motor | model | peak torque (N m) | safety factor | verdict |",
+              "| motor | model | peak torque (N·m) | safety factor | verdict |",
               "|---|---|---|---|---|"]
     for motor in MOTORS:
         for model in SIDE_BY_SIDE:
@@ -185,7 +185,7 @@ def markdown(analysis: Analysis, sampled: dict | None = None) -> str:
               "to that torque (below 1 exactly outside). A joint beyond the no-load speed lies "
               "within the envelope only while it brakes at least as much as the back-EMF forces.",
               "", "## Trot loading (the other reading of the weight share)", "",
-              "| motor | peak torque (N m) | static (N m) | safety factor | verdict |",
+              "| motor | peak torque (N·m) | static (N·m) | safety factor | verdict |",
               "|---|---|---|---|---|"]
     for motor in MOTORS:
         m = r["full_trot"][motor]
@@ -193,10 +193,10 @@ def markdown(analysis: Analysis, sampled: dict | None = None) -> str:
                      f"{m['safety_factor']:.2f}x | {m['verdict'].upper()} |")
     mo = analysis.results["motor"]
     lines += ["", "## Verdict: the actuator's checks", "",
-              f"The {mo['model']} actuator: peak {mo['peak_torque_Nm']:.3g} N m (driving, "
+              f"The {mo['model']} actuator: peak {mo['peak_torque_Nm']:.3g} N·m (driving, "
               f"{mo['braking_peak_torque_Nm']:.3g} braking), no-load "
               f"{mo['no_load_speed_rad_s']:.2f} rad/s, continuous "
-              f"{_maybe(mo['continuous_torque_Nm'], '.3g')} N m at the output "
+              f"{_maybe(mo['continuous_torque_Nm'], '.3g')} N·m at the output "
               "(report.json: motor.envelope). Operating points: the joint torque plus the output "
               "friction, at the joint speed. Torque: the safety factor, 1 / the largest ratio of "
               "a sample's torque to the peak-current torque of its own quadrant (driving: torque "

@@ -417,12 +417,12 @@ class Motor:
         """The output side the law gives: within bounds, and able to turn against friction."""
         peak, no_load = self.peak_torque_Nm, self.no_load_speed_rad_s
         require(peak <= MAX_TORQUE_NM and no_load <= MAX_SPEED_RAD_S, "motor.gear_ratio",
-                self.gear_ratio, f"gives {peak:g} N m and {no_load:g} rad/s at the output, "
-                f"beyond {MAX_TORQUE_NM:g} N m or {MAX_SPEED_RAD_S:g} rad/s")
+                self.gear_ratio, f"gives {peak:g} N·m and {no_load:g} rad/s at the output, "
+                f"beyond {MAX_TORQUE_NM:g} N·m or {MAX_SPEED_RAD_S:g} rad/s")
         at_speed = self.coulomb_friction_Nm + self.viscous_friction_Nm_s * no_load
         require(at_speed < peak, "motor.coulomb_friction_Nm", self.coulomb_friction_Nm,
                 f"with viscous_friction_Nm_s the friction at the no-load speed is {at_speed:g} "
-                f"N m, not below the peak output torque {peak:g} N m: the motor could not turn")
+                f"N·m, not below the peak output torque {peak:g} N·m: the motor could not turn")
 
 
 @dataclass(frozen=True)

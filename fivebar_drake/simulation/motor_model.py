@@ -26,9 +26,9 @@ class MotorModel(Diagram):
     the joint's mean speed over the step (held_torque), which follows from its response to its
     torque and its load, measured over the steps before (motor_step; the memory is sampled at
     every plant step of step_s). Why: a leg in the air (about 5e-4 kg m^2 at a hip here) gains 10 rad/s in a
-    1 ms step at 5 N m, while the voltage limit's time constant, J R / (N^2 eta k_t k_e), is
+    1 ms step at 5 N·m, while the voltage limit's time constant, J R / (N^2 eta k_t k_e), is
     0.6 ms: the limit taken at a speed from before the step let the joint overshoot the no-load
-    speed while still driving (the jump's RL A: 20.8 rad/s at +5 N m), and the braking the
+    speed while still driving (the jump's RL A: 20.8 rad/s at +5 N·m), and the braking the
     back-EMF forces beyond it, taken explicitly, oscillates; a loaded leg hardly responds within
     a step and gets the envelope at its speed. Measured on a single joint against the
     continuous law (tests/core/test_motor.py): the step's mean speed follows the continuous

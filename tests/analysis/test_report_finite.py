@@ -68,7 +68,9 @@ def test_the_report_answers_first():
     from fivebar_drake.robots.quadruped.config import load_params
 
     an = analyze(load_params(None))
-    first = markdown(an).split("\n\n")[1]
+    text = markdown(an)
+    first = text.split("\n\n")[1]
+    assert " N m" not in text and "N*m" not in text          # one spelling: N·m
     assert first.startswith("**Answer:**")
     for model in ("full_trot", "seed"):
         for motor in ("A", "B"):

@@ -42,7 +42,7 @@ FIGURES = {   # name -> (what, unit, the toolkit's figure from Params)
     "extension_range_m": ("leg extension range (foot below the hip axis)", "m",
                           extension_range_m),
     "peak_output_torque_Nm": ("peak output torque at the peak current (with the torque-current "
-                              "table where given)", "N m", lambda p: p.motor.peak_torque_Nm),
+                              "table where given)", "N·m", lambda p: p.motor.peak_torque_Nm),
     "no_load_speed_rad_s": ("no-load output speed of the voltage limit", "rad/s",
                             lambda p: p.motor.no_load_speed_rad_s),
 }

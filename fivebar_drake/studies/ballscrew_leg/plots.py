@@ -33,7 +33,7 @@ def motor_torques(a: Analysis, path: Path) -> Path:
         ax.set_ylim(0.0, top)
         ax.set_title(f"s1 = {s * 1e3:g} mm")
         ax.set_xlabel("q1 (deg)")
-        ax.set_ylabel("motor torque (N m)")
+        ax.set_ylabel("motor torque (N·m)")
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
     fig.suptitle(f"Static motor torques, {a.params.load.foot_force_N:g} N on the foot, "
@@ -106,7 +106,7 @@ def squat(sig: Signals, p: Params, path: Path) -> Path:
     axes[1].plot(sig.t, sig.applied, label="applied")
     axes[1].plot(sig.t, sig.static, "--", label="closed-form static (700 N, lossless)")
     axes[1].axhline(-p.motor.peak_torque_Nm, color="gray", lw=0.8, label="motor limit")
-    axes[1].set_ylabel("screw motor torque (N m)")
+    axes[1].set_ylabel("screw motor torque (N·m)")
     axes[2].semilogy(sig.t, np.maximum(sig.gap_d, 1e-12), label="at D")
     axes[2].semilogy(sig.t, np.maximum(sig.gap_foot, 1e-12), label="at the foot")
     axes[2].set_ylabel("loop gap (m)")

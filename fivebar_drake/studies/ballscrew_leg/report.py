@@ -138,7 +138,7 @@ def _markdown(a: Analysis) -> str:
                          f"{summary['peak_q1_geometry_deg']:.2f} | {r['min']:.3f} | "
                          f"{r['min_at_q1_deg']:.2f} | "
                          f"{', '.join(f'{q:.2f}' for q in r['crosses_1_at_q1_deg']) or '-'} |")
-    lines += ["", "## Motor torques (N m) at some hip angles", "",
+    lines += ["", "## Motor torques (N·m) at some hip angles", "",
               "| q1 (deg) | knee joint | geared motor | "
               + " | ".join(f"screw motor s1 = {s * 1e3:g} mm (fwd / back)" for s in a.statics)
               + " |", "|---" * (3 + len(a.statics)) + "|"]
@@ -169,7 +169,7 @@ def _markdown(a: Analysis) -> str:
               "foot load as an external force, no gravity): tree inverse dynamics projected on "
               "the loop's admissible velocities, against the closed form with a lossless screw.",
               "", "| s1 (mm) | poses | largest relative difference, screw motor | largest hip "
-              "difference (N m) |", "|---|---|---|---|"]
+              "difference (N·m) |", "|---|---|---|---|"]
     for s, d in a.drake.items():
         lines.append(f"| {s * 1e3:g} | {d['poses']} | {d['max_rel_screw']:.2e} | "
                      f"{d['max_abs_hip_Nm']:.2e} |")
@@ -207,10 +207,10 @@ def _summary_markdown(summary: dict) -> str:
         f"{s['q1_tracking_error_deg']['max']:.3f} deg",
         f"- loop gaps: at D {s['max_loop_gap_m']['D'] * 1e6:.2f} um, at the foot "
         f"{s['max_loop_gap_m']['foot'] * 1e6:.2f} um",
-        f"- screw motor: peak applied {s['peak_applied_torque_Nm']:.3f} N m (closed-form static "
-        f"peak {s['peak_static_closed_form_Nm']:.3f} N m, lossless screw; with the 90 % screw "
-        f"{s['peak_applied_with_screw_efficiency_Nm']['forward']:.3f} N m forward), limit "
-        f"{s['motor_peak_torque_Nm']:g} N m; peak speed {s['peak_motor_speed_rad_s']:.1f} rad/s "
+        f"- screw motor: peak applied {s['peak_applied_torque_Nm']:.3f} N·m (closed-form static "
+        f"peak {s['peak_static_closed_form_Nm']:.3f} N·m, lossless screw; with the 90 % screw "
+        f"{s['peak_applied_with_screw_efficiency_Nm']['forward']:.3f} N·m forward), limit "
+        f"{s['motor_peak_torque_Nm']:g} N·m; peak speed {s['peak_motor_speed_rad_s']:.1f} rad/s "
         f"of {s['motor_no_load_speed_rad_s']:g}; clipped {s['clipped_share']['peak']:.1%} at the "
         f"peak, {s['clipped_share']['torque_speed_line']:.1%} on the torque-speed line",
         f"- standing still (after {STANDING_SETTLE_S:g} s): applied torque / static torque - 1 "

@@ -24,8 +24,8 @@ def analysis_lines(record: AnalysisRecord) -> list[str]:
     for model, motor, m in sorted(readings, key=lambda r: r[2]["safety_factor"]):
         torque = m["checks"]["torque"]
         lines.append(
-            f"  {model:>9} motor {motor}: peak {m['peak_torque_Nm']:.3f} N m, "
-            f"static {m['static_torque_Nm']:.3f} N m, seed's SF {m['safety_factor']:.2f} "
+            f"  {model:>9} motor {motor}: peak {m['peak_torque_Nm']:.3f} N·m, "
+            f"static {m['static_torque_Nm']:.3f} N·m, seed's SF {m['safety_factor']:.2f} "
             f"({m['verdict'].upper()}), peak speed {m['peak_speed_rad_s']:.2f} rad/s; torque "
             f"check SF {torque['sf']:.2f} ({torque['quadrant']}); verdict "
             f"{m['checks']['verdict'].upper()} ({m['checks']['deciding_check']} check)")
@@ -46,7 +46,7 @@ def simulation_lines(summary: Summary) -> list[str]:
                      f"{t['outputs_s']:.2f} s ({t['outputs_share']:.0%} of both)")
     for leg, motors in s["legs"].items():
         lines.append("  " + leg + ": " + ", ".join(
-            f"{m} demand p99 {v['demand_p99_Nm']:.2f} N m (RMS {v['rms_torque_Nm']:.2f}, "
+            f"{m} demand p99 {v['demand_p99_Nm']:.2f} N·m (RMS {v['rms_torque_Nm']:.2f}, "
             f"SF {v['safety_factor']:.2f}, {v['verdict']}"
             + (f" by {v['checks']['deciding_check']}" if v.get("checks") else "") + ")"
             for m, v in motors.items()))
