@@ -189,6 +189,11 @@ CASES = {
     "limits the gait leaves, --set": (lambda t: sim(t, "--set", "limits.theta_b_max_deg=-30"),
                                       "command line (--set)", "motor B angle",
                                       "> most -30 deg ([limits].theta_b_max_deg)"),
+    "tracking a path without a floor": scen("gait: seed_ellipse\ncontroller: {kind: tracking}\n",
+                                            "scenario.gait", "follows a gait's floor"),
+    "tracking with other leg phases": scen(
+        "gait: bound\ncontroller: {kind: tracking}\nphases_rad: [0, 0, 0, 0]\n",
+        "scenario.phases_rad", "the gait's own leg phases"),
     "scenario's path leaves the limits": scen("gait: {kind: doggo, stance_depth_m: 0.08}\n",
                                               "the foot path leaves the leg's limits (doggo path",
                                               "m > most 0.27 m ([limits].extension_max_m)"),

@@ -3,6 +3,7 @@ message naming the file or the command line, and nothing written (issue 23's tab
 from tests/test_bad_inputs.py's cases)."""
 
 import os
+from pathlib import Path
 
 import pytest
 
@@ -72,13 +73,15 @@ def test_bad_duration(name, duration, tmp_path, capsys):
     assert not out.exists()
 
 
+# a command whose spec is not optional gets its packaged one where the test is not about it
+PACKAGED_SPEC = {"codesign": (str(Path(catalog.__file__).parent / "data" / "codesign_demo.yaml"),)}
 SPECS = ("missing", "fifo", "binary", "folder", "not yaml", "alias bomb", "duplicate key")
 SPEC_WORDS = {"missing": "not found", "fifo": "not a regular file", "binary": "not UTF-8",
               "folder": "is a folder", "not yaml": "not valid YAML", "alias bomb": "alias",
               "duplicate key": "duplicate"}
 
 
-@pytest.mark.parametrize("command", ["sweep", "envelope"])
+@pytest.mark.parametrize("command", ["sweep", "envelope", "codesign"])
 @pytest.mark.parametrize("kind", SPECS)
 def test_bad_spec_file(command, kind, tmp_path, capsys):
     out = tmp_path / "out"
@@ -90,22 +93,23 @@ def test_bad_spec_file(command, kind, tmp_path, capsys):
     assert not out.exists()
 
 
-@pytest.mark.parametrize("command", ["sweep", "envelope"])
+@pytest.mark.parametrize("command", ["sweep", "envelope", "codesign"])
 @pytest.mark.parametrize("out_kind", ["empty", "file", "below a file"])
 def test_bad_output_path_of_a_spec_command(command, out_kind, tmp_path, capsys):
     (tmp_path / "afile").write_text("keep me")
     out = {"empty": "", "file": str(tmp_path / "afile"),
            "below a file": str(tmp_path / "afile" / "sub")}[out_kind]
-    assert main([command, "--out", out]) == 2
+    assert main([command, *PACKAGED_SPEC.get(command, ()), "--out", out]) == 2
     assert "--out" in capsys.readouterr().err
     assert (tmp_path / "afile").read_text() == "keep me"
 
 
-@pytest.mark.parametrize("command", ["sweep", "envelope"])
+@pytest.mark.parametrize("command", ["sweep", "envelope", "codesign"])
 @pytest.mark.parametrize("workers", ["0", "-1", "1000", "two"])
 def test_bad_worker_count(command, workers, tmp_path, capsys):
     out = tmp_path / "out"
-    assert main([command, "--workers", workers, "--out", str(out)]) == 2
+    assert main([command, *PACKAGED_SPEC.get(command, ()), "--workers", workers, "--out",
+                 str(out)]) == 2
     assert "--workers" in capsys.readouterr().err
     assert not out.exists()
 
