@@ -21,13 +21,11 @@ import numpy as np
 
 from fivebar_drake.core.validation import require
 from fivebar_drake.optimal.gait_floor import KINDS, GaitFloor, gait_floor, whole_body
-from fivebar_drake.robots.quadruped.control_law import feet_body, leg_plan, leg_torques
+from fivebar_drake.robots.quadruped.control_law import (leg_plan, leg_torques, plane_forces,
+                                                        split_wrench)
 from fivebar_drake.robots.quadruped.legs import LEGS
 from fivebar_drake.robots.quadruped.sdf import body_height
 from fivebar_drake.simulation.systems import FootLeg, FootLegController, register_controller
-
-MOMENT_LEVER_M = 0.1       # the feedback's moments weigh as forces at this lever
-
 
 class Plan:
     """The floor's motion as functions of time within its period: the feet's forces (legs, 2)
@@ -110,29 +108,14 @@ class TrackingController(FootLegController):
                                   g.k_att[1] * (pitch_ref - pitch)
                                   + g.d_att[1] * (rate_ref - omega_b[1])]])
         weights = plan.weights
-        n = weights.size
-        body_f = np.zeros((n, 3))                  # the floor's forces in the body frame
+        body_f = np.zeros((weights.size, 3))          # the floor's forces in the body frame
         body_f[:, 0], body_f[:, 2] = forces_w[:, 0], forces_w[:, 1]
-        body_f = body_f @ r_wb                     # rows: R^T f
-        feet = feet_body(k, plan.fx, plan.fy) - k.com_m
-        a = np.zeros((4, 2 * n))                   # rows: F_x, F_z, M_roll, M_pitch (body)
-        for i in range(n):
-            a[0, 2 * i], a[1, 2 * i + 1] = 1.0, 1.0
-            a[2, 2 * i + 1] = feet[i, 1]
-            a[3, 2 * i], a[3, 2 * i + 1] = feet[i, 2], -feet[i, 0]
-        scale = np.array([1.0, 1.0, 1.0 / MOMENT_LEVER_M, 1.0 / MOMENT_LEVER_M])
-        sw = np.sqrt(np.repeat(weights, 2))
-        extra = np.zeros(2 * n)
+        body_f = body_f @ r_wb                         # rows: R^T f
+        extra = np.zeros(2 * weights.size)            # the feedback (no yaw row: 4 of 5)
         if weights.sum() > 0.0:
-            extra = np.linalg.lstsq((a * scale[:, None]) * sw, wrench * scale,
-                                    rcond=1e-6)[0] * sw
-        fx = weights * body_f[:, 0] + extra[0::2]
-        fz = np.maximum(weights * body_f[:, 2] + extra[1::2], 0.0)
-        fx = np.clip(fx, -k.mu * fz, k.mu * fz)
-        out = np.empty((n, 2))
-        for j in range(2):     # body (x, 0, z) -> leg plane: F_plane = R_body_plane^T F_body
-            out[:, j] = k.plane[0, j] * fx + k.plane[2, j] * fz
-        return out
+            extra = split_wrench(k, weights, plan.fx, plan.fy, np.append(wrench, 0.0), 4)
+        return plane_forces(k, weights * body_f[:, 0] + extra[0::2],
+                            weights * body_f[:, 2] + extra[1::2])
 
 
 @register_controller

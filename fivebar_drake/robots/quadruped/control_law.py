@@ -276,6 +276,20 @@ def ground_forces(k, body, weights, share, fx, fy, state, r_wb):
                         + k.gains.dz * (vz_des - v_w[2])])
     force_b = r_bw @ force_w
     force_b[0] += k.gains.dx * (vx_des - v_b[0])
+    wrench = np.array([force_b[0], force_b[2],
+                       -k.gains.k_att[0] * roll - k.gains.d_att[0] * omega_b[0],
+                       -k.gains.k_att[1] * pitch - k.gains.d_att[1] * omega_b[1], 0.0])
+    sol = split_wrench(k, weights, fx, fy, wrench, 5) * share
+    return plane_forces(k, sol[0::2], sol[1::2])
+
+
+@jit
+def split_wrench(k, weights, fx, fy, wrench, rows):
+    """The ground forces (2 n,: body-frame x and z per foot) of least weighted norm (weights
+    (legs,); a foot of weight 0 gets none) whose net wrench about the centre of mass, in the
+    body frame, is the first `rows` of wrench (F_x, F_z, M_roll, M_pitch, M_yaw), moments
+    weighed as forces at MOMENT_LEVER_M; the feet at the measured leg-plane fx, fy (legs,)."""
+    n = weights.shape[0]
     r = feet_body(k, fx, fy) - k.com_m
     # unknowns per foot: ground force along body x and z; rows: Fx, Fz, Mx, My, Mz
     a = np.zeros((5, 2 * n))
@@ -284,16 +298,20 @@ def ground_forces(k, body, weights, share, fx, fy, state, r_wb):
         a[2, 2 * i + 1] = r[i, 1]                              # Mx = y Fz
         a[3, 2 * i], a[3, 2 * i + 1] = r[i, 2], -r[i, 0]       # My = z Fx - x Fz
         a[4, 2 * i] = -r[i, 1]                                 # Mz = -y Fx
-    wrench = np.array([force_b[0], force_b[2],
-                       -k.gains.k_att[0] * roll - k.gains.d_att[0] * omega_b[0],
-                       -k.gains.k_att[1] * pitch - k.gains.d_att[1] * omega_b[1], 0.0])
     scale = np.array([1.0, 1.0, 1.0 / MOMENT_LEVER_M, 1.0 / MOMENT_LEVER_M, 1.0 / MOMENT_LEVER_M])
     sw = np.sqrt(np.repeat(weights, 2))
-    sol = np.linalg.lstsq((a * scale[:, None]) * sw, wrench * scale, rcond=1e-6)[0] * sw
-    sol *= share
-    fz = np.maximum(sol[1::2], 0.0)
-    fxb = np.minimum(np.maximum(sol[0::2], -k.mu * fz), k.mu * fz)
-    out = np.empty((n, 2))
+    fit = np.ascontiguousarray(((a * scale[:, None]) * sw)[:rows])
+    return np.linalg.lstsq(fit, np.ascontiguousarray((wrench * scale)[:rows]),
+                           rcond=1e-6)[0] * sw
+
+
+@jit
+def plane_forces(k, fxb, fz):
+    """Ground forces given along the body's x and z per foot (legs,) each, pushing (F_z >= 0)
+    inside the friction cone (|F_x| <= mu F_z), in the leg planes (legs, 2) N."""
+    fz = np.maximum(fz, 0.0)
+    fxb = np.minimum(np.maximum(fxb, -k.mu * fz), k.mu * fz)
+    out = np.empty((fz.shape[0], 2))
     for j in range(2):      # body (x, 0, z) -> leg plane: F_plane = R_body_plane^T F_body
         out[:, j] = k.plane[0, j] * fxb + k.plane[2, j] * fz
     return out
