@@ -190,3 +190,39 @@ def test_a_floor_is_the_same_for_any_motor(params):
     shared = gait_floor(other, "trot")
     assert len(module._FLOORS) == count and shared.floor_Nm == first.floor_Nm
     assert shared.rms_current_A != first.rms_current_A
+
+
+def test_the_floors_torques_are_the_virtual_works(params):
+    """The bound's floor torques recomputed at its pitched poses by another method: virtual
+    work with finite differences of the forward kinematics (the foot's displacement per motor
+    angle, instead of the analytic J_F) and of the links' potential energy (their centres of
+    mass heights, instead of G), the ground force turned into the pitched leg plane here."""
+    from fivebar_drake.mechanisms.fivebar import KNEES_OUT, link_coms
+    from fivebar_drake.optimal import gait_floor as module
+
+    p = with_path_defaults(params, "bound")
+    floor = gait_floor(p, "bound")
+    mass, com_z, _ = whole_body(p)
+    body = module.Body(p, module.Schedule(p, foot_path("bound"), floor.t), mass, com_z)
+    feet = body.poses(floor.x_m, floor.z_m, floor.pitch_rad)
+    leg, g, h = p.fivebar_leg, p.robot.gravity_m_s2, 1e-6
+    masses = np.array([link.mass_kg for link in p.links.values()])
+
+    def foot_and_energy(q, branch):
+        pose = leg.forward(q, branch)
+        return pose.f, g * masses @ link_coms(leg.geometry, p.links, pose)[..., 1]
+
+    for i in range(0, body.legs.size, 7):
+        k, j = body.knots[i], body.legs[i]
+        pose = leg.inverse(feet[i], KNEES_OUT)
+        c, s = math.cos(floor.pitch_rad[k]), math.sin(floor.pitch_rad[k])
+        fx, fz = floor.force_N[j, k]
+        plane = np.array([-(c * fx - s * fz), s * fx + c * fz])     # -f_body x, f_body z
+        tau = np.zeros(2)
+        for m in range(2):
+            dq = np.zeros(2)
+            dq[m] = h
+            (f1, v1), (f0, v0) = (foot_and_energy(pose.q + dq, pose.e_branch),
+                                  foot_and_energy(pose.q - dq, pose.e_branch))
+            tau[m] = (v1 - v0) / (2 * h) - (f1 - f0) / (2 * h) @ plane
+        np.testing.assert_allclose(tau, floor.torque_Nm[j, k], atol=2e-5)
