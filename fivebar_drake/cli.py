@@ -293,15 +293,19 @@ def _optimal(args, signals) -> int:
         plan = max_jump_plan(params, jumps["ceiling"])
         scenario = load_scenario(gait=plan, payload_kg=args.payload or 0.0,
                                  duration_s=DEFAULTS.stand_s + plan.span_s(params.gait)
-                                 + MANEUVER_MARGIN_S)
+                                 + MANEUVER_MARGIN_S, controller={"kind": "tracking"})
         folder = prepare_output_dir(out / "max_jump", "--out", SIMULATION_FILES)
         summary, files = write_simulation(run_simulation(scenario, params, progress=True,
                                                          stop=lambda: signals.name), folder)
         height = summary["jump"]["height_m"] if summary["jump"] else 0.0
+        phases = (summary["any_controller"] or {}).get("phases") or {}
         result["max_jump_simulated"] = {
-            "folder": "max_jump", "plan": plan.fields(), "height_m": height,
-            "share_of_ceiling": height / plan.height_m, "verdict": summary["verdict"],
-            "achieved": summary["verdict"] in ("pass", "warn", "fail")}
+            "folder": "max_jump", "plan": plan.fields(), "controller": "tracking",
+            "height_m": height, "share_of_ceiling": height / plan.height_m,
+            "verdict": summary["verdict"],
+            "achieved": summary["verdict"] in ("pass", "warn", "fail"),
+            "phases": {name: {"floor_Nm": p["floor_Nm"], "asked_Nm": p["asked_Nm"]}
+                       for name, p in phases.items()}}
     files = write(result, jumps, params, out) + files
     say(result["answer"])
     say(f"wrote {len(files)} files to {out.resolve()} in {time.perf_counter() - start:.1f} s:")
@@ -448,8 +452,8 @@ def parser() -> argparse.ArgumentParser:
                    "default 0)")
     o.add_argument("--simulate", action="store_const", const=True,
                    help="also simulate the highest jump (the jump maneuver planned at the "
-                        "ceiling, the package's controller) into DIR/max_jump and report its "
-                        "apex against the ceiling")
+                        "ceiling, the tracking controller pushing with the ceiling's torques) "
+                        "into DIR/max_jump and report its apex against the ceiling")
     o.add_argument("--out", metavar="DIR", help="output folder: optimal.md, optimal.json, "
                    "optimal_jump.png (default: out/optimal)")
     c = command("compare", _compare, "simulated runs side by side: each motor's verdict and torques (what a foot path or a design costs)")

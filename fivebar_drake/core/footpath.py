@@ -46,6 +46,8 @@ MAX_MANEUVER_S = 100.0   # a maneuver's times (s); its lengths (m) are held to M
 #                          catches the common slip of units (100 for 100 mm)
 REACH_SPEED_M_S = 0.1   # a landing foot reaches down at this speed at touchdown (early touchdown
 #                         detection joins a descending foot to the support)
+PUSH_SHARES = (0.5, 1.25)  # a jump's push time over 2 stroke / v: (the whole stroke at the
+#                           takeoff speed, open; the foot's quintic still moving one way, closed)
 EXTENSION_STOP_S = 0.02  # after takeoff a jump's legs stop extending within this (the foot sinks
 #                          v t / 2 below the takeoff point: 8 mm at the packaged jump's 0.77 m/s;
 #                          a light leg stops that fast, and it keeps the leg inside its reach)
@@ -632,7 +634,9 @@ class Landing(Maneuver):
 class Jump(Landing):
     """A vertical jump of all four legs: crouch crouch_m above the standing line over crouch_s,
     hold hold_s, push off (the foot's quintic from rest to the takeoff speed at extension_m below
-    the standing line: peak acceleration 0.75 v^2 / stroke), fly (the legs' extension stopped
+    the standing line over push_share of 2 stroke / v: at 1, peak acceleration 0.75 v^2 /
+    stroke; an optimal push, which the tracking controller follows, is shorter), fly (the legs'
+    extension stopped
     within EXTENSION_STOP_S, the feet tucked retract_m and reaching down at 0.1 m/s to land),
     land (Landing). The takeoff speed puts the body's apex
     height_m above its standing height: v = sqrt(2 g (height_m - extension_m))."""
@@ -644,6 +648,7 @@ class Jump(Landing):
     crouch_s: float = 0.4
     hold_s: float = 0.2
     retract_m: float = 0.02
+    push_share: float = 1.0
 
     def shortfalls(self, gait: Gait, outcome: Outcome, checks: Checks) -> list[str]:
         """A jump leaves the ground with every foot, its body's apex rises at least
@@ -673,12 +678,17 @@ class Jump(Landing):
         check_number(f"{field}.height_m", self.height_m, self.extension_m, MAX_LENGTH_M,
                      low_open=True, why=f"the apex lies above the takeoff height "
                                         f"(extension_m = {self.extension_m:g} m)")
+        check_number(f"{field}.push_share", self.push_share, *PUSH_SHARES, low_open=True,
+                     why="the push's time over 2 stroke / takeoff speed: at 0.5 the whole "
+                         "stroke at the takeoff speed; beyond 1.25 the foot's quintic "
+                         "reverses")
 
     def timing(self, gait: Gait) -> tuple[float, float, float]:
         """(push-off s, flight s, takeoff speed m/s) of the plan: the body lands at its takeoff
         height."""
         v = self.takeoff_speed(gait)
-        return 2.0 * (self.crouch_m + self.extension_m) / v, 2.0 * v / gait.gravity_m_s2, v
+        return (2.0 * self.push_share * (self.crouch_m + self.extension_m) / v,
+                2.0 * v / gait.gravity_m_s2, v)
 
     def segments(self, gait: Gait) -> list[tuple]:
         x, y0 = gait.x_center_m, gait.y_home_m

@@ -5,6 +5,7 @@ figures beside the bounds."""
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 from pathlib import Path
@@ -12,7 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from fivebar_drake.core.files import json_ready, save_figure, write_atomic
-from fivebar_drake.core.footpath import Drop, Jump as JumpPath
+from fivebar_drake.core.footpath import PUSH_SHARES, Drop, Jump as JumpPath
 from fivebar_drake.core.validation import ParameterError, check_number
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.optimal.recording import RECORDING_FILE, write_recording
@@ -250,10 +251,15 @@ def markdown(r: dict) -> str:
                         f"({fast['limited_by']})") + " |")
     if r.get("max_jump_simulated"):
         m = r["max_jump_simulated"]
-        lines += ["", f"Simulated (the package's controller on the jump maneuver planned at the "
-                      f"ceiling, `{m['folder']}/`): apex {m['height_m'] * 1e3:.1f} mm, "
-                      f"{m['share_of_ceiling']:.0%} of the ceiling; verdict "
-                      f"{m['verdict'].upper()}{' (achieved)' if m['achieved'] else ''}."]
+        asked = "; ".join(f"{name}: asked {p['asked_Nm']:.2f} N·m against its floor "
+                          f"{p['floor_Nm']:.2f} N·m" for name, p in m["phases"].items()
+                          if p["asked_Nm"] is not None and p["floor_Nm"] is not None)
+        lines += ["", f"Simulated (the jump maneuver planned at the ceiling, the tracking "
+                      f"controller pushing with the ceiling's torques, `{m['folder']}/`): apex "
+                      f"{m['height_m'] * 1e3:.1f} mm, {m['share_of_ceiling']:.0%} of the "
+                      f"ceiling; verdict {m['verdict'].upper()}"
+                      f"{' (achieved)' if m['achieved'] else ''}"
+                      + (f"; {asked}" if asked else "") + "."]
     if r["published"]:
         lines += ["", "## Published figures", "",
                   "| figure | published | computed (the ceiling) | ratio | reproduced | "
@@ -292,13 +298,17 @@ def plot(jumps: dict, params: Params, path: Path) -> Path:
 
 def max_jump_plan(params: Params, ceiling: Jump) -> JumpPath:
     """The jump maneuver that asks for the ceiling: its crouch at the ceiling's start, its
-    extension at the ceiling's takeoff, its height the ceiling's body apex, landing over the
-    whole stroke back to the crouch (MARGIN_LANDING_M short of it)."""
+    extension at the ceiling's takeoff, its height the ceiling's body apex, its push in the
+    ceiling's time (push_share: its takeoff and touchdown when the ceiling's are), landing over
+    the whole stroke back to the crouch (MARGIN_LANDING_M short of it)."""
     standing = -params.gait.y_home_m
     u0, takeoff = float(ceiling.stroke.u[0]), float(ceiling.stroke.u[ceiling.takeoff])
-    return JumpPath(height_m=round(ceiling.body_apex_above_standing_m, 4),
+    plan = JumpPath(height_m=round(ceiling.body_apex_above_standing_m, 4),
                     crouch_m=round(standing - u0, 4), extension_m=round(takeoff - standing, 4),
                     landing_stroke_m=round(takeoff - u0 - MARGIN_LANDING_M, 4))
+    share = ceiling.stance_s / plan.timing(params.gait)[0]
+    return dataclasses.replace(plan, push_share=round(min(max(share, PUSH_SHARES[0] + 1e-3),
+                                                          PUSH_SHARES[1]), 4))
 
 
 def beyond(result: dict) -> str:

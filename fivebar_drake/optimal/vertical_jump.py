@@ -278,6 +278,22 @@ def torque_floor(s: Stroke, standing_u: float, rise_m: float) -> tuple[float, Ju
     return high, found
 
 
+def maneuver_push(params: Params, crouch_m: float, extension_m: float, height_m: float,
+                  payload_kg: float = 0.0) -> Jump:
+    """The optimal push of a jump maneuver (core.footpath.Jump's crouch_m, extension_m above and
+    below the standing line, height_m its apex above standing, m): the push of least peak
+    torque that reaches height_m (torque_floor), or the highest (push) where none does.
+    ParameterError if the motors cannot start it from the crouch."""
+    standing = -params.gait.y_home_m
+    s = stroke(params, standing - crouch_m, standing + extension_m, payload_kg)
+    highest = push(s, standing)
+    if highest is None:
+        raise ParameterError("the motors cannot lift the crouched robot", "crouch_m")
+    if highest.body_apex_above_standing_m < height_m:
+        return highest
+    return torque_floor(s, standing, height_m)[1]
+
+
 def box_floor_lp(s: Stroke, standing_u: float, rise_m: float) -> tuple[float, str]:
     """(The least peak joint torque (N*m), the solver that found it) of a jump along the whole
     stroke (taking off at its end) that lifts the body rise_m above standing (as torque_floor),

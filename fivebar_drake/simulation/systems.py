@@ -20,8 +20,8 @@ from fivebar_drake.core.variants import Variant, documented, known, registrar
 from fivebar_drake.mechanisms.fivebar import LINK_NAMES, com_fractions, physical_izz
 from fivebar_drake.robots.quadruped.control_law import (CONTACT_LOAD_SHARE, FOREVER_S,
                                                         SUPPORT_FIELDS, ControlGains,
-                                                        LawConstants, foot_loads, leg_plan,
-                                                        leg_torques)
+                                                        LawConstants, LegPlan, foot_loads,
+                                                        leg_plan, leg_torques)
 from fivebar_drake.robots.quadruped.stance_laws import STANCE_LAWS
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.plant import RobotLayout
@@ -192,13 +192,19 @@ class FootLegController(LeafSystem):
         state = np.asarray(state, dtype=float)
         k = self.constants
         plan = leg_plan(k, np.asarray(references, dtype=float), state, loads, memory, float(t))
-        forces = self._forces(k, plan.body, plan.weights, plan.share, plan.fx, plan.fy, state,
-                              plan.r_wb)
-        out, finite = leg_torques(k.state.actuators, plan.base, plan.jf, forces)
+        out, finite = leg_torques(k.state.actuators, *self.stance_torques(plan, state, float(t)))
         if not finite:                        # name the reason, if it is a reach
             self._mechanism.inverse(plan.goal)
             self._mechanism.forward(state[self._layout.state.q_index])
         return out
+
+    def stance_torques(self, plan: LegPlan, state: np.ndarray, t: float) -> tuple:
+        """(base (8) N*m in actuation order, the foot Jacobians (legs, 2, 2), the feet's ground
+        forces (legs, 2) N in their leg planes) of a tick's command (control_law.leg_torques):
+        the plan's base and the stance law's forces. A controller variant changes them here."""
+        forces = self._forces(self.constants, plan.body, plan.weights, plan.share, plan.fx,
+                              plan.fy, state, plan.r_wb)
+        return plan.base, plan.jf, forces
 
     def tick_inputs(self, context) -> tuple:
         """What a tick at the context's time computes from (the arguments of command): the

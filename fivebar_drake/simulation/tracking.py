@@ -1,8 +1,8 @@
-"""A controller that tracks a gait's optimal motion (optimal/gait_floor.py): the controller
-variant "tracking" (scenario `controller: {kind: tracking}`), for the gaits with a floor (trot,
-walk, bound, pronk).
+"""A controller that tracks an optimal motion: the controller variant "tracking" (scenario
+`controller: {kind: tracking}`), for the gaits with a floor (optimal/gait_floor.py: trot, walk,
+bound, pronk) and the jump (optimal/vertical_jump.py: JumpTrackingController).
 
-Once the gait source's ramp has ended it commands, on each foot the support holds, the floor's
+For a gait, once the gait source's ramp has ended it commands, on each foot the support holds, the floor's
 ground force at that instant of the period (feed-forward, turned from the world's x-z plane into
 the leg plane by the body's measured rotation) plus a feedback wrench on the body's deviation
 from the floor's motion, shared by the feet down as the virtual model shares its wrench (least
@@ -19,13 +19,17 @@ from typing import ClassVar
 
 import numpy as np
 
+from fivebar_drake.core.footpath import Jump as JumpPath
 from fivebar_drake.core.validation import require
 from fivebar_drake.optimal.gait_floor import KINDS, GaitFloor, gait_floor, whole_body
-from fivebar_drake.robots.quadruped.control_law import (leg_plan, leg_torques, plane_forces,
-                                                        split_wrench)
+from fivebar_drake.optimal.vertical_jump import Jump, maneuver_push
+from fivebar_drake.robots.quadruped.control_law import plane_forces, split_wrench
 from fivebar_drake.robots.quadruped.legs import LEGS
 from fivebar_drake.robots.quadruped.sdf import body_height
 from fivebar_drake.simulation.systems import FootLeg, FootLegController, register_controller
+
+PUSH_WINDOW_SLACK = 0.25   # a tracked push may last this share longer than planned
+
 
 class Plan:
     """The floor's motion as functions of time within its period: the feet's forces (legs, 2)
@@ -65,28 +69,18 @@ class TrackingController(FootLegController):
         super().__init__(params, layout, gains, knobs, transfer_s)
         self._plan, self._start_s, self._ramp_s = plan, start_s, ramp_s
 
-    def command(self, references, state, loads_N=None, support=None, t: float = 0.0):
-        """The foot/leg controller's command until the ramp's end; then, blended in over the
-        gait's next period (the virtual model's forces giving way to the tracking ones), the
-        floor's forces and the feedback on the stance feet."""
+    def stance_torques(self, plan, state, t: float) -> tuple:
+        """The foot/leg controller's until the ramp's end; then, blended in over the gait's next
+        period (the virtual model's forces giving way to the tracking ones), the floor's forces
+        and the feedback on the stance feet."""
         share = (t - self._start_s - self._ramp_s) / self._plan.period
         if share <= 0.0:
-            return super().command(references, state, loads_N, support, t)
-        k = self.constants
-        memory = self.standing_support() if support is None else support
-        loads = np.full(memory.shape[0], np.inf) if loads_N is None else np.asarray(loads_N)
-        state = np.asarray(state, dtype=float)
-        plan = leg_plan(k, np.asarray(references, dtype=float), state, loads, memory, float(t))
+            return super().stance_torques(plan, state, t)
         forces_w, body = self._plan.at(t - self._start_s)
-        forces = self._forces_plane(plan, state, forces_w, body)
+        forces = self._forces_plane(plan, np.asarray(state, dtype=float), forces_w, body)
         if share < 1.0:
-            forces = share * forces + (1.0 - share) * self._forces(
-                k, plan.body, plan.weights, plan.share, plan.fx, plan.fy, state, plan.r_wb)
-        out, finite = leg_torques(k.state.actuators, plan.base, plan.jf, forces)
-        if not finite:
-            self._mechanism.inverse(plan.goal)
-            self._mechanism.forward(state[self._layout.state.q_index])
-        return out
+            forces = share * forces + (1.0 - share) * super().stance_torques(plan, state, t)[2]
+        return plan.base, plan.jf, forces
 
     def _forces_plane(self, plan, state, forces_w, body) -> np.ndarray:
         """Leg-plane ground forces (legs, 2) N: the floor's on the feet down (scaled by their
@@ -118,6 +112,102 @@ class TrackingController(FootLegController):
                             weights * body_f[:, 2] + extra[1::2])
 
 
+class JumpPlan:
+    """A jump's optimal push (optimal/vertical_jump.maneuver_push) as functions of the hip's
+    height u above the foot (m, the leg plane), linear between its nodes up to takeoff: each
+    motor's delivered torque (2,) N*m and speed (2,) rad/s and the hip's rising speed (m/s); the
+    takeoff height takeoff_u (m), the push's start onset_s and its window end_s (s, the run's
+    time)."""
+
+    def __init__(self, jump: Jump, onset_s: float, end_s: float):
+        k = jump.takeoff
+        self.u = jump.stroke.u[:k + 1]
+        self.torque = np.vstack([jump.delivered_Nm, jump.delivered_Nm[-1:]])
+        self.speed = np.vstack([jump.speed_rad_s, jump.stroke.dq[k] * jump.w[k]])
+        self.w = jump.w
+        self.takeoff_u, self.onset_s, self.end_s = float(self.u[-1]), onset_s, end_s
+
+    def at(self, u: float) -> tuple[np.ndarray, np.ndarray, float]:
+        """(delivered torques (2,) N*m, joint speeds (2,) rad/s, hip speed m/s) at hip height u
+        (m)."""
+        def line(values):
+            return np.array([np.interp(u, self.u, values[:, j]) for j in range(2)])
+        return line(self.torque), line(self.speed), float(np.interp(u, self.u, self.w))
+
+
+class JumpTrackingController(FootLegController):
+    """The foot/leg controller (FootLegController) whose legs, from the push's onset until each
+    reaches the takeoff height (or the push's window ends), deliver the optimal push's motor
+    torques at their measured hip height (feed-forward: the links' and rotors' inertia, the
+    links' weight and -J_F^T F of the optimal ground force, friction), plus -J_F^T of a
+    feedback ground force: along the leg's y, the hip's speed towards the optimum's at its
+    height; along x, the foot towards the stroke's line x_center (both at the swing loop's
+    bandwidth on a quarter of the robot); roll and pitch towards level with the foot/leg
+    controller's gains, shared by the four feet (split_wrench, no net force). The controller
+    asks no more than the envelope at the joints' speeds (JumpTrackingController._within)."""
+
+    def __init__(self, params, layout, gains, knobs, transfer_s, plan: JumpPlan):
+        super().__init__(params, layout, gains, knobs, transfer_s)
+        self._jump, self._x_center, self._motor = plan, params.gait.x_center_m, params.motor
+        omega = 2.0 * math.pi * knobs.swing_bandwidth_hz
+        quarter = layout.mass_kg / len(layout.legs)
+        self._kx, self._dx = quarter * omega**2, 2.0 * knobs.damping_ratio * quarter * omega
+        self._dw = quarter * omega
+
+    def stance_torques(self, plan, state, t: float) -> tuple:
+        base, jf, forces = super().stance_torques(plan, state, t)
+        jump, k = self._jump, self.constants
+        if not jump.onset_s <= t < jump.end_s:
+            return base, jf, forces
+        state = np.asarray(state, dtype=float)
+        qd = state[k.state.nq + k.state.v_index]                  # (legs, 2)
+        level = self._level(plan, state)
+        base, forces = base.copy(), forces.copy()
+        for i in range(qd.shape[0]):
+            u = -plan.fy[i]
+            if u >= jump.takeoff_u:
+                continue                                           # pushed: the foot/leg's
+            torque, speed, w_ref = jump.at(u)
+            v = jf[i] @ qd[i]                                      # the foot's, from the hip
+            force = level[i] + (self._kx * (plan.fx[i] - self._x_center) + self._dx * v[0],
+                                self._dw * (w_ref + v[1]))
+            base[k.state.actuators[i]] = self._within(torque, -jf[i].T @ force, qd[i], speed)
+            forces[i] = 0.0
+        return base, jf, forces
+
+    def _within(self, torque, feedback, speed, planned) -> np.ndarray:
+        """The feed-forward torques (2,) N*m plus the largest share (0 .. 1) of the feedback
+        torques that the envelope holds both at the joints' speeds and at the optimum's (rad/s),
+        the feed-forward itself clipped to it: the optimal push's split between the motors is
+        kept where the feedback asks more than they have (the ground force's direction with
+        it), and a joint about to start does not get the braking quadrant's larger torque."""
+        (up_now, lo_now), (up_plan, lo_plan) = (self._motor.limits(speed),
+                                                self._motor.limits(planned))
+        upper, lower = np.minimum(up_now, up_plan), np.maximum(lo_now, lo_plan)
+        torque = np.clip(torque, lower, upper)
+        share = 1.0
+        for j in range(2):
+            room = upper[j] - torque[j] if feedback[j] > 0.0 else lower[j] - torque[j]
+            if feedback[j] != 0.0:
+                share = min(share, room / feedback[j])
+        return torque + max(share, 0.0) * feedback
+
+    def _level(self, plan, state) -> np.ndarray:
+        """Leg-plane ground forces (legs, 2) N of no net force whose moment turns the body
+        towards level (roll and pitch, the foot/leg controller's attitude gains)."""
+        k, r_wb = self.constants, plan.r_wb
+        w0 = k.state.nq + k.state.body_v
+        omega_b = r_wb.T @ state[w0:w0 + 3]
+        roll = math.atan2(r_wb[2, 1], r_wb[2, 2])
+        pitch = -math.asin(min(max(r_wb[2, 0], -1.0), 1.0))
+        g = k.gains
+        wrench = np.array([0.0, 0.0, -g.k_att[0] * roll - g.d_att[0] * omega_b[0],
+                           -g.k_att[1] * pitch - g.d_att[1] * omega_b[1], 0.0])
+        split = split_wrench(k, np.ones(plan.weights.size), plan.fx, plan.fy, wrench, 4)
+        return np.stack([k.plane[0, j] * split[0::2] + k.plane[2, j] * split[1::2]
+                         for j in range(2)], -1)
+
+
 @register_controller
 @dataclass(frozen=True)
 class Tracking(FootLeg):
@@ -128,17 +218,33 @@ class Tracking(FootLeg):
 
     def check_scenario(self, scenario) -> None:
         path = scenario.gait
-        require(path.kind in KINDS, "scenario.gait", path.kind,
-                f"the tracking controller follows a gait's floor: one of {list(KINDS)}")
+        require(path.kind in KINDS or isinstance(path, JumpPath), "scenario.gait", path.kind,
+                f"the tracking controller follows a gait's floor or a jump's optimal push: one "
+                f"of {[*KINDS, JumpPath.kind]}")
         own = [path.leg_phase(leg) for leg in LEGS]
         require(np.allclose(scenario.phases_rad, own), "scenario.phases_rad",
                 scenario.phases_rad, f"the tracking controller follows the gait's own leg "
                                      f"phases, {own}")
 
-    def add_to(self, builder, params, layout, scenario) -> TrackingController:
+    def add_to(self, builder, params, layout, scenario) -> FootLegController:
         path = scenario.gait
+        if isinstance(path, JumpPath):
+            return self._add_jump(builder, params, layout, scenario)
         plan = Plan(gait_floor(params, path, scenario.payload_kg), params,
                     path.stance_speed(params.gait), whole_body(params, scenario.payload_kg)[1])
         return builder.AddNamedSystem("leg_controller", TrackingController(
             params, layout, self.gains(params, layout), self, scenario.load_transfer_s, plan,
             path.start_s(scenario.stand_s), scenario.ramp_s))
+
+    def _add_jump(self, builder, params, layout, scenario) -> JumpTrackingController:
+        """The jump's controller: the optimal push to the path's height (or the highest one)
+        from the path's push-off onwards, its window the longer of the path's push and the
+        optimum's, and PUSH_WINDOW_SLACK more."""
+        path = scenario.gait
+        jump = maneuver_push(params, path.crouch_m, path.extension_m, path.height_m,
+                             scenario.payload_kg)
+        onset = path.start_s(scenario.stand_s) + path.events(params.gait).onset
+        push_s = max(path.timing(params.gait)[0], jump.stance_s) * (1.0 + PUSH_WINDOW_SLACK)
+        return builder.AddNamedSystem("leg_controller", JumpTrackingController(
+            params, layout, self.gains(params, layout), self, scenario.load_transfer_s,
+            JumpPlan(jump, onset, onset + push_s)))

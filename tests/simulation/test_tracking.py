@@ -31,7 +31,7 @@ def test_the_tracked_bound_asks_less_than_the_foot_leg_controllers():
 
 @pytest.mark.parametrize("fields, field", [
     ({"gait": "seed_ellipse"}, "scenario.gait"),
-    ({"gait": "jump"}, "scenario.gait"),
+    ({"gait": "drop"}, "scenario.gait"),
     ({"gait": "bound", "phases_rad": [0.0, 0.0, 0.0, 0.0]}, "scenario.phases_rad")])
 def test_it_refuses_what_it_cannot_track(fields, field):
     """A path without a floor, or phases other than the gait's own: refused when the scenario
