@@ -30,7 +30,7 @@ def design_assumptions(params: Params) -> list[str]:
         f"{m.torque_constant_Nm_per_A:.4g} N·m/A, motor side, through the gearbox at "
         f"{m.gear_efficiency:g}), R = {m.winding_resistance_ohm:g} ohm constant, one first-order lag "
         f"(R_th = {m.thermal_resistance_K_W:g} K/W, tau = {m.thermal_time_constant_s:g} s) from "
-        f"{m.ambient_C:g} C; iron losses left out; these motor values are "
+        f"{m.ambient_C:g} °C; iron losses left out; these motor values are "
         "assumptions (parameter file).",
         "Hinge loads: Newton-Euler of the four rigid links under the full models' loads, with the "
         "analysis' joint rates and accelerations; frictionless hinges.",
@@ -87,9 +87,9 @@ def design_lines(results: dict, params: Params) -> list[str]:
     lines += ["", "## Thermal check", "",
               f"Continuous rating {th['continuous_torque_Nm']:.3f} N·m (the thermal model's "
               f"continuous current {th['thermal_continuous_current_A']:.3f} A);"
-              f" winding limit {th['winding_limit_C']:g} C from {th['ambient_C']:g} C.", "",
+              f" winding limit {th['winding_limit_C']:g} °C from {th['ambient_C']:g} °C.", "",
               "| motor | model | RMS torque (N·m) | RMS / continuous current | copper loss (W) | "
-              "steady winding (C) | margin (K) | time to limit |",
+              "steady winding (°C) | margin (K) | time to limit |",
               "|---|---|---|---|---|---|---|---|"]
     for motor in MOTORS:
         for name in PHYSICAL:

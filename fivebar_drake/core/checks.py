@@ -66,6 +66,15 @@ class Checks:
                      MAX_LENGTH_M, low_open=True)
 
 
+def thresholds_text(checks: Checks) -> str:
+    """The thresholds of the verdict, written beside every verdict a report gives."""
+    return (f"Thresholds: SF ≥ {checks.sf_pass:g} pass, ≥ {checks.sf_warn:g} warn, else fail; "
+            f"speed: beyond the torque–speed envelope more than "
+            f"{checks.speed_outside_fail * 100:g} % of the time fails, a least margin below "
+            f"{checks.speed_margin_warn:g} warns; thermal: continuous / RMS current below 1 fails, "
+            f"below {checks.thermal_margin_warn:g} warns.")
+
+
 def verdict(checks: Checks, safety_factor: float) -> str:
     """Torque: 'pass' (SF >= sf_pass), 'warn' (sf_warn <= SF < sf_pass) or 'fail'."""
     if safety_factor >= checks.sf_pass:

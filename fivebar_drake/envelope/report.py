@@ -15,7 +15,9 @@ import json
 import math
 from pathlib import Path
 
-from fivebar_drake.core.checks import CHECK_ORDER, SEVERITY, limit_shares_text, worst_check
+from fivebar_drake.core.checks import (CHECK_ORDER, SEVERITY, limit_shares_text, thresholds_text,
+                                        worst_check)
+from fivebar_drake.core.text import figure
 from fivebar_drake.core.files import json_ready, write_atomic
 from fivebar_drake.core.summary_schema import MotorSummary, Summary
 from fivebar_drake.core.verdicts import badness
@@ -186,7 +188,7 @@ def envelope_report(spec, results: dict, duty: dict | None, duty_why: str,
     motor = params.motor
     return {
         "spec": spec.source, "complete": all(m.name in results for m in spec.maneuvers),
-        "verdict": verdict, "answer": sentence,
+        "verdict": verdict, "answer": sentence, "thresholds": thresholds_text(params.checks),
         "motor": {"peak_torque_Nm": motor.peak_torque_Nm,
                   "braking_peak_torque_Nm": motor.braking_peak_torque_Nm,
                   "no_load_speed_rad_s": motor.no_load_speed_rad_s,
@@ -199,11 +201,6 @@ def envelope_report(spec, results: dict, duty: dict | None, duty_why: str,
                       for s in spec.duty_cycle], **duty},
         "duty_cycle_why_none": duty_why,
     }
-
-
-def _fmt(x, pattern: str = "{:.2f}") -> str:
-    return "—" if x is None or (isinstance(x, float) and not math.isfinite(x)) else \
-        pattern.format(x)
 
 
 def _at_limit(check: dict) -> str:
@@ -219,7 +216,8 @@ def _sf(check: dict) -> str:
 
 
 def markdown(report: dict) -> str:
-    lines = ["# Duty envelope of the hip motors", "", report["answer"], ""]
+    lines = ["# Duty envelope of the hip motors", "", report["answer"], "",
+             report.get("thresholds", ""), ""]
     if not report["complete"]:
         lines += ["**Incomplete:** the envelope was interrupted; the maneuvers marked missing "
                   "did not run.", ""]
@@ -227,7 +225,7 @@ def markdown(report: dict) -> str:
     lines += [f"Spec: `{report['spec']}`. Motor: {m['peak_torque_Nm']:.2f} N·m peak driving "
               f"({m['braking_peak_torque_Nm']:.2f} braking), no-load speed "
               f"{m['no_load_speed_rad_s']:.2f} rad/s, continuous "
-              f"{_fmt(m['continuous_torque_Nm'])} N·m. Each check is from the leg where it is "
+              f"{figure(m['continuous_torque_Nm'])} N·m. Each check is from the leg where it is "
               "worst; the verdict is the worst check (not achieved where the motion was not). "
               "SF: 1 / the 99th percentile of the demand over the limit of each sample's own "
               "quadrant (driving: torque and speed of one sign; braking: opposite signs), with "
@@ -252,10 +250,10 @@ def markdown(report: dict) -> str:
             lines.append(
                 f"| {name} | {row['verdict'].upper()} | {row['deciding_check'] or '—'} | "
                 f"{_sf(c['torque'])} ({c['torque']['leg']}){_at_limit(c['torque'])} | "
-                f"{_fmt(c['speed']['least_margin'])}, {c['speed']['outside_fraction']:.1%} "
+                f"{figure(c['speed']['least_margin'])}, {c['speed']['outside_fraction']:.1%} "
                 f"({c['speed']['leg']}){_at_limit(c['speed'])} | "
-                f"{_fmt(c['thermal'].get('margin'))}, "
-                f"{_fmt(c['thermal'].get('rms_current_A'), '{:.3f}')} ({c['thermal']['leg']}) | "
+                f"{figure(c['thermal'].get('margin'))}, "
+                f"{figure(c['thermal'].get('rms_current_A'), '{:.3f}')} ({c['thermal']['leg']}) | "
                 f"{c['achieved']['verdict']} ({c['achieved']['leg']}) |")
         s = report["sized_by"][motor]
         lines += ["", "Sized by: " + ("no maneuver with a verdict" if s is None else
@@ -285,13 +283,13 @@ def markdown(report: dict) -> str:
         changes = ", ".join(f"{k}: {v}" for k, v in e["changes"].items() if k != "gait")
         timing = e["timing"] or {}
         a = e.get("any_controller")
-        floor = ("—" if not a else f"none / {_fmt(a['asked_Nm'])}" if a["floor_Nm"] is None
-                 else f"{a['floor_Nm']:.2f} / {_fmt(a['asked_Nm'])}")
+        floor = ("—" if not a else f"none / {figure(a['asked_Nm'])}" if a["floor_Nm"] is None
+                 else f"{a['floor_Nm']:.2f} / {figure(a['asked_Nm'])}")
         lines.append(f"| {name} | {e['gait']} | {changes or '—'} | {e['status']} | "
                      f"{e['verdict'].upper()} | {floor} | {(a or {}).get('fails_for') or '—'} | "
-                     f"{_fmt(e.get('duration_s'))} | "
-                     f"{_fmt(e.get('time_step_s') and e['time_step_s'] * 1e3, '{:g}')} | "
-                     f"{_fmt(timing.get('real_time_factor'))} | `{e['folder']}/` |")
+                     f"{figure(e.get('duration_s'))} | "
+                     f"{figure(e.get('time_step_s') and e['time_step_s'] * 1e3, '{:g}')} | "
+                     f"{figure(timing.get('real_time_factor'))} | `{e['folder']}/` |")
     lines += ["", "## Duty cycle", ""]
     d = report["duty_cycle"]
     if d is None:
@@ -305,7 +303,7 @@ def markdown(report: dict) -> str:
         for motor, v in d["motors"].items():
             lines.append(f"| {motor} | {v['peak_C']:.1f} | {v['leg']} | {v['at_s']:.0f} | "
                          f"{v['end_C']:.1f} | {v['equivalent_current_A']:.3f} | "
-                         f"{_fmt(v['margin'])} | {v['verdict'].upper()} |")
+                         f"{figure(v['margin'])} | {v['verdict'].upper()} |")
         lines += ["", "Equivalent current: the constant current that would hold the winding "
                   "at the peak for ever; margin: the thermal model's continuous current over "
                   "it (fail below 1, as the thermal check)."]

@@ -7,11 +7,13 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from fivebar_drake.core.checks import Checks
+from fivebar_drake.core import text
+from fivebar_drake.core.checks import Checks, thresholds_text
 from fivebar_drake.core.files import read_input_text, save_figure, write_atomic
 from fivebar_drake.core.summary_schema import MotorSummary, Summary
 from fivebar_drake.core.validation import ParameterError, require
 from fivebar_drake.mechanisms.fivebar import MOTORS
+from fivebar_drake.robots.quadruped.config import load_params
 from fivebar_drake.simulation.run_statistics import MIN_CYCLES
 
 
@@ -91,7 +93,7 @@ def _summary(path: Path) -> Summary:
 
 
 def _num(value, fmt=".2f") -> str:
-    return "n/a" if value is None else format(value, fmt)
+    return text.figure(value, "{:" + fmt + "}")
 
 
 def _labels(folders: list[Path]) -> list[str]:
@@ -137,8 +139,8 @@ def answer(summaries: list[Labelled]) -> str:
     def one(s: Labelled) -> str:
         check = s.get("deciding_check")
         return (f"{_label(s)}: {str(s['verdict']).upper()}"
-                + (f" by the {check} check (worst motor {s.get('worst_motor')})" if check
-                   else ""))
+                + (f" by the {check} check (worst motor {s.get('worst_motor')}"
+                   f"{_deciding_figure(s, check)})" if check else ""))
 
     text = "; ".join(one(s) for s in summaries) + "."
     for a, b in zip(summaries, summaries[1:]):
@@ -150,24 +152,46 @@ def answer(summaries: list[Labelled]) -> str:
     return text
 
 
+def _deciding_figure(s: Labelled, check: str) -> str:
+    """', SF 1.41: 3.55 N·m of its 5.00 N·m driving limit' — the worst motor's figure of the
+    check that decided its run, against its limit."""
+    leg, _, motor = str(s.get("worst_motor") or "").partition(" ")
+    c = (((s.get("legs") or {}).get(leg) or {}).get(motor) or {}).get("checks") or {}
+    c = c.get(check) or {}
+    if check == "torque" and c.get("sf") is not None:
+        return (f", SF {text.figure(c['sf'])}: {text.figure(c.get('torque_Nm'))} N·m of its "
+                f"{text.figure(c.get('limit_Nm'))} N·m {c.get('quadrant') or ''} limit").replace(
+                    "  ", " ")
+    if check == "speed" and c:
+        return (f", {text.figure((c.get('outside_fraction') or 0) * 100, '{:.1f}')} % of the time "
+                f"beyond the torque–speed envelope, least margin {text.figure(c.get('least_margin'))}")
+    if check == "thermal" and c:
+        return f", continuous / RMS current {text.figure(c.get('margin'))}"
+    return ""
+
+
 def markdown(summaries: list[Labelled]) -> str:
     lines = ["# Runs side by side", "", f"**Answer:** {answer(summaries)}", "",
+             thresholds_text(load_params().checks).rstrip(".") + " (the default checks).", "",
              "Each run's demand (the controller's command before saturation, 99th percentile "
              "over its whole gait cycles) and RMS applied torque per motor, beside the static "
              "estimates for the same poses: the seed's (G(q) with the weight share at the foot) "
-             "and the trot's (the robot's weight shared by the feet in stance). N·m.", ""]
+             "and the one with the run's own loads (the robot's weight shared by the feet in "
+             "stance). N·m.", ""]
     for s in summaries:
         lines.append(f"- **{_label(s)}** ({s['gait']} gait, {s['closure']} closure, gear "
-                     f"{_num((s.get('motor') or {}).get('gear_ratio'), 'g')}:1): {s['answer']} Walking "
-                     f"{_num(s['mean_forward_speed_m_s'], '.3f')} m/s of the path's "
-                     f"{s['gait_speed_m_s']:.3f} m/s, largest tilt "
-                     f"{_num(s['max_tilt_deg'], '.1f')} deg, verdict {s['verdict'].upper()}.")
+                     f"{_num((s.get('motor') or {}).get('gear_ratio'), 'g')}:1): {s['answer']} "
+                     + (f"Walking {_num(s['mean_forward_speed_m_s'], '.3f')} m/s of the path's "
+                        f"{_num(s['gait_speed_m_s'], '.3f')} m/s, largest" if s.get("periodic", True)
+                        else "Largest")
+                     + f" tilt {_num(s['max_tilt_deg'], '.1f')} deg, verdict "
+                     f"{s['verdict'].upper()}.")
     lines += ["", "## Verdicts", "", "Each motor's verdict, the check that decided it (torque: "
               "safety factor; speed: the demand beyond the actuator's envelope; thermal: "
               "continuous / RMS current):", "", *verdict_table(summaries), "", "## Torques", ""]
     header = "| leg | motor | " + " | ".join(
-        f"{_label(s)} demand p99 | {_label(s)} RMS | {_label(s)} seed static | "
-        f"{_label(s)} trot static" for s in summaries) + " |"
+        f"{_label(s)} demand p99 | {_label(s)} RMS | {_label(s)} seed's model | "
+        f"{_label(s)} static, same loads" for s in summaries) + " |"
     lines += [header, "|---|---|" + "---|" * (4 * len(summaries))]
     for leg in summaries[0]["legs"]:
         for motor in MOTORS:

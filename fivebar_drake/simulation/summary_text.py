@@ -12,8 +12,9 @@ import json
 import math
 from pathlib import Path
 
-from fivebar_drake.core.checks import CHECK_ORDER, demand_unmet, limit_shares_text
+from fivebar_drake.core.checks import CHECK_ORDER, demand_unmet, limit_shares_text, thresholds_text
 from fivebar_drake.core.files import json_ready, write_atomic
+from fivebar_drake.core.text import figure
 from fivebar_drake.core.summary_schema import (AnyController, JumpFigures, LandingFigures, LimitReport,
                                                MotorSummary, Ran, SpeedCheck, Summary,
                                                ThermalCheck, TorqueCheck)
@@ -154,9 +155,9 @@ def markdown(s: Summary, params: Params) -> str:
         dragged = ("" if not math.isfinite(drag) else
                    f", on it {drag * 100:.0f} % of mid-swing (worst legs; the rest is early "
                    "touchdown)")
-        motion = (f"walking: {s['mean_forward_speed_m_s']:.3f} m/s against the gait's "
-                  f"{s['gait_speed_m_s']:.3f} m/s; swing feet clear of the ground "
-                  f"{clear * 100:.0f} % of scheduled swing{dragged}; {motion}")
+        motion = (f"walking: {figure(s['mean_forward_speed_m_s'], '{:.3f}')} m/s against the "
+                  f"gait's {figure(s['gait_speed_m_s'], '{:.3f}')} m/s; swing feet clear of the "
+                  f"ground {figure(clear * 100, '{:.0f}')} % of scheduled swing{dragged}; {motion}")
     lines += [
         "", f"- {motion}", *maneuver_lines(s),
         f"- {limits_text(s['limits'])}",
@@ -166,6 +167,7 @@ def markdown(s: Summary, params: Params) -> str:
            f"{s['vertical_support']['largest_share']:.2f} (t = "
            f"{s['vertical_support']['largest_at_s']:.3f} s) of the weight"]
           if s.get("vertical_support") else []),
+        "", thresholds_text(params.checks),
         "", "| leg | motor | demand p99 | demand peak | applied p99 | RMS | seed's model | "
         "static, same loads | contact peak | demand / seed's | demand / static | SF | verdict | "
         "clipped | p99 speed (rad/s) |",
@@ -173,12 +175,13 @@ def markdown(s: Summary, params: Params) -> str:
     for leg, motors in s["legs"].items():
         for name, m in motors.items():
             lines.append(
-                f"| {leg} | {name} | {m['demand_p99_Nm']:.2f} | {m['demand_peak_Nm']:.2f} | "
-                f"{m['p99_torque_Nm']:.2f} | {m['rms_torque_Nm']:.2f} | {m['static_seed_Nm']:.2f} | "
-                f"{m['static_trot_Nm']:.2f} | {m['static_contact_Nm']:.2f} | "
-                f"{m['dynamic_to_seed_static']:.2f}x | {m['dynamic_to_trot_static']:.2f}x | "
-                f"{m['safety_factor']:.2f} ({_quadrant(m)}) | {m['verdict'].upper()} | "
-                f"{_clipped(m)} | {m['p99_speed_rad_s']:.2f} |")
+                f"| {leg} | {name} | " + " | ".join(figure(m[k]) for k in (
+                    "demand_p99_Nm", "demand_peak_Nm", "p99_torque_Nm", "rms_torque_Nm",
+                    "static_seed_Nm", "static_trot_Nm", "static_contact_Nm"))
+                + f" | {figure(m['dynamic_to_seed_static'], '{:.2f}x')} | "
+                f"{figure(m['dynamic_to_trot_static'], '{:.2f}x')} | "
+                f"{figure(m['safety_factor'])} ({_quadrant(m)}) | {m['verdict'].upper()} | "
+                f"{_clipped(m)} | {figure(m['p99_speed_rad_s'])} |")
     lines += ["", "Torque split (RMS over the window, N·m): contact -J^T F, links M q'' + c + G, "
               "rotor N^2 J q'', friction; residual = applied - their sum.", "",
               "| leg | motor | contact | links | rotor | friction | residual |",
@@ -186,8 +189,8 @@ def markdown(s: Summary, params: Params) -> str:
     for leg, motors in s["legs"].items():
         for name, m in motors.items():
             d = m["decomposition_rms_Nm"]
-            lines.append(f"| {leg} | {name} | {d['contact']:.3f} | {d['links']:.3f} | "
-                         f"{d['rotor']:.3f} | {d['friction']:.3f} | {d['residual']:.3f} |")
+            lines.append(f"| {leg} | {name} | " + " | ".join(figure(d[k], "{:.3f}") for k in (
+                "contact", "links", "rotor", "friction", "residual")) + " |")
     motor = params.motor
     lines += ["", f"Units N·m unless stated. Motor limits at the output: "
               f"{motor.peak_torque_Nm:.2f} N·m driving (torque and speed of one sign), "
@@ -283,8 +286,8 @@ def _quadrant(m: MotorSummary) -> str:
 
 def _clipped(m: MotorSummary) -> str:
     """The share of the time a motor was clipped, with the limit it sat at most."""
-    if not m["saturated_fraction"]:
-        return "0.0 %"
+    if not m["saturated_fraction"] or not math.isfinite(m["saturated_fraction"]):
+        return figure(m["saturated_fraction"], "{:.1f} %")
     most = max(m["limit_shares"], key=lambda k: m["limit_shares"][k]).replace("_", " ")
     return f"{m['saturated_fraction'] * 100:.1f} % ({most} most)"
 

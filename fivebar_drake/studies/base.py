@@ -146,3 +146,15 @@ def checked_duration(duration_s: float | None, default: float, low: float = 0.0,
     except ParameterError as err:
         raise err.located("command line" if duration_s is not None else "parameter file") \
             from None
+
+
+def claims_answer(claims: Sequence[dict], what: str) -> str:
+    """A seed check's first line (docs/output_style.md): how many readings of the seed's claims
+    reproduce its numbers, and which claims none of them does. claims: dicts with "id" and
+    "reproduced"; what: the claims' subject."""
+    ids = list(dict.fromkeys(c["id"] for c in claims))
+    none = [i for i in ids if not any(c["reproduced"] for c in claims if c["id"] == i)]
+    held = sum(bool(c["reproduced"]) for c in claims)
+    return (f"**Answer:** {held} of {len(claims)} readings of the seed's {what} reproduce its "
+            f"numbers; {len(ids) - len(none)} of {len(ids)} claims by at least one reading"
+            + (f" (none for {', '.join(none)})." if none else "."))

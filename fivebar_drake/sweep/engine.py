@@ -328,6 +328,7 @@ def sweep(spec: SweepSpec, out: str | Path, workers: int | None = None,
     """run_sweep, then the plots and sweep.md. Returns (SweepResult, summary dict, the paths
     written: table, plots, report)."""
     from fivebar_drake.sweep.plots import write_sweep_plots
+    from fivebar_drake.core.checks import thresholds_text
     from fivebar_drake.sweep.report import summarize_sweep, write_sweep_report
 
     result = run_sweep(spec, out, workers, scheduler, progress, client)
@@ -336,5 +337,6 @@ def sweep(spec: SweepSpec, out: str | Path, workers: int | None = None,
     written = [result.table, *write_sweep_plots(result.rows, spec.plot, spec.fidelity,
                                                 checks.sf_pass, Path(out), spec.names,
                                                 checks.sf_warn),
-               write_sweep_report(summary, spec.names, spec.fidelity, Path(out))]
+               write_sweep_report(summary, spec.names, spec.fidelity, Path(out),
+                                  thresholds_text(checks))]
     return result, summary, written

@@ -40,17 +40,30 @@ def summarize_sweep(rows: list[dict], varied: list[str], sf_pass: float) -> dict
             "fastest_passing": fastest}
 
 
-def write_sweep_report(summary: dict, varied: list[str], fidelity: str, out: Path) -> Path:
-    """sweep.md: the counts, the fastest passing point, the Pareto front as a table."""
-    lines = [f"# Sweep: {summary['points']} design points ({fidelity})", "",
-             "Outcomes (the worst motor's verdict; failed: no result, see points.csv's "
-             "`error`): " + ", ".join(f"{k} {v}" for k, v in sorted(summary["outcomes"].items())),
-             ""]
+def answer(summary: dict, varied: list[str]) -> str:
+    """sweep.md's first line: how many points pass, warn and fail (the worst motor's verdict)
+    and the fastest point where every motor passes, with its worst safety factor."""
+    counts = summary["outcomes"]
+    told = ", ".join(f"{counts[k]} {k.upper()}" for k in ("pass", "warn", "fail", "failed")
+                     if k in counts)
     best = summary["fastest_passing"]
-    lines.append("Fastest design point where every motor passes: " + (
-        "none" if best is None else
-        f"point {best['point']} ({', '.join(f'{k} = {best[k]}' for k in varied)}): "
-        f"{best['speed_m_s']:.3f} m/s, worst SF {best['worst_safety_factor']:.2f}"))
+    fastest = ("no point passes" if best is None else
+               f"the fastest where every motor passes: point {best['point']} ("
+               + ", ".join(f"{k} = {best[k]}" for k in varied)
+               + f"), {best['speed_m_s']:.3f} m/s, worst SF {best['worst_safety_factor']:.2f}")
+    return (f"**Answer:** of {summary['points']} design points {told} (the worst motor's "
+            f"verdict); {fastest}.")
+
+
+def write_sweep_report(summary: dict, varied: list[str], fidelity: str, out: Path,
+                       thresholds: str = "") -> Path:
+    """sweep.md: the answer (the counts, the fastest passing point) with the verdict's
+    thresholds, the Pareto front as a table."""
+    lines = [f"# Sweep: {summary['points']} design points ({fidelity})", "",
+             answer(summary, varied), "",
+             "Outcomes (the worst motor's verdict; failed: no result, see points.csv's "
+             "`error`): " + ", ".join(f"{k} {v}" for k, v in sorted(summary["outcomes"].items()))
+             + (f". {thresholds}" if thresholds else "")]
     lines += ["", f"Pareto front, worst safety factor against {SPEED_LABEL[fidelity]}:", "",
               "| point | " + " | ".join(varied) + " | speed (m/s) | worst SF | verdict |",
               "|---" * (len(varied) + 4) + "|"]

@@ -20,6 +20,7 @@ from fivebar_drake.codesign.run import corrections, next_finalist
 from fivebar_drake.codesign.spec import load_codesign_spec
 from fivebar_drake.core.actuators import actuator_mass_kg, catalog
 from fivebar_drake.robots.quadruped.config import load_params
+from style_rules import report_violations
 
 ENVELOPE = """\
     scenario: {stand_s: 0.2, ramp_s: 0.5}
@@ -71,6 +72,11 @@ def codesign(tmp_path_factory):
         code = main(["codesign", str(write(folder, SPEC)), "--out", str(folder / "out"),
                      "--scheduler", cluster.scheduler_address])
     return code, folder / "out", json.loads((folder / "out" / "design.json").read_text())
+
+
+def test_the_reports_keep_the_style_guide(codesign):
+    """design.md, and each finalist's envelope.md and summary.md (docs/output_style.md)."""
+    assert report_violations(codesign[1]) == []
 
 
 def envelope_sfs(folder) -> dict:

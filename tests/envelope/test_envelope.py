@@ -23,6 +23,7 @@ from fivebar_drake.envelope.maneuver import decimate
 from fivebar_drake.envelope.spec import DATA, DutyStep, load_envelope_spec
 from fivebar_drake.robots.quadruped.config import DEFAULT_PATH
 from fivebar_drake.core.rerun_files import read_series
+from style_rules import report_violations
 
 # two short trot variants with a verdict: 3 whole cycles after 0.2 s standing and the ramp
 SPEC = """\
@@ -153,6 +154,7 @@ def test_packaged_specs_load():
 @pytest.mark.slow
 def test_the_envelope_and_its_files(local):
     out, _, _ = local
+    assert report_violations(out) == []          # envelope.md, each maneuver's summary.md
     report = envelope(out)
     assert report["complete"] and report["verdict"] in ("pass", "warn", "fail")
     for name in ("operating_points.png", "duty_cycle.png"):

@@ -11,6 +11,7 @@ from fivebar_drake.cli import main
 from fivebar_drake.core.parameter_files import packaged
 from fivebar_drake.robots.quadruped.config import load_params
 from fivebar_drake.robots.quadruped.published import compare_published
+from style_rules import report_violations
 
 ROBOTS = ("doggo", "minitaur")
 
@@ -44,6 +45,7 @@ def test_analyze_and_simulate_run_out_of_the_box(robot, tmp_path, capsys):
     assert home["knees_forward"] is None and home["knees_back"] is None   # coaxial: knees meet
     assert home["knees_out"]["max_vertical_N"] > 0
     assert "## Published figures" in (tmp_path / "a" / "report.md").read_text()
+    assert report_violations(tmp_path / "a" / "report.md") == []
     code = main(["simulate", "--config", config, "--duration", "1.6", "--out",
                  str(tmp_path / "s")])
     summary = json.loads((tmp_path / "s" / "summary.json").read_text())

@@ -20,6 +20,7 @@ from fivebar_drake.simulation.scenario import load_scenario
 from fivebar_drake.robots.quadruped.plant import set_standing_pose
 from fivebar_drake.simulation.builder import build_diagram, check_run
 from fivebar_drake.simulation.signals import signals
+from style_rules import report_violations
 
 TEST_DURATION_S = 4.5   # 0.5 s standing, 1 s ramp, 3 whole trot cycles
 RPY_DURATION_S = 2.5    # the explicit bushing runs at a quarter of real time: one whole cycle
@@ -294,6 +295,7 @@ def test_simulate_cli_writes_outputs_and_recording(tmp_path, capsys):
             assert 0 <= m["saturated_fraction"] <= 1 and m["peak_torque_Nm"] > 0
             assert m["demand_p99_Nm"] <= m["demand_peak_Nm"] + 1e-12
     assert (out / "summary.md").read_text().splitlines()[2] == summary["answer"]
+    assert report_violations(out / "summary.md") == []
     for name in ("summary.md", "sim_torques.png", "sim_motion.png"):
         assert (out / name).stat().st_size > 1000
     check_recording(out / "run.rrd", summary)

@@ -14,6 +14,7 @@ from fivebar_drake.cli import main
 from fivebar_drake.mechanisms.ballscrew_leg import load_params
 from fivebar_drake.core.rerun_files import read_series
 from fivebar_drake.studies.ballscrew_leg.model import build_model
+from style_rules import report_violations
 
 REQUIRED_IDS = {"ratio_max_s1_0.02", "ratio_min_s1_0.02", "ratio_max_s1_0.05",
                 "ratio_s1_0.07_vs_0.05"}
@@ -122,6 +123,7 @@ def test_analyze_end_to_end(tmp_path):
     assert below["computed_value"] == pytest.approx(share, abs=2 / 1681)
     text = (tmp_path / "report.md").read_text()
     assert "not reproduced" in text and "ratio_min_s1_0.02" in text
+    assert report_violations(tmp_path / "report.md") == []
 
 
 def test_bad_config_names_file_and_field(tmp_path, capsys):

@@ -16,6 +16,7 @@ from fivebar_drake.core.rerun_files import read_series
 from fivebar_drake.studies.parallel4 import ANALYSIS_FILES, load_params
 from fivebar_drake.studies.parallel4.model import Parallel4Plant, closed_form_static_forces
 from fivebar_drake.studies.parallel4.simulation import simulate
+from style_rules import report_violations
 
 PARAMS = load_params(None)
 TEXT = resources.files("fivebar_drake.data").joinpath("parallel4.toml").read_text("utf-8")
@@ -46,6 +47,7 @@ def test_analyze_writes_every_file(analyzed):
         assert (out / name).stat().st_size > 1000, name
     text = (out / "report.md").read_text()
     assert "cond_narrow_60deg" in text and "not reproduced" in text
+    assert report_violations(out / "report.md") == []
 
 
 def test_seed_claims_have_every_reading_and_the_5_percent_rule(analyzed):

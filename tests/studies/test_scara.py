@@ -13,6 +13,7 @@ from fivebar_drake.mechanisms.scara import Dynamics, load_params, seed_inertia
 from fivebar_drake.core.rerun_files import read_series
 from fivebar_drake.studies.scara.analysis import seed_motion
 from fivebar_drake.studies.scara.model import drake_terms
+from style_rules import report_violations
 
 REQUIRED_IDS = {"tau1_max", "W1", "tau2_max", "W2", "Fa_unloaded", "Fa_loaded", "T3", "n3",
                 "W3", "Dtb", "gamma", "Zb"}
@@ -82,6 +83,7 @@ def test_analyze_end_to_end(tmp_path, capsys):
     assert data["workspace"]["outer_radius_m"] == pytest.approx(0.85)
     md = (tmp_path / "report.md").read_text()
     assert "not reproduced — because" in md and "| Zb |" in md
+    assert report_violations(tmp_path / "report.md") == []
 
 
 @pytest.mark.parametrize("old, new, field", [

@@ -14,6 +14,7 @@ from fivebar_drake.mechanisms.ballscrew_leg import EFFICIENCY_READINGS, RATIO_RE
 from fivebar_drake.studies.ballscrew_leg.analysis import (REPRODUCED_WITHIN, Analysis,
                                                           lever_summary, ratio_crossings)
 from fivebar_drake.studies.ballscrew_leg.plots import ANALYSIS_FIGURES
+from fivebar_drake.studies.base import claims_answer
 from fivebar_drake.studies.ballscrew_leg.simulation import STANDING_SETTLE_S
 
 ANALYSIS_FILES = ("report.md", "report.json")          # report.json last
@@ -110,6 +111,7 @@ def _markdown(a: Analysis) -> str:
     p = a.params
     lines = [
         "# Ball-screw knee against the geared knee (seed 001)", "",
+        claims_answer(a.claims, "claims"), "",
         f"Serial two-link leg, l1 = {p.leg.thigh_m:g} m, l2 = {p.leg.shank_m:g} m; vertical squat "
         f"q2 = -2 q1 (foot below the hip), ground force {p.load.foot_force_N:g} N up on the foot; "
         f"geared knee {p.geared_knee.gear_ratio:g}:1 at {p.geared_knee.efficiency:.0%}; ball "

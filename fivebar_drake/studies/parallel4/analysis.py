@@ -30,7 +30,7 @@ READINGS = {
     # name: (unit scale of (x, y, z, theta), what is taken of K, square root?)
     "K (4x4, m and rad), sqrt(lmax/lmin)": ((1, 1, 1, 1), None, True),
     "K (4x4, mm and rad)": ((1e3, 1e3, 1e3, 1), None, True),
-    "K (4x4, m and degrees)": ((1, 1, 1, 180 / math.pi), None, True),
+    "K (4x4, m and deg)": ((1, 1, 1, 180 / math.pi), None, True),
     "K (4x4, m and rad), lmax/lmin without the root": ((1, 1, 1, 1), None, False),
     "K translational block (theta held)": ((1, 1, 1, 1), translational_block, True),
     "translational stiffness, theta free (Schur complement)":

@@ -11,9 +11,11 @@ from pathlib import Path
 import numpy as np
 
 from fivebar_drake.core.files import write_atomic
+from fivebar_drake.core.text import figure
 from fivebar_drake.mechanisms.parallel4.params import Params
 from fivebar_drake.studies.parallel4.analysis import READINGS, SEED_COND, Analysis
 from fivebar_drake.studies.parallel4.plots import ANALYSIS_FIGURES
+from fivebar_drake.studies.base import claims_answer
 
 ANALYSIS_FILES = ("report.md", "report.json")          # report.json last
 SIMULATION_FILES = ("summary.json",)
@@ -178,7 +180,7 @@ def claims(params: Params, results: dict) -> list[dict]:
 
 def _fmt(v) -> str:
     if isinstance(v, float):
-        return f"{v:.4g}"
+        return figure(v, "{:.4g}")
     if isinstance(v, list):
         return "[" + ", ".join(_fmt(x) for x in v) + "]"
     if isinstance(v, dict):
@@ -216,6 +218,7 @@ def markdown(params: Params, results: dict, seed_claims: list[dict]) -> str:
     g, ck, ds = params.geometry, results["checks"], results["drake_statics"]
     lines = [
         "# parallel4: the 4-DOF parallel manipulator after Pierrot (seed 004)", "",
+        claims_answer(seed_claims, "claims"), "",
         f"Design geometry: a = {g.a:g} m, b = {g.b:g} m (a - b = {g.e:g} m), c = {g.c:g} m, "
         f"d = {g.d:g} m, R = {g.R:g} m; pair spread |l1 - l2| in [{g.d_min_over_R:g}, "
         f"{g.d_max_over_R:g}] R. Workspace: each leg pair reaches within that spread, on the "
@@ -241,7 +244,7 @@ def markdown(params: Params, results: dict, seed_claims: list[dict]) -> str:
     for s in results["workspace"]:
         for r in s["rows"]:
             lines.append(f"| {s['figure']} | {s['theta_deg']:g} | {s['varied']} | {r['value']:g} "
-                         f"| {r['area_m2']:.5f} | {_fmt(r['centroid_yz_m'])} | "
+                         f"| {figure(r['area_m2'], '{:.4g}')} | {_fmt(r['centroid_yz_m'])} | "
                          f"{_fmt(r['lowest_point_yz_m'])} |")
     lines += ["", "## Condition-number maps (Fig. 2.13-2.18)", "",
               "Medians over the workspace cross-section:", "",

@@ -85,7 +85,7 @@ def _worst(dyn: Dynamics, joint: int, limits, qd, qdd) -> tuple[float, float]:
 
 
 def torque_readings(params: ScaraParams) -> list[tuple[str, float, float]]:
-    """tau1_max and tau2_max (N*m) under each reading: (joint, reading, value)."""
+    """tau1_max and tau2_max (N·m) under each reading: (joint, reading, value)."""
     k, sp = params.kinematics, params.sizing
     scara = Scara(k)
     dyn = Dynamics(k, seed_inertia(params.links))
@@ -102,7 +102,7 @@ def torque_readings(params: ScaraParams) -> list[tuple[str, float, float]]:
                     f"qd2 = {sp.qd2_rad_s} rad/s, qdd = {qdd.tolist()} rad/s^2, q2 = eps2 t^2 = "
                     f"{q2_written:.3f} rad, all of the same sign (inertial "
                     f"{parts['inertial']:.1f}, Coriolis/centrifugal {parts['coriolis']:.1f}, "
-                    f"total {parts['total']:.1f} N*m)", parts["total"]))
+                    f"total {parts['total']:.1f} N·m)", parts["total"]))
         for other in speeds:
             if other != written_qd1:
                 out.append((name, f"as written but qd1 = {other} rad/s (the seed's other value)",
@@ -165,17 +165,17 @@ def seed_claims(params: ScaraParams, motion: Motion, lagrange_tau3: float) -> li
                 "(no load)")
         mine = [(r, v) for name, r, v in rows if name == f"tau{joint}"]
         for reading, value in mine:
-            out.append(claim(key, text, sc[f"{key}_Nm"], abs(value), "N*m", reading))
+            out.append(claim(key, text, sc[f"{key}_Nm"], abs(value), "N·m", reading))
         for payload in (0.0, params.links.payload_kg):
             peak = _trajectory_peaks(params, motion, payload)[joint - 1]
-            out.append(claim(key, text, sc[f"{key}_Nm"], peak, "N*m",
+            out.append(claim(key, text, sc[f"{key}_Nm"], peak, "N·m",
                              f"the peak along the seed's own trajectory (section 2.2.2), "
                              f"payload {payload:g} kg (Lagrange model)"))
         wkey, wtext = f"W{joint}", (f"motor power of joint {joint}: W = tau n / (9550 mu), "
                                     f"n = {n_rpm:g} rpm, mu = {mu}")
         out.append(claim(wkey, wtext, sc[f"W{joint}_kW"],
                          sz.motor_power_kW(sc[f"{key}_Nm"], n_rpm, mu, const), "kW",
-                         f"the seed's tau{joint}max = {sc[f'{key}_Nm']:g} N*m (checks the "
+                         f"the seed's tau{joint}max = {sc[f'{key}_Nm']:g} N·m (checks the "
                          "formula)"))
         for reading, value in mine:
             out.append(claim(wkey, wtext, sc[f"W{joint}_kW"],
@@ -205,18 +205,18 @@ def seed_claims(params: ScaraParams, motion: Motion, lagrange_tau3: float) -> li
     t3_written = sz.screw_torque(sc["Fa_unloaded_N"], sc["Dtb_mm"] * 1e-3, *seed_angles)
     t3_computed = sz.screw_torque(s["Fa_unloaded_N"], s["Dtb_m"], s["gamma_rad"], s["phi_rad"])
     t3_loaded = sz.screw_torque(s["Fa_loaded_N"], s["Dtb_m"], s["gamma_rad"], s["phi_rad"])
-    out += [claim("T3", t3_text, sc["T3_Nm"], t3_written, "N*m",
+    out += [claim("T3", t3_text, sc["T3_Nm"], t3_written, "N·m",
                   "the seed's Fa = 215.76 N, Dtb = 26.02 mm, gamma = 17 deg, phi = 0.035 deg"),
-            claim("T3", t3_text, sc["T3_Nm"], t3_computed, "N*m",
+            claim("T3", t3_text, sc["T3_Nm"], t3_computed, "N·m",
                   "Fa, Dtb, gamma, phi all computed here (no load)"),
-            claim("T3", t3_text, sc["T3_Nm"], t3_loaded, "N*m",
+            claim("T3", t3_text, sc["T3_Nm"], t3_loaded, "N·m",
                   "with the loaded axial force (20 kg payload)")]
     out.append(claim("n3", "nut speed n3 = 60 v3max / (Z p) (eq. 2.87)", sc["n3_rpm"],
                      s["n3_rpm"], "rpm", f"v3max = {sp.v3_m_s} m/s, Z = {sp.screw_starts}, "
                      f"p = {sp.screw_lead_m * 1e3:g} mm"))
     w3_text = "motor power of joint 3: W = T3 n3 / (9550 eta_p) (eq. 2.89)"
     for torque, eta, reading in (
-            (sc["T3_Nm"], sc["eta_p"], "the seed's T3 = 0.86 N*m and eta_p = 0.898"),
+            (sc["T3_Nm"], sc["eta_p"], "the seed's T3 = 0.86 N·m and eta_p = 0.898"),
             (t3_computed, s["eta_p"], "T3 and eta_p computed here (no load)"),
             (t3_loaded, s["eta_p"], "with the loaded T3 (20 kg payload)")):
         out.append(claim("W3", w3_text, sc["W3_kW"],
@@ -266,8 +266,8 @@ def seed_notes(params: ScaraParams) -> list[str]:
         f"'q2 = eps2max t^2 = {sp.qdd2_rad_s2 * sp.t_q2_s**2:.2f} rad' at t = {sp.t_q2_s} s: "
         f"from rest at constant acceleration q2 = eps t^2 / 2 = "
         f"{0.5 * sp.qdd2_rad_s2 * sp.t_q2_s**2:.2f} rad; both are computed.",
-        "The seed gives no pose, speed signs or time for its tau1max = 206 N*m and tau2max = "
-        "115 N*m: every reading its text allows is computed (seed_claims tau1_max, tau2_max).",
+        "The seed gives no pose, speed signs or time for its tau1max = 206 N·m and tau2max = "
+        "115 N·m: every reading its text allows is computed (seed_claims tau1_max, tau2_max).",
     ]
 
 

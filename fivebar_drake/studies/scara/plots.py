@@ -17,7 +17,7 @@ from fivebar_drake.studies.scara.simulation import Run
 FIGURES = ("workspace", "joint_motion", "joint_forces")
 ANALYSIS_FIGURES = tuple(f"{name}.png" for name in FIGURES)
 SIMULATION_FIGURES = ("sim_tracking.png",)
-UNITS = ("N*m", "N*m", "N")
+UNITS = ("N·m", "N·m", "N")
 
 
 def plot_workspace(params: ScaraParams, motion: Motion) -> plt.Figure:

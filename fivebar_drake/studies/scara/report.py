@@ -7,6 +7,7 @@ import json
 from pathlib import Path
 
 from fivebar_drake.core.files import write_atomic
+from fivebar_drake.studies.base import claims_answer
 from fivebar_drake.studies.scara.analysis import Analysis
 from fivebar_drake.studies.scara.plots import FIGURES, SIMULATION_FIGURES, UNITS
 from fivebar_drake.studies.scara.recording import RECORDING_FILE
@@ -22,12 +23,13 @@ def _f(v, digits=4) -> str:
 def markdown(data: dict) -> str:
     ws, tr = data["workspace"], data["trajectory"]
     lines = ["# SCARA arm (seed 002): kinematics, workspace, trajectory, dynamics, drive sizing",
-             "", f"Parameters: `{data['source']}`.", "", "## Kinematics and workspace", "",
+             "", claims_answer(data["seed_claims"], "drive-sizing claims"), "",
+             f"Parameters: `{data['source']}`.", "", "## Kinematics and workspace", "",
              "IK of A with both elbows (q1, q2 rad, q3 m): " + "; ".join(
-                 f"elbow {e}: ({', '.join(_f(v, 6) for v in q)})"
+                 f"elbow {e}: ({', '.join(_f(v) for v in q)})"
                  for e, q in data["kinematics"]["ik_at_A"].items()) + ".",
              f"Tool Cardan angles at A (alpha, beta, eta) rad: "
-             f"{', '.join(_f(v, 6) for v in data['kinematics']['cardan_at_A_rad'])}.", "",
+             f"{', '.join(_f(v) for v in data['kinematics']['cardan_at_A_rad'])}.", "",
              f"Horizontal reach {_f(ws['inner_radius_m'])} .. {_f(ws['outer_radius_m'])} m, tool "
              f"height {_f(ws['z_range_m'][0])} .. {_f(ws['z_range_m'][1])} m; the exact boundary "
              f"under the joint limits has {ws['boundary_pieces']} arcs (workspace.png); the "
@@ -85,7 +87,7 @@ def analysis_lines(a: Analysis) -> list[str]:
     """The trajectory's peaks with the payload, the Drake check, how many claims hold."""
     claims, loaded = a.data["seed_claims"], a.data["demand"][1]
     return [f"trajectory peaks with {loaded['payload_kg']:g} kg: tau1 "
-            f"{loaded['peak'][0]:.3g} N*m, tau2 {loaded['peak'][1]:.3g} N*m, F3 "
+            f"{loaded['peak'][0]:.3g} N·m, tau2 {loaded['peak'][1]:.3g} N·m, F3 "
             f"{loaded['peak'][2]:.4g} N; Lagrange vs Drake within "
             f"{max(max(c['max_relative_difference']) for c in a.data['drake_check']):.1e}",
             f"seed claims: {sum(c['reproduced'] for c in claims)} of {len(claims)} readings "
@@ -109,7 +111,7 @@ def summary_markdown(summary: dict) -> str:
                      f"{j['peak_over_limit']:.1%} | "
                      f"{j['peak_speed']:.3g} | {j['clipped_by_peak_fraction']:.1%}, "
                      f"{j['clipped_by_line_fraction']:.1%} |")
-    lines += ["", "Units: joints 1, 2 in N*m and rad/s, joint 3 in N and m/s. Lagrange peak: "
+    lines += ["", "Units: joints 1, 2 in N·m and rad/s, joint 3 in N and m/s. Lagrange peak: "
               "M qdd + C qd + G of the desired motion (the analysis's model). The limit of "
               "joint 3 is the chosen servo's peak torque through the 1:2 belt and the ball "
               "screw (eq. 2.86).", "", f"![tracking]({SIMULATION_FIGURES[0]})", "",

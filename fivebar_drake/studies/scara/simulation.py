@@ -29,7 +29,7 @@ from fivebar_drake.studies.scara.model import add_arm
 
 
 def sized_motors(params: ScaraParams) -> list[LineMotor]:
-    """The drives at the joints (values at the joint: N*m and rad/s for joints 1, 2; N and m/s
+    """The drives at the joints (values at the joint: N·m and rad/s for joints 1, 2; N and m/s
     for joint 3; "gear ratio" motor rad per joint unit). Joints 1, 2: the seed's peak torques,
     the torque-speed line ending at servo_max_rpm through the reducer (the joint at n1, n2).
     Joint 3: the servo's peak torque through the belt and the ball screw (eq. 2.86 solved for
@@ -156,7 +156,7 @@ def summarize(params: ScaraParams, r: Run) -> dict:
     model = Dynamics(params.kinematics, seed_inertia(params.links, params.simulation.payload_kg))
     model_peak = np.abs(model.torques(d.q, d.qd, d.qdd)["total"]).max(axis=0)
     joints = []
-    for j, (name, unit, motor) in enumerate(zip(("q1", "q2", "q3"), ("N*m", "N*m", "N"),
+    for j, (name, unit, motor) in enumerate(zip(("q1", "q2", "q3"), ("N·m", "N·m", "N"),
                                                 r.motors)):
         command, delivered, applied = r.record[:, j, 0], r.record[:, j, 1], r.record[:, j, 2]
         at_peak, on_line = clip_flags(motor, command, delivered)

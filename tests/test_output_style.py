@@ -1,0 +1,107 @@
+"""Issue 32: the output style guide (docs/output_style.md) held over the kinds of report `make
+demo` writes. The rules (tests/style_rules.py) are shown to catch each breach on a report written
+here; then they are held over reports written cheaply from runs other tests already make (the
+2.5 s trot and 2.6 s jump of the session's `simulated`: their summary.md and the comparison of
+the two, as `compare` writes it), the default analysis' report.md and the example sweep's
+sweep.md (its closed-form points). The demo's other reports are held where their own tests write
+them: the design study's design.md with its envelopes' envelope.md and summary.md
+(tests/codesign), optimal.md (tests/optimal/test_vertical_jump.py), the envelope's
+(tests/envelope/test_envelope.py), the seed studies' report.md (tests/studies) and the packaged
+robots' (tests/robots)."""
+
+from pathlib import Path
+
+import pytest
+
+from style_rules import glossary, header_words, report_violations, violations
+
+GOOD = """# A report
+
+**Answer:** RR A FAIL by the torque check: 3.42 N·m against its 3.00 N·m limit (SF 1.41).
+Thresholds: SF ≥ 2 pass, ≥ 1.5 warn, else fail.
+
+| leg | motor | demand p99 | SF | verdict |
+|---|---|---|---|---|
+| RR | A | 3.42 | 1.41 | FAIL |
+
+Winding 79.7 °C, margin 40.3 K, 0.02432 N·m/A, gap 0.0039 mm, speed 0.000 m/s.
+"""
+
+BREACHES = {
+    "the first line is not the answer": ("**Answer:** RR A FAIL by the torque check:",
+                                         "Method: the seed's model; RR A"),
+    "without its thresholds": ("Thresholds: SF ≥ 2 pass, ≥ 1.5 warn, else fail.", ""),
+    "unit spelled N m": ("3.42 N·m against", "3.42 N m against"),
+    "unit spelled N*m": ("3.42 N·m against", "3.42 N*m against"),
+    "unit spelled C for °C": ("79.7 °C", "79.7 C"),
+    "nan or inf": ("| 3.42 | 1.41 |", "| nan | 1.41 |"),
+    "negative zero": ("speed 0.000 m/s", "speed -0.000 m/s"),
+    "more than 4 decimals": ("3.42 N·m against", "2.77288 N·m against"),
+    "header term not in the glossary": ("| demand p99 |", "| dyn/trot |"),
+}
+
+
+def test_a_report_that_keeps_the_guide_passes(tmp_path):
+    path = tmp_path / "report.md"
+    path.write_text(GOOD)
+    assert violations(path) == []
+
+
+@pytest.mark.parametrize("rule", list(BREACHES))
+def test_each_rule_catches_its_breach(tmp_path, rule):
+    good, bad = BREACHES[rule]
+    assert good in GOOD
+    path = tmp_path / "report.md"
+    path.write_text(GOOD.replace(good, bad, 1))
+    found = violations(path)
+    assert found and all(rule in v for v in found), found
+
+
+def test_the_glossary_has_the_jargon_the_issue_names():
+    terms = glossary()
+    for term in ("sf", "p99", "demand", "floor", "any controller", "this controller",
+                 "deciding check", "achieved", "seed", "full", "full_trot", "static",
+                 "clipped", "insufficient", "not achieved"):
+        assert term in terms, term
+    assert header_words("peak torque (N·m)") == ["peak", "torque"]      # the unit is no term
+    assert header_words("motor.gear_ratio") == []                        # a parameter path
+
+
+@pytest.fixture(scope="module")
+def written(tmp_path_factory, simulated):
+    """The folder of the cheap reports: trot/ and jump/ summary.md, comparison.md, analysis/
+    report.md, sweep/sweep.md."""
+    from fivebar_drake.core.checks import thresholds_text
+    from fivebar_drake.pipeline import run_analysis, summarize_run
+    from fivebar_drake.analysis.report import write_report
+    from fivebar_drake.simulation.comparison import write_comparison
+    from fivebar_drake.simulation.summary_text import write_summary
+    from fivebar_drake.sweep.engine import base_inputs
+    from fivebar_drake.sweep.points import analysis_rows
+    from fivebar_drake.sweep.report import summarize_sweep, write_sweep_report
+    from fivebar_drake.sweep.spec import load_spec
+
+    out = tmp_path_factory.mktemp("style")
+    runs = []
+    for gait, duration_s in (("trot", 2.5), ("jump", 2.6)):      # the runs other tests share
+        record = simulated(gait=gait, duration_s=duration_s)
+        write_summary(summarize_run(record), record.params, out / gait)
+        runs.append(out / gait)
+    write_comparison(runs, out / "comparison.md")
+    analysis = run_analysis()
+    write_report(analysis.analysis, out / "analysis", analysis.sampling_error)
+    spec = load_spec(Path(__file__).parents[1] / "fivebar_drake" / "data" / "sweep_example.yaml")
+    params, _ = base_inputs(spec)
+    rows = analysis_rows(params, (spec.gait, spec.model), list(enumerate(spec.points())))
+    rows = [{k: str(v) for k, v in r.items()} for r in rows]
+    (out / "sweep").mkdir()
+    write_sweep_report(summarize_sweep(rows, spec.names, params.checks.sf_pass), spec.names,
+                       spec.fidelity, (out / "sweep"), thresholds_text(params.checks))
+    return out
+
+
+@pytest.mark.parametrize("report", ["trot/summary.md", "jump/summary.md", "comparison.md",
+                                    "analysis/report.md", "sweep/sweep.md"])
+def test_the_demos_reports_keep_the_guide(written, report):
+    assert (written / report).is_file()
+    assert report_violations(written / report) == []
