@@ -290,7 +290,7 @@ def _optimal(args, signals) -> int:
     result, jumps = jump_limits(params, args.height, args.payload or 0.0)
     files = []
     if args.simulate and jumps["ceiling"] is not None:
-        plan = max_jump_plan(params, jumps["ceiling"])
+        plan = max_jump_plan(params, jumps["ceiling"], args.payload or 0.0)
         scenario = load_scenario(gait=plan, payload_kg=args.payload or 0.0,
                                  duration_s=DEFAULTS.stand_s + plan.span_s(params.gait)
                                  + MANEUVER_MARGIN_S, controller={"kind": "tracking"})
@@ -301,7 +301,8 @@ def _optimal(args, signals) -> int:
         phases = (summary["any_controller"] or {}).get("phases") or {}
         result["max_jump_simulated"] = {
             "folder": "max_jump", "plan": plan.fields(), "controller": "tracking",
-            "height_m": height, "share_of_ceiling": height / plan.height_m,
+            "height_m": height, "planned_height_m": plan.height_m,
+            "share_of_ceiling": height / jumps["ceiling"].body_apex_above_standing_m,
             "verdict": summary["verdict"],
             "achieved": summary["verdict"] in ("pass", "warn", "fail"),
             "phases": {name: {"floor_Nm": p["floor_Nm"], "asked_Nm": p["asked_Nm"]}

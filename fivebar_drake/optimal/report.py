@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from fivebar_drake.core.files import json_ready, save_figure, write_atomic
-from fivebar_drake.core.footpath import PUSH_SHARES, Drop, Jump as JumpPath
+from fivebar_drake.core.footpath import EXTENSION_STOP_S, PUSH_SHARES, Drop, Jump as JumpPath
 from fivebar_drake.core.validation import ParameterError, check_number
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.optimal.recording import RECORDING_FILE, write_recording
@@ -296,17 +296,26 @@ def plot(jumps: dict, params: Params, path: Path) -> Path:
     return save_figure(fig, path)
 
 
-def max_jump_plan(params: Params, ceiling: Jump) -> JumpPath:
+def max_jump_plan(params: Params, ceiling: Jump, payload_kg: float = 0.0) -> JumpPath:
     """The jump maneuver that asks for the ceiling: its crouch at the ceiling's start, its
-    extension at the ceiling's takeoff, its height the ceiling's body apex, its push in the
-    ceiling's time (push_share: its takeoff and touchdown when the ceiling's are), landing over
-    the whole stroke back to the crouch (MARGIN_LANDING_M short of it)."""
-    standing = -params.gait.y_home_m
-    u0, takeoff = float(ceiling.stroke.u[0]), float(ceiling.stroke.u[ceiling.takeoff])
-    plan = JumpPath(height_m=round(ceiling.body_apex_above_standing_m, 4),
-                    crouch_m=round(standing - u0, 4), extension_m=round(takeoff - standing, 4),
-                    landing_stroke_m=round(takeoff - u0 - MARGIN_LANDING_M, 4))
-    share = ceiling.stance_s / plan.timing(params.gait)[0]
+    takeoff at the ceiling's node of highest apex from which the leg, stopping its extension
+    within EXTENSION_STOP_S (sinking the foot w EXTENSION_STOP_S / 2 further), stays within its
+    reach (the ceiling's own takeoff where it does), its height and push time the highest push's
+    on that stroke (its grid's: what the tracking controller and the run's floor compute; the
+    height rounded down to 0.1 mm; push_share: the run's takeoff and touchdown are the
+    optimum's), landing over the whole stroke back to the crouch (MARGIN_LANDING_M short of
+    it)."""
+    s, standing = ceiling.stroke, -params.gait.y_home_m
+    n = ceiling.takeoff + 1
+    apex = s.u[:n] + (ceiling.w * (1.0 + s.com_u[:n])) ** 2 / (2.0 * s.g) - standing
+    stops = s.u[:n] + ceiling.w * EXTENSION_STOP_S / 2.0 <= s.u[-1]
+    k = int(np.argmax(np.where(stops, apex, -np.inf)))
+    crouch, extension = round(standing - float(s.u[0]), 4), round(float(s.u[k]) - standing, 4)
+    own = push(stroke(params, standing - crouch, standing + extension, payload_kg), standing)
+    plan = JumpPath(height_m=math.floor(own.body_apex_above_standing_m * 1e4) / 1e4,
+                    crouch_m=crouch, extension_m=extension,
+                    landing_stroke_m=round(crouch + extension - MARGIN_LANDING_M, 4))
+    share = own.stance_s / plan.timing(params.gait)[0]
     return dataclasses.replace(plan, push_share=round(min(max(share, PUSH_SHARES[0] + 1e-3),
                                                           PUSH_SHARES[1]), 4))
 
