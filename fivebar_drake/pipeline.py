@@ -212,7 +212,8 @@ def verdict_split(maneuver: str, height_m: float, phases: dict, ceiling_m: float
 
 def _review(record: SimulationRecord, half: SimulationRecord | None = None):
     """(Signals, StepSignals or None, Summary) of a run; with `half`
-    (run_step_check) its step check; a jump's any_controller."""
+    (run_step_check) its step check (any_controller's split recomputed at half the step);
+    its any_controller."""
     sig, steps = _signals(record)
     reference = seed_results(record.params)
     summary = summarize(sig, record, reference, steps)
@@ -228,8 +229,9 @@ def _review(record: SimulationRecord, half: SimulationRecord | None = None):
                               "(the verdict above is the plant step's alone).")
     elif half is not None:
         half_sig, half_steps = _signals(half)
-        apply_step_check(summary, summarize(half_sig, half, reference, half_steps),
-                         record.params)
+        at_half = summarize(half_sig, half, reference, half_steps)
+        at_half["any_controller"] = any_controller(half, at_half)
+        apply_step_check(summary, at_half, record.params)
     return sig, steps, summary
 
 

@@ -308,6 +308,7 @@ class StepCheck(TypedDict):
     torque_verdict_converged: str | None
     events: dict[str, dict[str, EventStepCheck]]   # "jump", "landing" -> figure ->
     verdict_at_half_step: str
+    fails_for_at_half_step: str | None       # any_controller's at half the step
     marginal: bool
     why: str
 

@@ -141,8 +141,9 @@ def step_check(summary: Summary, half: Summary, checks: Checks) -> StepCheck:
     converged safety factor decides: the run is marginal when its error band reaches a
     threshold (checks.sf_pass, sf_warn) or its torque verdict differs from the run's, where the
     torque check decides the verdict or would make it worse; or when the verdict at half the
-    step differs (step_checked_verdict). A maneuver's event figures (jump, landing) get their
-    value at half the step and their converged estimate too."""
+    step differs (step_checked_verdict); or whom a failing verdict blames (any_controller's
+    fails_for: any controller or this one) does. A maneuver's event figures (jump, landing) get
+    their value at half the step and their converged estimate too."""
     motors = _step_motors(summary, half)
     worst = min(((k, v["sf_converged"], v["sf_error"]) for k, v in motors.items()
                  if math.isfinite(v["sf_converged"])), key=lambda x: x[1], default=None)
@@ -153,6 +154,9 @@ def step_check(summary: Summary, half: Summary, checks: Checks) -> StepCheck:
                                      for m in ms.values()))
     moved = converged is not None and converged != torque_now
     changed = half["verdict"] != summary["verdict"]
+    split, split_half = (((s.get("any_controller") or {}).get("fails_for"))
+                         for s in (summary, half))
+    blamed = split != split_half
     # the torque figure's step error matters where the torque check decides, or would
     if not (summary.get("deciding_check") == "torque" or converged is not None and
             SEVERITY.get(converged, 0) > SEVERITY.get(summary["verdict"], 0)):
@@ -167,13 +171,15 @@ def step_check(summary: Summary, half: Summary, checks: Checks) -> StepCheck:
             "converged_sf": worst[1] if worst else None,
             "converged_sf_error": worst[2] if worst else None,
             "torque_verdict_converged": converged, "events": _step_events(summary, half),
-            "verdict_at_half_step": half["verdict"],
-            "marginal": bool(near or changed or moved),
+            "verdict_at_half_step": half["verdict"], "fails_for_at_half_step": split_half,
+            "marginal": bool(near or changed or moved or blamed),
             "why": (f"the converged worst safety factor {worst[1]:.3f} ± {worst[2]:.3f} "
                     f"({worst[0]}) reaches {near[0]:g}" if near else
                     f"the converged worst safety factor {worst[1]:.3f} ({worst[0]}) gives "
                     f"{converged}, the run {torque_now}" if moved else
-                    f"the verdict at half the step is {half['verdict']}" if changed else "")}
+                    f"the verdict at half the step is {half['verdict']}" if changed else
+                    f"at half the step the verdict fails for {split_half or 'nobody'}, not "
+                    f"for {split or 'nobody'}" if blamed else "")}
 
 
 def step_checked_verdict(current: str, check: StepCheck) -> str:

@@ -124,6 +124,22 @@ def test_step_check_judges_the_converged_figure(params, monkeypatch):
     assert abs(1.4045 - estimate) <= error
 
 
+def test_the_step_check_holds_whom_a_verdict_blames(params, monkeypatch):
+    """A failing run whose split (any_controller's fails_for) moves at half the plant step from
+    "this controller" to "any controller" is marginal, and says why; the same split at both
+    steps, with safety factors far from a threshold, is not."""
+    import fivebar_drake.simulation.summary as summary_module
+    monkeypatch.setattr(summary_module, "answer", lambda s, p: "")
+    for half_split, marginal in (("any controller", True), ("this controller", False)):
+        run = {**_summary([1.2, 3.0], "fail"), "any_controller": {"fails_for": "this controller"}}
+        half = {**_summary([1.19, 3.0], "fail"), "time_step_s": 5e-4,
+                "any_controller": {"fails_for": half_split}}
+        check = apply_step_check(run, half, params)
+        assert check["fails_for_at_half_step"] == half_split
+        assert check["marginal"] == marginal and (run["verdict"] == "marginal") == marginal
+        assert ("any controller" in check["why"]) == marginal
+
+
 @pytest.fixture(scope="module")
 def geared(params):
     """The design study's fix: the same motor behind 11.5:1, a short trot and its step check."""
