@@ -51,3 +51,29 @@ def shared_client():
     yield client
     client.close()
     cluster.close()
+
+
+@pytest.fixture(scope="session")
+def scheduler_address():
+    """A Dask scheduler and one worker (one thread) started here as separate processes, as a
+    user's remote cluster is, once for the tests that pass --scheduler (a sweep's and an
+    envelope's): its address. Stopped at the session's end."""
+    import socket
+    import subprocess
+    import sys
+
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    address = f"tcp://127.0.0.1:{port}"
+    quiet = dict(stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    procs = [subprocess.Popen([sys.executable, "-m", "dask", "scheduler", "--host", "127.0.0.1",
+                               "--port", str(port), "--no-dashboard"], **quiet)]
+    try:
+        procs.append(subprocess.Popen([sys.executable, "-m", "dask", "worker", address,
+                                       "--nthreads", "1", "--no-dashboard"], **quiet))
+        yield address
+    finally:
+        for p in procs:
+            p.terminate()
+            p.wait(timeout=30)

@@ -6,9 +6,6 @@ integration of the thermal ODE and its steady state; an interrupted envelope kee
 finished."""
 
 import json
-import socket
-import subprocess
-import sys
 import tomllib
 from contextlib import nullcontext
 
@@ -204,24 +201,11 @@ def test_the_trot_row_equals_simulates_summary(local, tmp_path):
 
 
 @pytest.mark.slow
-def test_a_scheduler_started_here_gives_the_same_envelope(local, tmp_path):
+def test_a_scheduler_started_here_gives_the_same_envelope(local, tmp_path, scheduler_address):
     out, spec, _ = local
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        port = s.getsockname()[1]
-    address = f"tcp://127.0.0.1:{port}"
-    quiet = dict(stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    procs = [subprocess.Popen([sys.executable, "-m", "dask", "scheduler", "--host", "127.0.0.1",
-                               "--port", str(port), "--no-dashboard"], **quiet)]
-    try:
-        procs.append(subprocess.Popen([sys.executable, "-m", "dask", "worker", address,
-                                       "--nthreads", "1", "--no-dashboard"], **quiet))
-        remote = tmp_path / "remote"
-        assert main(["envelope", str(spec), "--out", str(remote), "--scheduler", address]) == 0
-    finally:
-        for p in procs:
-            p.terminate()
-            p.wait(timeout=30)
+    remote = tmp_path / "remote"
+    assert main(["envelope", str(spec), "--out", str(remote), "--scheduler",
+                 scheduler_address]) == 0
     assert without_timing(envelope(remote)) == without_timing(envelope(out))
     for name in ("trot", "trot_fast"):
         assert summary(remote / name) == summary(out / name)

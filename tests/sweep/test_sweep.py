@@ -4,9 +4,6 @@ failed points recorded."""
 
 import csv
 import itertools
-import socket
-import subprocess
-import sys
 import time
 
 import numpy as np
@@ -158,31 +155,12 @@ def test_workers_resume_and_failures(tmp_path, shared_client):
                   tmp_path / "one", workers=1, progress=False)
 
 
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
 @pytest.mark.slow
-def test_a_running_scheduler_gives_the_same_table(tmp_path, shared_client):
-    port = free_port()
-    address = f"tcp://127.0.0.1:{port}"
-    procs = [subprocess.Popen([sys.executable, "-m", "dask", "scheduler", "--host", "127.0.0.1",
-                               "--port", str(port), "--no-dashboard"],
-                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)]
-    try:
-        procs.append(subprocess.Popen([sys.executable, "-m", "dask", "worker", address,
-                                       "--nthreads", "1", "--no-dashboard"],
-                                      stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
-        spec = spec_file(tmp_path)
-        remote = run_sweep(spec, tmp_path / "remote", scheduler=address, progress=False)
-        local = run_sweep(spec, tmp_path / "local", client=shared_client, progress=False)
-        assert table_text(remote) == table_text(local)
-    finally:
-        for p in procs:
-            p.terminate()
-            p.wait(timeout=30)
+def test_a_running_scheduler_gives_the_same_table(tmp_path, shared_client, scheduler_address):
+    spec = spec_file(tmp_path)
+    remote = run_sweep(spec, tmp_path / "remote", scheduler=scheduler_address, progress=False)
+    local = run_sweep(spec, tmp_path / "local", client=shared_client, progress=False)
+    assert table_text(remote) == table_text(local)
 
 
 @pytest.mark.slow
