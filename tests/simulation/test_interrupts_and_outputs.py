@@ -32,45 +32,50 @@ def start_simulation(out, seconds):
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("signum, code", [(signal.SIGINT, 130), (signal.SIGTERM, 143)])
-def test_signal_stops_simulate_and_keeps_what_it_has(tmp_path, signum, code):
-    out = tmp_path / "a run"                            # a space: the printed command quotes it
-    out.mkdir()
-    for name, text in STALE.items():                     # an earlier run's files
-        (out / name).write_text(text)
-    (out / "notes.txt").write_text("mine")               # not the tool's: kept
-    proc = start_simulation(out, 30.0)
-    err_lines = []
-    deadline = time.monotonic() + 120
-    while time.monotonic() < deadline:                   # wait for stepping to be under way
-        line = proc.stderr.readline()
-        err_lines.append(line)
-        if "s simulated" in line and "real time" in line or not line:   # the progress line
-            break
-    assert "real time" in err_lines[-1], "".join(err_lines)
-    proc.send_signal(signum)
-    stdout, stderr = proc.communicate(timeout=120)
-    stderr = "".join(err_lines) + stderr
-    assert proc.returncode == code, stderr
-    assert "Traceback" not in stderr
-    assert f"interrupted by {signal.Signals(signum).name}" in stderr
-    summary = json.loads((out / "summary.json").read_text())
-    assert summary["completed"] is False and summary["interrupted"] is True
-    assert "stale" not in summary and summary["verdict"] == "insufficient"
-    assert 0 < summary["duration_s"] < 30.0
-    assert (out / "summary.md").read_text() != STALE["summary.md"]
-    assert not list(out.glob(TEMP_PREFIX + "*"))
-    assert (out / "notes.txt").read_text() == "mine"
-    (recording,) = RrdReader(out / "run.rrd").recordings()       # a readable recording
-    chunks = RrdReader(out / "run.rrd").stream().filter(
-        content="/torque/FL/A/applied", is_static=False).to_chunks()
-    rows = sum(c.num_rows for c in chunks)
-    assert rows == pytest.approx(summary["duration_s"] / summary["log_period_s"], abs=2)
-    assert (out / "sim_torques.png").read_bytes()[:4] == b"\x89PNG"
-    assert "interrupted" in (out / "summary.md").read_text()
-    viewer = Path(sys.executable).parent / "rerun"           # the venv's, runnable as is
-    assert f"open the recording with: {viewer} '{out / 'run.rrd'}'" in stdout
-    assert viewer.exists()
+def test_signals_stop_simulate_and_keep_what_it_has(tmp_path):
+    """SIGINT (exit 130) and SIGTERM (exit 143) each stop a run under way (two runs started
+    together, one per signal): no traceback, the summary says interrupted and insufficient,
+    an earlier run's files replaced and a user's kept, a readable recording of what ran."""
+    runs = {}
+    for signum, code in ((signal.SIGINT, 130), (signal.SIGTERM, 143)):
+        out = tmp_path / f"a run {code}"                 # a space: the printed command quotes it
+        out.mkdir()
+        for name, text in STALE.items():                 # an earlier run's files
+            (out / name).write_text(text)
+        (out / "notes.txt").write_text("mine")           # not the tool's: kept
+        runs[signum] = (code, out, start_simulation(out, 30.0))
+    for signum, (code, out, proc) in runs.items():
+        err_lines = []
+        deadline = time.monotonic() + 120
+        while time.monotonic() < deadline:               # wait for stepping to be under way
+            line = proc.stderr.readline()
+            err_lines.append(line)
+            if "s simulated" in line and "real time" in line or not line:   # the progress line
+                break
+        assert "real time" in err_lines[-1], "".join(err_lines)
+        proc.send_signal(signum)
+        stdout, stderr = proc.communicate(timeout=120)
+        stderr = "".join(err_lines) + stderr
+        assert proc.returncode == code, stderr
+        assert "Traceback" not in stderr
+        assert f"interrupted by {signal.Signals(signum).name}" in stderr
+        summary = json.loads((out / "summary.json").read_text())
+        assert summary["completed"] is False and summary["interrupted"] is True
+        assert "stale" not in summary and summary["verdict"] == "insufficient"
+        assert 0 < summary["duration_s"] < 30.0
+        assert (out / "summary.md").read_text() != STALE["summary.md"]
+        assert not list(out.glob(TEMP_PREFIX + "*"))
+        assert (out / "notes.txt").read_text() == "mine"
+        (recording,) = RrdReader(out / "run.rrd").recordings()       # a readable recording
+        chunks = RrdReader(out / "run.rrd").stream().filter(
+            content="/torque/FL/A/applied", is_static=False).to_chunks()
+        rows = sum(c.num_rows for c in chunks)
+        assert rows == pytest.approx(summary["duration_s"] / summary["log_period_s"], abs=2)
+        assert (out / "sim_torques.png").read_bytes()[:4] == b"\x89PNG"
+        assert "interrupted" in (out / "summary.md").read_text()
+        viewer = Path(sys.executable).parent / "rerun"           # the venv's, runnable as is
+        assert f"open the recording with: {viewer} '{out / 'run.rrd'}'" in stdout
+        assert viewer.exists()
 
 
 def test_interrupted_write_leaves_the_old_or_the_new_file(tmp_path):
