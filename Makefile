@@ -53,10 +53,11 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_optimal.py
 	$(BIN)/python benchmarks/bench_codesign.py
 
-# the picture of a recording in the README: the Rerun web viewer, served locally, in headless
-# Chromium (Debian: apt-get install chromium)
+# the pictures of a trot's and a jump's recordings in the README (docs/recording_trot.png,
+# docs/recording_jump.png): the Rerun web viewer, served locally, in headless Chromium at the
+# recording's default layout (Debian: apt-get install chromium)
 screenshot: $(STAMP)
-	$(BIN)/python tools/recording_screenshot.py --out docs/recording.png
+	$(BIN)/python tools/recording_screenshot.py --out docs
 
 clean:
 	rm -rf $(VENV) $(OUT)

@@ -2,10 +2,11 @@
 comes with rerun-sdk) and opened in headless Chromium (Debian's `chromium`), driven over the
 DevTools protocol (tornado's websocket client, from the test extras).
 
-    python tools/recording_screenshot.py [RUN.rrd] [--out docs/recording.png]
+    python tools/recording_screenshot.py [RUN.rrd --out FILE.png]
 
-Without RUN.rrd it first simulates the default trot (--duration, default 6 s) into a temporary
-folder. The viewer gets --wait seconds to load the wasm and the file, then the page is captured
+Without RUN.rrd it simulates the default trot (6 s) and a jump (3 s) into a temporary folder and
+writes docs/recording_trot.png and docs/recording_jump.png (--gait to choose, --duration to
+change a run's length): the viewer at the recording's default layout, as a reader first sees it. The viewer gets --wait seconds to load the wasm and the file, then the page is captured
 until two screenshots are the same; the PNG is reduced to a 256-colour palette (< 300 kB)."""
 
 from __future__ import annotations
@@ -124,25 +125,39 @@ def screenshot(rrd: Path, out: Path, size=(1600, 1000), wait_s: float = 10.0) ->
     return out
 
 
+GAITS = {"trot": 6.0, "jump": 3.0}    # the README's screenshots: gait -> simulated seconds
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("rrd", nargs="?", type=Path, help="recording (default: simulate one)")
-    parser.add_argument("--out", type=Path, default=Path("docs/recording.png"))
-    parser.add_argument("--duration", type=float, default=6.0,
-                        help="simulated time of the default trot when no recording is given")
+    parser.add_argument("rrd", nargs="?", type=Path, help="recording (default: simulate them)")
+    parser.add_argument("--out", type=Path, default=None,
+                        help="the PNG of RUN.rrd (default recording.png), or the folder of "
+                             "the simulated ones' (default docs)")
+    parser.add_argument("--gait", action="append", choices=sorted(GAITS),
+                        help="the gaits to simulate and capture (default: all)")
+    parser.add_argument("--duration", type=float, default=None,
+                        help="simulated time of every run (default: the gait's own)")
     parser.add_argument("--wait", type=float, default=10.0,
                         help="seconds the viewer gets to load before the first screenshot "
                              f"(then one every {STABLE_S:g} s until two are the same)")
     args = parser.parse_args()
-    with tempfile.TemporaryDirectory() as tmp:
-        rrd = args.rrd
-        if rrd is None:
-            subprocess.run([sys.executable, "-m", "fivebar_drake", "simulate", "--duration",
-                            str(args.duration), "--out", tmp], check=True)
-            rrd = Path(tmp) / "run.rrd"
-        path = screenshot(rrd, args.out, wait_s=args.wait)
-    print(f"wrote {path} ({path.stat().st_size / 1e3:.0f} kB)")
+    if args.rrd is not None:
+        path = screenshot(args.rrd, args.out or Path("recording.png"), wait_s=args.wait)
+        print(f"wrote {path} ({path.stat().st_size / 1e3:.0f} kB)")
+        return
+    for gait in args.gait or list(GAITS):
+        with tempfile.TemporaryDirectory() as tmp:
+            code = subprocess.run([sys.executable, "-m", "fivebar_drake", "simulate", "--gait",
+                                   gait, "--duration", str(args.duration or GAITS[gait]),
+                                   "--out", tmp]).returncode
+            if code not in (0, 1):          # 1: a run without a verdict still writes its file
+                raise SystemExit(f"simulate --gait {gait} exited {code}")
+            path = screenshot(Path(tmp) / "run.rrd",
+                              (args.out or Path("docs")) / f"recording_{gait}.png",
+                              wait_s=args.wait)
+        print(f"wrote {path} ({path.stat().st_size / 1e3:.0f} kB)")
 
 
 if __name__ == "__main__":

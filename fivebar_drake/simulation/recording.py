@@ -9,7 +9,7 @@ Entities (timeline "sim_time"), SI units unless the name says otherwise:
   segments A-C-E-F and B-D-E-F, in the hue of their motor), world/feet/<leg> (foot trace), world/forces/<leg> (ground
   force at the foot, 1 mm per N), at pose_rate_hz;
 - per log interval (means over the plant steps of the interval): torque/<leg>/<A|B>/{applied,
-  commanded, static_trot, static_contact, static_seed} and torque/<leg>/limit_{pos,neg}
+  commanded, static_same_loads, static_contact, static_seed} and torque/<leg>/limit_{pos,neg}
   (N·m; A in blues, B in oranges: applied bold, commanded light, static dark, static_contact
   and static_seed in the legend, drawn once picked); joints/angle/<leg>/<A|B> (rad),
   joints/speed/<leg>/<A|B> (rad/s); contact/{normal, tangential}/<leg> (N, leg plane);
@@ -25,10 +25,13 @@ Each run gets its own recording id, so two runs open side by side in one viewer.
 from __future__ import annotations
 
 from pathlib import Path
+from typing import NamedTuple
+
 import numpy as np
 import rerun as rr
 import rerun.blueprint as rrb
 
+from fivebar_drake.core.checks import thresholds_text
 from fivebar_drake.core.rerun_files import TIMELINE, pose_frames, recording_file, scalars
 from fivebar_drake.core.rotation import body_rotations
 from fivebar_drake.core.summary_schema import Summary
@@ -36,6 +39,7 @@ from fivebar_drake.mechanisms.fivebar import MOTORS, forward_points
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.plant import RobotLayout
 from fivebar_drake.robots.quadruped.legs import plane_to_body
+from fivebar_drake.simulation.plots import coinciding
 from fivebar_drake.simulation.events import FLIGHT_KINDS, FOOT_KINDS, detect_events
 from fivebar_drake.simulation.runner import SimulationRecord
 from fivebar_drake.simulation.signals import Signals
@@ -43,6 +47,7 @@ from fivebar_drake.simulation.signals import Signals
 
 RECORDING_FILE = "run.rrd"
 FORCE_ARROW_M_PER_N = 0.001    # 1 mm of arrow per newton
+FORCE_SAME_N = 0.5             # feet whose forces agree within this at every sample: one curve
 # of link_points' A, C, E, F, B, D: A-C-E-F and B-D-E-F (link DE carries the foot F)
 LEG_STRIPS = ([0, 1, 2, 3], [4, 5, 2, 3])
 GROUND_MARGIN_M = 0.4          # the ground patch reaches this far beyond the path of the body
@@ -51,9 +56,12 @@ EYE_OFFSET_M = (0.40, -0.80, 0.25)   # the camera from the body at standing heig
 # per torque series: its Signals field, the shade of the motor's hue (0 light .. 2 dark), line
 # width, drawn at first (else once picked in the legend)
 TORQUE_SERIES = {"applied": ("applied", 1, 2.5, True), "commanded": ("command", 0, 1.2, True),
-                 "static_trot": ("static_trot", 2, 1.5, True),
+                 "static_same_loads": ("static_trot", 2, 1.5, True),
                  "static_contact": ("static_contact", 1, 1.0, False),
                  "static_seed": ("static_seed", 2, 1.0, False)}
+# the worst motor's series and their names in its panel (the glossary's words)
+WORST_SERIES = {"applied": "applied", "commanded": "demand",
+                "static_same_loads": "static, same loads"}
 MOTOR_SHADES = {"A": ((150, 200, 240), (40, 120, 220), (20, 50, 140)),      # blues
                 "B": ((255, 190, 120), (240, 110, 20), (150, 55, 0))}       # oranges
 LIMIT_COLOR = (200, 40, 40)
@@ -62,24 +70,78 @@ LEG_COLOR_NAMES = ("green", "orange", "blue", "pink")
 MOTOR_WIDTHS = {"A": 1.6, "B": 0.8}   # per-leg plots (joints, per-cycle peaks): A bold, B thin
 EVENT_MARKERS = {"takeoff": "Up", "apex": "Diamond", "touchdown": "Down", "lift-off": "Up"}
 FLIGHT_COLOR = (255, 230, 0)
+PHASE_COLORS = ((120, 120, 120), (150, 90, 200), (0, 160, 160), (200, 140, 0), (90, 90, 220),
+                (60, 160, 60))
 
 
-def blueprint(legs, height_m: float) -> rrb.Blueprint:
-    """The viewer's layout: the robot seen from the frame world/follow (it moves with the body
-    over the ground, so the robot stays framed while the ground and the foot traces pass under
-    it; the camera EYE_OFFSET_M from a point height_m above the ground under the body) and the
-    event log on the left; on the right the four legs' motor torques, the body's height, speed
-    and tilt, and tabs with the foot forces, loop gaps, joint angles and speeds, per-cycle peaks
-    and the statistics window. The torque and force plots name their colours in their titles
-    (their legends would cover the curves; FL's shows the series)."""
-    torque = [rrb.TimeSeriesView(origin=f"torque/{leg}", name=f"{leg} torque (N·m): A blue, B "
-                                 "orange", plot_legend=rrb.PlotLegend("LeftBottom", visible=k == 0))
-              for k, leg in enumerate(legs)]
+class Headline(NamedTuple):
+    """What the recording answers at a glance: the worst motor (leg, motor), its limit in the
+    quadrant that decided it (N·m) and the phases of the run ((name, start s, end s))."""
+    leg: str
+    motor: str
+    limit_Nm: float
+    quadrant: str
+    phases: tuple
+
+
+def headline(sig: Signals, legs, params: Params, summary: Summary) -> Headline:
+    """The run's worst motor (the summary's, else the one with the largest demand), the limit
+    of its deciding quadrant, and its phases: a maneuver's own (summary["phases"]), a gait's
+    standing and ramp before its statistics window."""
+    worst = (summary.get("worst_motor") or "").split()
+    if len(worst) != 2:
+        peak = np.nanmax(np.abs(sig.command), axis=0) if len(sig.t) else np.zeros((len(legs), 2))
+        i, j = np.unravel_index(np.nanargmax(np.nan_to_num(peak, nan=-1.0)), peak.shape)
+        worst = [legs[i], MOTORS[j]]
+    torque = ((summary["legs"].get(worst[0], {}).get(worst[1], {}).get("checks") or {})
+              .get("torque") or {})
+    quadrant = torque.get("quadrant") or "driving"
+    limit = torque.get("limit_Nm") or (params.motor.braking_peak_torque_Nm if
+                                       quadrant == "braking" else params.motor.peak_torque_Nm)
+    start, end = summary["window_s"]
+    if summary.get("phases"):
+        phases = tuple((name, p["start_s"], p["end_s"]) for name, p in summary["phases"].items())
+    else:
+        phases = (("standing and ramp", 0.0, start), ("statistics window", start, end))
+    return Headline(worst[0], worst[1], float(limit), quadrant, phases)
+
+
+def blueprint(legs, height_m: float, head: Headline | None = None,
+              periodic: bool = True) -> rrb.Blueprint:
+    """The viewer's layout, answering at a glance: on the left the verdict (a text panel: the
+    worst motor, its figure against its limit, when, the thresholds, the phases), the robot
+    seen from the frame world/follow (it moves with the body over the ground; the camera
+    EYE_OFFSET_M from a point height_m above the ground under the body) and the event log; on
+    the right the worst motor's torques against its limit with the phases marked, every
+    motor's share of its limit (%), the per-cycle peaks against the limit (a gait) or the body's
+    height (a maneuver), and tabs with each leg's torques, the body's speed (a gait) and tilt,
+    the foot forces, loop gaps, joint angles and speeds and the statistics window. The y ranges
+    are set so that the ticks are readable at the default size."""
+    head = head or Headline(legs[0], MOTORS[0], 1.0, "driving", ())
+    span = 1.15 * head.limit_Nm
+
+    def torques(origin, name, legend="RightBottom", visible=False):
+        return rrb.TimeSeriesView(origin=origin, name=name, axis_y=rrb.ScalarAxis(
+            range=(-span, span)), plot_legend=rrb.PlotLegend(legend, visible=visible))
+
+    worst = f"{head.leg} {head.motor}"
     colours = ", ".join(f"{leg} {name}" for leg, name in zip(legs, LEG_COLOR_NAMES))
     look = np.array([0.0, 0.0, height_m])
+    below = [rrb.TimeSeriesView(origin="cycle_peak", name=f"per-cycle peak |torque| (N·m) of "
+                                f"every motor, limit {head.limit_Nm:.2f}: A {colours}; B darker",
+                                axis_y=rrb.ScalarAxis(range=(0.0, span)),
+                                plot_legend=rrb.PlotLegend(visible=False))
+             if periodic else
+             rrb.TimeSeriesView(origin="body/height_m", name="body height (m)",
+                                axis_y=rrb.ScalarAxis(range=(0.0, 1.6 * height_m)),
+                                plot_legend=rrb.PlotLegend("RightBottom"))]
+    body = ([rrb.TimeSeriesView(origin="body/forward_speed_m_s", name="forward speed (m/s)"),
+             rrb.TimeSeriesView(origin="body/height_m", name="body height (m)")]
+            if periodic else [])
     return rrb.Blueprint(
         rrb.Horizontal(
             rrb.Vertical(
+                rrb.TextDocumentView(origin="verdict", name="verdict"),
                 rrb.Spatial3DView(
                     origin="world/follow", contents="world/**",
                     name="robot (the camera follows the body)",
@@ -89,28 +151,67 @@ def blueprint(legs, height_m: float) -> rrb.Blueprint:
                 rrb.TextLogView(origin="events", name="events", columns=rrb.TextLogColumns(
                     text_log_columns=[rrb.encodings.TextLogColumn(kind, visible=kind == "Body")
                                       for kind in ("EntityPath", "LogLevel", "Body")])),
-                row_shares=[3, 1]),
+                row_shares=[3, 4, 2]),
             rrb.Vertical(
-                rrb.Grid(*torque, grid_columns=2),
-                rrb.Horizontal(
-                    rrb.TimeSeriesView(origin="body/height_m", name="body height (m)"),
-                    rrb.TimeSeriesView(origin="body/forward_speed_m_s",
-                                       name="forward speed (m/s)"),
-                    rrb.TimeSeriesView(origin="body/tilt_deg", name="tilt (deg)")),
+                rrb.TimeSeriesView(
+                    origin="worst", name=f"worst motor {worst}: torque (N·m) against its "
+                    f"±{head.limit_Nm:.2f} N·m {head.quadrant} limit; phases marked",
+                    axis_y=rrb.ScalarAxis(range=(-span, span)),
+                    plot_legend=rrb.PlotLegend("RightBottom")),
+                rrb.TimeSeriesView(origin="share", name="|demand| / its limit (%) of every "
+                                   f"motor: A {colours}; B darker; 100 % is the limit",
+                                   axis_y=rrb.ScalarAxis(range=(0.0, 120.0)),
+                                   plot_legend=rrb.PlotLegend(visible=False)),
+                *below,
                 rrb.Tabs(rrb.TimeSeriesView(origin="contact/normal",
                                             name=f"foot normal force (N): {colours}",
-                                            plot_legend=rrb.PlotLegend(visible=False)),
+                                            plot_legend=rrb.PlotLegend("RightBottom")),
+                         *[torques(f"torque/{leg}", f"{leg} torque (N·m): A blue, B orange",
+                                   visible=True) for leg in legs],
+                         *body,
+                         rrb.TimeSeriesView(origin="body/tilt_deg", name="tilt (deg)"),
                          rrb.TimeSeriesView(origin="contact/tangential",
                                             name="foot tangential force (N)"),
                          rrb.TimeSeriesView(origin="loop_gap_um", name="loop gap (µm)"),
                          rrb.TimeSeriesView(origin="joints/angle", name="joint angles (rad)"),
                          rrb.TimeSeriesView(origin="joints/speed", name="joint speeds (rad/s)"),
-                         rrb.TimeSeriesView(origin="cycle_peak", name="per-cycle peaks (N·m)"),
                          rrb.TimeSeriesView(origin="stats", name="statistics window")),
-                row_shares=[5, 2, 2]),
+                row_shares=[4, 2, 2, 2]),
             column_shares=[2, 3]),
         rrb.BlueprintPanel(state="collapsed"), rrb.SelectionPanel(state="collapsed"),
         rrb.TimePanel(state="collapsed", timeline=TIMELINE))
+
+
+def verdict_text(sig: Signals, head: Headline, params: Params, summary: Summary) -> str:
+    """The verdict panel (markdown): the verdict and the check that decided it, the worst
+    motor's figure against its limit (N·m and share) and when its demand peaked (in which
+    phase), the thresholds, the phases, the run's answer."""
+    verdict = str(summary["verdict"]).upper().replace("_", " ")
+    check = summary.get("deciding_check")
+    m = summary["legs"][head.leg][head.motor]
+    torque = ((m.get("checks") or {}).get("torque") or {})
+    i, j = list(summary["legs"]).index(head.leg), MOTORS.index(head.motor)
+    start, end = summary["window_s"]
+    inside = (sig.t > start) & (sig.t <= end) if len(sig.t) else np.zeros(0, bool)
+    demand = np.where(inside, np.abs(sig.command[:, i, j]), -np.inf) if len(sig.t) else []
+    k = int(np.argmax(demand)) if len(demand) and np.isfinite(np.max(demand)) else None
+    when = ""
+    if k is not None:
+        t = float(sig.t[k])
+        phase = next((n for n, a, b in head.phases if a <= t <= b), "")
+        when = (f" Its demand peaks at {demand[k]:.2f} N·m at t = {t:.2f} s"
+                + (f" ({phase})" if phase else "") + ".")
+    figure_line = (f"**Worst motor {head.leg} {head.motor}: {torque['torque_Nm']:.2f} N·m, "
+                   f"{torque['share_of_limit'] * 100:.0f} % of its {head.limit_Nm:.2f} N·m "
+                   f"{head.quadrant} limit (SF {torque['sf']:.2f}).**"
+                   if torque.get("torque_Nm") is not None and torque.get("sf") is not None else
+                   f"**Worst motor {head.leg} {head.motor}** (no torque figure: the run has no "
+                   "verdict).")
+    phases = " · ".join(f"{n} {a:.2f}–{b:.2f} s" for n, a, b in head.phases)
+    return "\n\n".join([
+        f"## {verdict}" + (f" by the {check} check" if check else ""),
+        figure_line + when, f"**Phases:** {phases}", thresholds_text(params.checks),
+        str(summary.get("answer") or "")])
 
 
 def link_points(layout: RobotLayout, params: Params, states: np.ndarray) -> np.ndarray:
@@ -149,14 +250,55 @@ def write_recording(path: Path, sig: Signals, record: SimulationRecord, summary:
     path.parent.mkdir(parents=True, exist_ok=True)
     title = "-".join(filter(None, ("fivebar_drake", name, scenario.gait.kind,
                                    scenario.closure.kind)))
+    legs = record.layout.legs
+    head = headline(sig, legs, record.params, summary)
     with recording_file(path, title,
-                        blueprint(record.layout.legs, float(sig.body_p[0, 2]) if len(sig.t)
-                                  else 0.0)) as rec:
+                        blueprint(legs, float(sig.body_p[0, 2]) if len(sig.t) else 0.0, head,
+                                  bool(summary["periodic"]))) as rec:
+        rec.log("verdict", rr.TextDocument(verdict_text(sig, head, record.params, summary),
+                                           media_type=rr.MediaType.MARKDOWN), static=True)
         if len(sig.t):
             _log_scene(rec, sig, record)
-            _log_series(rec, sig, record.layout.legs, record.params, summary)
-            _log_events(rec, sig, record.layout.legs)
+            _log_series(rec, sig, legs, record.params, summary)
+            _log_headline(rec, sig, legs, record.params, head)
+            _log_events(rec, sig, legs)
     return path
+
+
+def _log_headline(rec, sig: Signals, legs, params: Params, head: Headline):
+    """worst/: the worst motor's demand, applied and static torques, its limits and the phase
+    boundaries (vertical lines); share/<leg>/<A|B>: every motor's demand over its limit at
+    its speed, in the quadrant of each sample (%)."""
+    i, j = list(legs).index(head.leg), MOTORS.index(head.motor)
+    ends = sig.t[[0, -1]]
+    for name, label in WORST_SERIES.items():
+        field, shade, width, _ = TORQUE_SERIES[name]
+        scalars(rec, f"worst/{name}", sig.t, getattr(sig, field)[:, i, j],
+                f"{head.leg} {head.motor} {label}", MOTOR_SHADES[head.motor][shade], width)
+    for sign, side in ((1, "pos"), (-1, "neg")):
+        scalars(rec, f"worst/limit_{side}", ends, [sign * head.limit_Nm] * 2,
+                f"{'+' if sign > 0 else '-'}{head.quadrant} limit {head.limit_Nm:.2f} N·m",
+                LIMIT_COLOR, 1.5)
+    span = 1.15 * head.limit_Nm
+    for k, (name, start, _) in enumerate(head.phases):
+        path = f"worst/phase_{k}"
+        rec.send_columns(path, indexes=[rr.TimeColumn(TIMELINE, duration=[start, start])],
+                         columns=rr.Scalars.columns(scalars=[-span, span]))
+        rec.log(path, rr.SeriesLines(names=f"{name} from {start:.2f} s",
+                                     colors=PHASE_COLORS[k % len(PHASE_COLORS)], widths=1.0,
+                                     aggregation_policy="MinMax"), static=True)
+    up, lo = params.motor.limits(sig.qd)
+    share = np.where(sig.command >= 0, sig.command / up, sig.command / lo) * 100.0
+    for i, leg in enumerate(legs):
+        for j, m in enumerate(MOTORS):
+            scalars(rec, f"share/{leg}/{m}", sig.t, np.abs(share[:, i, j]), f"{leg} {m}",
+                    _motor_colour(i, m), MOTOR_WIDTHS[m])
+    scalars(rec, "share/limit", ends, [100.0, 100.0], "limit 100 %", LIMIT_COLOR, 1.5)
+
+
+def _motor_colour(i: int, motor: str):
+    """Leg i's colour for motor A, a darker one for B."""
+    return LEG_COLORS[i] if motor == MOTORS[0] else tuple(int(c * 0.55) for c in LEG_COLORS[i])
 
 
 def _log_scene(rec, sig: Signals, record: SimulationRecord):
@@ -206,12 +348,15 @@ def _log_series(rec, sig: Signals, legs, params: Params, summary: Summary):
     ends = sig.t[[0, -1]]
     start, end = summary["window_s"]
     cycle_ends = start + summary["cycle_s"] * np.arange(1, summary["cycles_in_window"] + 1)
+    # legs whose foot forces coincide (a jump's four feet) are drawn once, named together
+    force = sig.foot_force_plane
+    groups = coinciding((force[..., 1], force[..., 0]), (FORCE_SAME_N, FORCE_SAME_N))
+    first = {g[0]: " = ".join(legs[k] for k in g) for g in groups}
     for i, leg in enumerate(legs):
         scalars(rec, f"loop_gap_um/{leg}", sig.t, sig.gap[:, i] * 1e6, leg, LEG_COLORS[i])
-        scalars(rec, f"contact/normal/{leg}", sig.t, sig.foot_force_plane[:, i, 1], leg,
-                LEG_COLORS[i], 1.5)
-        scalars(rec, f"contact/tangential/{leg}", sig.t, sig.foot_force_plane[:, i, 0], leg,
-                LEG_COLORS[i], 1.5)
+        for kind, axis in (("normal", 1), ("tangential", 0)):
+            scalars(rec, f"contact/{kind}/{leg}", sig.t, force[:, i, axis],
+                    first.get(i, leg), LEG_COLORS[i], 1.5, visible=i in first)
         for sign, side in ((1, "pos"), (-1, "neg")):
             scalars(rec, f"torque/{leg}/limit_{side}", ends, [sign * limit] * 2,
                     f"{'+' if sign > 0 else '-'}limit {limit:g}", LIMIT_COLOR, 1.0)
@@ -226,7 +371,14 @@ def _log_series(rec, sig: Signals, legs, params: Params, summary: Summary):
             if len(cycle_ends):
                 scalars(rec, f"cycle_peak/{leg}/{m}", cycle_ends,
                         summary["legs"][leg][m]["per_cycle_peak_Nm"], f"{leg} {m}",
-                        LEG_COLORS[i], MOTOR_WIDTHS[m])
+                        _motor_colour(i, m), MOTOR_WIDTHS[m])
+                rec.log(f"cycle_peak/{leg}/{m}", rr.SeriesPoints(
+                    names=f"{leg} {m}", colors=_motor_colour(i, m), marker_sizes=3.0,
+                    markers="Circle" if m == MOTORS[0] else "Square"), static=True)
+    if len(cycle_ends):
+        scalars(rec, "cycle_peak/limit", cycle_ends[[0, -1]] if len(cycle_ends) > 1 else
+                np.array([start, cycle_ends[0]]), [limit] * 2, f"limit {limit:.2f} N·m",
+                LIMIT_COLOR, 1.5)
     scalars(rec, "body/height_m", sig.t, sig.body_p[:, 2], "height (m)", (120, 220, 120), 1.5)
     scalars(rec, "body/forward_speed_m_s", sig.t, sig.body_v[:, 0], "forward speed (m/s)",
             (120, 200, 255), 1.5)

@@ -214,7 +214,8 @@ def test_recorded_units_and_motor_hues(short_run):
     apart = abs(hue["A"] - hue["B"]) % 1.0
     assert min(apart, 1 - apart) > 0.25                            # > 90 degrees of hue apart
     for m in ("A", "B"):
-        shades = [style(f"/torque/FL/{m}/{n}") for n in ("applied", "commanded", "static_trot")]
+        shades = [style(f"/torque/FL/{m}/{n}") for n in ("applied", "commanded",
+                                                          "static_same_loads")]
         lightness = [s[0][1] for s in shades]
         assert min(np.diff(sorted(lightness))) > 0.1 or len({s[1] for s in shades}) == 3
         assert shades[0][1] > shades[1][1]                          # applied drawn bolder
@@ -267,3 +268,55 @@ def test_summary_records_the_timing_split(short_run):
     assert 0 < timing["outputs_s"] <= measured
     assert timing["outputs_share"] == pytest.approx(
         timing["outputs_s"] / (timing["outputs_s"] + timing["simulate_s"]))
+
+
+@pytest.fixture(scope="module")
+def jump_recording(tmp_path_factory, simulated):
+    """The 2.6 s jump other tests share, its recording written here: (record, signals,
+    summary, the file)."""
+    from fivebar_drake.pipeline import _review
+    from fivebar_drake.simulation.recording import write_recording
+
+    record = simulated(gait="jump", duration_s=2.6)
+    sig, _, summary = _review(record)
+    path = write_recording(tmp_path_factory.mktemp("jump") / "run.rrd", sig, record, summary)
+    return record, sig, summary, path
+
+
+@pytest.mark.slow
+def test_a_jumps_recording_answers_at_a_glance(jump_recording):
+    """Issue 32: the default layout shows the verdict (a text panel), the worst motor's torque
+    against the limit of its deciding quadrant with the maneuver's phases as vertical lines,
+    every motor's share of its limit; no forward-speed panel for a jump, and its static estimate
+    named for the loads it uses, not the trot."""
+    record, sig, summary, path = jump_recording
+    leg, motor = summary["worst_motor"].split()
+    torque = summary["legs"][leg][motor]["checks"]["torque"]
+    text = static_value(path, "/verdict", "TextDocument:text")[0]
+    assert text.startswith(f"## {summary['verdict'].upper()} by the {summary['deciding_check']}")
+    assert (f"Worst motor {leg} {motor}: {torque['torque_Nm']:.2f} N·m, "
+            f"{torque['share_of_limit'] * 100:.0f} % of its {torque['limit_Nm']:.2f} N·m "
+            f"{torque['quadrant']} limit") in text
+    assert "SF ≥ 2 pass" in text and all(name in text for name in summary["phases"])
+    limit = (record.params.motor.braking_peak_torque_Nm if torque["quadrant"] == "braking"
+             else record.params.motor.peak_torque_Nm)
+    assert np.all(read_series(path, "/worst/limit_pos")[1] == pytest.approx(limit))
+    t, worst = read_series(path, "/worst/applied")
+    assert np.array_equal(worst, read_series(path, f"/torque/{leg}/{motor}/applied")[1])
+    for k, p in enumerate(summary["phases"].values()):          # a vertical line at its start
+        t, v = read_series(path, f"/worst/phase_{k}")
+        assert np.all(t == pytest.approx(p["start_s"], abs=1e-9)) and v[0] == -v[1]
+    _, share = read_series(path, f"/share/{leg}/{motor}")
+    i, j = LEGS.index(leg), ("A", "B").index(motor)
+    up, lo = record.params.motor.limits(sig.qd[:, i, j])
+    demand = sig.command[:, i, j]
+    assert np.allclose(share, 100 * np.abs(demand / np.where(demand >= 0, up, lo)))
+    rows = blueprint_rows(path)
+    views = {v["ViewBlueprint:space_origin"][0]: (v["ViewBlueprint:class_identifier"][0],
+                                                 v["ViewBlueprint:display_name"][0])
+             for v in rows.values() if "ViewBlueprint:space_origin" in v}
+    assert views["verdict"][0] == "TextDocument"
+    assert f"worst motor {leg} {motor}" in views["worst"][1] and f"{limit:.2f}" in views["worst"][1]
+    assert "share" in views and "body/forward_speed_m_s" not in views
+    entities = {c.entity_path for c in RrdReader(path).stream().to_chunks()}
+    assert not any("static_trot" in e for e in entities)

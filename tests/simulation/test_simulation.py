@@ -313,7 +313,7 @@ def check_recording(path, summary):
     samples = rows(path, "/torque/FL/A/applied")
     assert samples == pytest.approx(duration / summary["log_period_s"], abs=2)
     for entity in ("/torque/RR/B/commanded", "/torque/RR/B/static_contact",
-                   "/torque/RR/B/static_trot", "/torque/RR/B/static_seed",
+                   "/torque/RR/B/static_same_loads", "/torque/RR/B/static_seed",
                    "/contact/normal/FL", "/contact/tangential/RR", "/loop_gap_um/FL",
                    "/joints/speed/RR/B", "/joints/angle/FL/A", "/body/height_m",
                    "/body/forward_speed_m_s", "/body/tilt_deg", "/stats/window"):
