@@ -14,6 +14,8 @@ GUIDE = Path(__file__).resolve().parents[1] / "docs" / "output_style.md"
 # rule 1: the answer names a verdict (or, for a design search or a seed check, its outcome)
 ANSWER_WORDS = re.compile(r"\b(PASS|WARN|FAIL|INSUFFICIENT|NOT ACHIEVED|No verdict|"
                           r"No design recommended|Recommended|reproduce[sd]?|allow)\b")
+# ... and a figure: a number with its unit, a safety factor or a count
+FIGURE = re.compile(r"\bSF \d|\d+ of \d+|\d(?:\.\d+)? ?(?:N·m|N\b|%|°C|m/s|mm|m\b|rad/s|A\b|kg|W\b)")
 # rule 2: spellings the guide forbids, with the unit they mean
 WRONG_UNITS = {
     "N m": re.compile(r"(?<![\w.])N m\b"), "N*m": re.compile(r"N\*m"),
@@ -94,7 +96,7 @@ def violations(path: Path) -> list[str]:
         breach(0, "empty report", "")
     else:
         k, first = body[0]
-        if not ANSWER_WORDS.search(first) or not re.search(r"\d", first):
+        if not ANSWER_WORDS.search(first) or not FIGURE.search(first):
             breach(k, "the first line is not the answer (a verdict and a figure)", first)
     if TORQUE_VERDICT.search(text) and "SF" in text and not THRESHOLDS.search(text):
         breach(0, "a verdict without its thresholds (SF ≥ 2 pass, ≥ 1.5 warn)", "")
