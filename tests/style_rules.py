@@ -15,7 +15,7 @@ GUIDE = Path(__file__).resolve().parents[1] / "docs" / "output_style.md"
 ANSWER_WORDS = re.compile(r"\b(PASS|WARN|FAIL|INSUFFICIENT|NOT ACHIEVED|No verdict|"
                           r"No design recommended|Recommended|reproduce[sd]?|allow)\b")
 # ... and a figure: a number with its unit, a safety factor or a count
-FIGURE = re.compile(r"\bSF \d|\d+ of \d+|\d(?:\.\d+)? ?(?:N·m|N\b|%|°C|m/s|mm|m\b|rad/s|A\b|kg|W\b)")
+FIGURE = re.compile(r"\bSF \d|\d+ of \d+|\d(?:\.\d+)? ?(?:N·m|N\b|%|°C|m/s|mm|m\b|rad/s|A\b|kg|W\b|deg\b|s\b)")
 # rule 2: spellings the guide forbids, with the unit they mean
 WRONG_UNITS = {
     "N m": re.compile(r"(?<![\w.])N m\b"), "N*m": re.compile(r"N\*m"),

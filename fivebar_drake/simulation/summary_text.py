@@ -48,7 +48,8 @@ def answer(s: Summary, params: Params) -> str:
     same load schedule beside it, and the seed's own figure separately with its load model."""
     if s["verdict"] == "insufficient":
         if not s["completed"] and not s["interrupted"]:
-            return (f"No verdict: the run stopped early ({s['error']}): the gait, the "
+            return (f"No verdict: the run stopped early, at {s['duration_s']:.2f} s of the "
+                    f"{s['requested_duration_s']:g} s asked ({s['error']}): the gait, the "
                     "controller or the motors could not carry the robot through it.")
         if not s["periodic"]:
             why = (f"the run stopped early ({s['error']})" if not s["completed"] else

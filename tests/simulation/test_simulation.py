@@ -464,3 +464,4 @@ def test_failed_run_keeps_what_was_simulated(tmp_path, capsys, monkeypatch):
     assert summary["completed"] is False and 0.25 < summary["duration_s"] < 0.35
     assert summary["verdict"] == "insufficient"
     assert (out / "run.rrd").stat().st_size > 10_000 and (out / "sim_torques.png").exists()
+    assert report_violations(out / "summary.md") == []    # the demo's fallen seed_ellipse alike
