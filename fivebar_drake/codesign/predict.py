@@ -4,14 +4,18 @@
     under trot loading (analysis/design_points.evaluate_designs, vectorised over the designs
     that share a leg) for each trot maneuver of the requirements, with that maneuver's gait:
     each motor's safety factor, speed and thermal checks;
-(b) the optimal-maneuver floors (optimal/vertical_jump.py), for the designs that pass (a): for
-    each jump and drop, the least peak motor torque any controller needs for its push-off and
-    its landing on the maneuver's own strokes; the predicted safety factor is the motors' peak
-    over that floor (no controller does better, the package's asks more).
+(b) the optimal-maneuver floors, for the designs that pass (a): for each jump and drop
+    (optimal/vertical_jump.py), the least peak motor torque any controller needs for its
+    push-off and its landing on the maneuver's own strokes; for each walk, bound and pronk
+    (optimal/gait_floor.py: the body free to surge, heave and pitch, cached per process by the
+    design without its motor), the least peak stance torque of the gait at its speed, period
+    and payload, and the worst motor's RMS current on that motion. The predicted safety factor
+    is the motors' peak over the floor, the thermal margin the continuous current over that RMS
+    current: upper bounds on the simulated (no controller does better, the package's asks
+    more; the floor neglects the swing legs and the links' inertia).
 
 The duty cycle's thermal margin is predicted as the least closed-form thermal margin of its
-maneuvers (duty_cycle). The other maneuvers (walk, bound, pronk, stand-up) have no prediction here: the simulation
-alone judges them. A requirement's margin is the figure over what the accepted verdict needs
+maneuvers (duty_cycle). The stand-up has no prediction here: the simulation alone judges it. A requirement's margin is the figure over what the accepted verdict needs
 (>= 1 meets it): the safety factor over checks.sf_pass (sf_warn when warn is accepted), the
 least speed margin over checks.speed_margin_warn (1), the thermal current margin over
 checks.thermal_margin_warn (1).
@@ -21,17 +25,20 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from fivebar_drake.analysis.design_points import evaluate_designs
 from fivebar_drake.codesign.designs import actuator_mass, design_name, design_params
-from fivebar_drake.codesign.spec import CodesignSpec
+from fivebar_drake.codesign.spec import GAITS, ON_MANEUVER, CodesignSpec
 from fivebar_drake.core.footpath import Jump, Landing
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.envelope.spec import Maneuver
 from fivebar_drake.mechanisms.fivebar import MOTORS
-from fivebar_drake.optimal import vertical_jump
+from fivebar_drake.optimal import gait_floor, vertical_jump
 from fivebar_drake.robots.quadruped.params import Params
 
 SCREENED = ("trot",)              # gait kinds level (a) predicts
+FLOORED = ("walk", "bound", "pronk")   # and the gait floors of level (b)
 DUTY = "duty cycle"               # its row beside the maneuvers (no maneuver name has a space)
 CHECKS = ("torque", "speed", "thermal")
 
@@ -95,6 +102,26 @@ def floors(maneuver: Maneuver, params: Params, accept) -> dict:
             "margins": {"torque": sf / needs(params, accept)["torque"]}}
 
 
+def gait_floors(maneuver: Maneuver, params: Params, accept) -> dict:
+    """Level (b) of a walk, bound or pronk (module docstring): the floor (N*m), the motors'
+    safety factor on it and its torque margin, the thermal margin where the motor has a
+    continuous rating; a gait no motion of the floor's model carries is a margin of 0 with
+    why."""
+    try:
+        floor = gait_floor.gait_floor(params, maneuver.scenario.gait, maneuver.scenario.payload_kg)
+    except ParameterError as err:
+        return {"level": "floor", "safety_factor": 0.0, "verdict": "fail", "why": err.message,
+                "margins": {"torque": 0.0}}
+    need = needs(params, accept)
+    sf = params.motor.peak_torque_Nm / floor.floor_Nm
+    out = {"level": "floor", "floor_Nm": floor.floor_Nm, "safety_factor": sf,
+           "margins": {"torque": sf / need["torque"]}}
+    continuous = getattr(params.motor, "rated_continuous_current_A", None)
+    if continuous and math.isfinite(floor.rms_current_A) and floor.rms_current_A > 0:
+        out["margins"]["thermal"] = continuous / floor.rms_current_A / need["thermal"]
+    return out
+
+
 def duty_cycle(spec: CodesignSpec, entry: dict) -> dict | None:
     """The duty cycle's thermal margin, predicted as the least closed-form thermal margin of its
     maneuvers that have one (a steady trot's winding: the cycle's hottest part when it runs
@@ -116,6 +143,53 @@ def max_jump_height(params: Params) -> float:
     low, high = vertical_jump.reach(params)
     jump = vertical_jump.push(vertical_jump.stroke(params, low, high), standing)
     return 0.0 if jump is None else jump.body_apex_above_standing_m
+
+
+def power_maneuvers(spec: CodesignSpec, objective: str) -> list[Maneuver]:
+    """The maneuvers a power objective is on: the one it names (NAME:MANEUVER), else every
+    gait maneuver of the envelope."""
+    name = objective.partition(":")[2]
+    return [m for m in spec.envelope.maneuvers
+            if (m.name == name if name else m.scenario.gait.kind in GAITS)]
+
+
+def floor_power(maneuver: Maneuver, params: Params) -> dict:
+    """The robot's electrical power over the gait floor's motion of a gait maneuver (its
+    stance legs' torques and speeds; the swing legs draw nothing in the floor's model): the
+    peak (W, over the period's knots, summed over the motors: what the battery gives) and the
+    cost of transport (the period's positive electrical energy over m g times the distance:
+    the gait's stance speed times the period); nan where the motor has no electrical model or
+    no floor is found."""
+    power = getattr(params.motor, "electrical_power_W", None)
+    try:
+        floor = gait_floor.gait_floor(params, maneuver.scenario.gait,
+                                      maneuver.scenario.payload_kg)
+    except ParameterError:
+        floor = None
+    if power is None or floor is None:
+        return {"peak_W": math.nan, "cost_of_transport": math.nan}
+    robot = power(floor.torque_Nm, floor.speed_rad_s).sum(axis=(0, 2))
+    period = params.gait.period_s
+    energy = float(np.clip(robot, 0.0, None).mean() * period)
+    distance = maneuver.scenario.gait.stance_speed(params.gait) * period
+    weight = floor.mass_kg * params.robot.gravity_m_s2
+    return {"peak_W": float(robot.max()),
+            "cost_of_transport": energy / (weight * distance) if distance > 0 else math.nan}
+
+
+def power_objectives(spec: CodesignSpec, params: dict[str, Params]) -> dict[str, float]:
+    """The power objectives of spec (peak_electrical_power_W[:MANEUVER],
+    cost_of_transport:MANEUVER) predicted on the gait floors (floor_power) of a design's
+    maneuvers' parameters: the peak the largest over its maneuvers."""
+    out = {}
+    for objective in spec.objectives:
+        kind = objective.partition(":")[0]
+        if kind not in ON_MANEUVER:
+            continue
+        figures = [floor_power(m, params[m.name]) for m in power_maneuvers(spec, objective)]
+        out[objective] = (max(f["peak_W"] for f in figures) if kind == "peak_electrical_power_W"
+                          else figures[0]["cost_of_transport"])
+    return out
 
 
 def predict(spec: CodesignSpec, designs: list[dict]) -> list[dict]:
@@ -146,8 +220,12 @@ def predict(spec: CodesignSpec, designs: list[dict]) -> list[dict]:
         for m in maneuvers:
             if isinstance(m.scenario.gait, Landing) and screened:
                 entry["maneuvers"][m.name] = floors(m, built[i][m.name], spec.accept)
+            elif m.scenario.gait.kind in FLOORED and screened:
+                entry["maneuvers"][m.name] = gait_floors(m, built[i][m.name], spec.accept)
         if "max_jump_height_m" in spec.objectives:
             entry["objectives"]["max_jump_height_m"] = max_jump_height(built[i][maneuvers[0].name])
+        entry["objectives"].update({k: v for k, v in power_objectives(spec, built[i]).items()
+                                    if math.isfinite(v)})
         duty = duty_cycle(spec, entry)
         if duty is not None:
             entry["maneuvers"][DUTY] = duty

@@ -9,7 +9,7 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 
-from fivebar_drake.codesign.designs import write_parameter_file
+from fivebar_drake.codesign.designs import actuator_mass, design_name, write_parameter_file
 from fivebar_drake.codesign.search import JOURNAL_FILE, ranked
 from fivebar_drake.codesign.spec import CodesignSpec
 from fivebar_drake.core.files import json_ready, save_figure, write_atomic
@@ -17,6 +17,7 @@ from fivebar_drake.mechanisms.fivebar import MOTORS
 
 FILES = ("design.md", "design.toml", "pareto.png", "design.json")   # design.json last
 DEFAULT = "default"      # the default design's key among the simulated
+COMPARED = "compared_"   # with its index: a design of the spec's `compare` list
 FLAG = 0.10          # predicted and simulated figures further apart than this are flagged
 
 
@@ -54,7 +55,7 @@ def least(sim: dict, accept: tuple[str, ...]) -> tuple[float, str]:
     for name, m in sim["maneuvers"].items():
         if m["verdict"] not in accept:
             check = m["deciding_check"]
-            return (m["margins"].get(check, 0.0), f"{name} {check or ''} ({m['verdict']})")
+            return (m["margins"].get(check, 0.0), f"{name} {check or 'verdict'} ({m['verdict']})")
         for check, margin in m["margins"].items():
             found = min(found, (margin, f"{name} {check}"))
     return found
@@ -104,14 +105,21 @@ def codesign_report(spec: CodesignSpec, entries: list[dict], chosen: list[dict],
     passing = ranked(spec, [f for f in finalists if f["simulated"]["passes"]])
     recommended = passing[0] if passing else None
     report = {"spec": spec.source, "accept": list(spec.accept),
+              "step_check": spec.step_check, "never_at_limit": spec.never_at_limit,
               "objectives": list(spec.objectives), "trials": len(entries),
               "predicted_meeting": sum(e["meets"] for e in entries),
               "default": {"actuator_mass_kg": default_mass,
                           "simulated": verified.get(DEFAULT)},
+              "compared": [{"key": f"{COMPARED}{i}", "name": design_name(d), "design": d,
+                            "actuator_mass_kg": actuator_mass(d),
+                            "simulated": verified.get(f"{COMPARED}{i}")}
+                           for i, d in enumerate(spec.compare)],
               "finalists": finalists, "recommended": recommended,
               "failure": "" if recommended else nobody_meets(spec, entries, finalists),
               "corrections": factors,
               "candidates": entries}
+    report["pareto_verified"] = ([f["key"] for f in verified_front(spec, finalists)]
+                                 if len(spec.objectives) > 1 else [])
     report["answer"] = answer(spec, report)
     return report
 
@@ -130,13 +138,79 @@ def answer(spec: CodesignSpec, report: dict) -> str:
     decided = ("; decided by " + ", ".join(
         f"{least(f['simulated'], spec.accept)[1]}, where the lighter {f['name']} fails in "
         "simulation" for f in better) if better else "")
+    compared = "".join(
+        f" and {c['name']}'s {c['actuator_mass_kg']:.3f} kg "
+        f"({_outcome(c['simulated'], spec.accept)})"
+        for c in report["compared"])
     return (f"Recommended design: {r['name']} — the best by {spec.objectives[0]} of the "
             f"finalists that pass every maneuver{duty} of the requirements in full Drake "
             f"simulation ({len(passing)} of {len(report['finalists'])}; every check of every "
-            f"motor, accepted {'/'.join(spec.accept)}): actuator mass {mass:.3f} kg against "
-            f"the default design's {report['default']['actuator_mass_kg']:.3f} kg{decided}; "
+            f"motor, accepted {'/'.join(spec.accept)}{_strictness(spec)}): actuator mass "
+            f"{mass:.3f} kg against the default design's "
+            f"{report['default']['actuator_mass_kg']:.3f} kg"
+            f" ({_outcome(report['default']['simulated'], spec.accept)}){compared}{decided}; "
             f"its least margin {margin:.2f} ({where}); verified by simulating the whole "
             f"envelope in finalists/{r['key']}.")
+
+
+def _strictness(spec: CodesignSpec) -> str:
+    """What else the simulations were held to, in a few words."""
+    return ((", with the step check at half the plant step" if spec.step_check else "")
+            + (", never at a motor or joint limit" if spec.never_at_limit else ""))
+
+
+def _outcome(sim: dict | None, accept: tuple[str, ...]) -> str:
+    """A simulated envelope's outcome in a few words: passes, or the first maneuver whose
+    verdict is not accepted, that verdict and its deciding check."""
+    if sim is None:
+        return "not simulated"
+    failing = [(n, m) for n, m in sim["maneuvers"].items() if m["verdict"] not in accept]
+    if not failing:
+        return "passes in simulation"
+    name, m = failing[0]
+    return (f"{m['verdict']} in simulation: {name}, {m['deciding_check'] or 'no'} check"
+            + (f", and {len(failing) - 1} more" if len(failing) > 1 else ""))
+
+
+def verified_front(spec: CodesignSpec, finalists: list[dict]) -> list[dict]:
+    """The passing finalists no other passing finalist dominates on the objectives (simulated
+    where given, else predicted)."""
+    sign = [1.0 if d == "minimize" else -1.0 for d in spec.directions]
+
+    def key(f):
+        sim = f["simulated"].get("objectives", {})
+        return [s * (sim[o] if _finite(sim.get(o)) else f["objectives"][o])
+                for s, o in zip(sign, spec.objectives)]
+
+    passing = [f for f in finalists if f["simulated"]["passes"]]
+    return [f for f in passing if not any(
+        all(a <= b for a, b in zip(key(g), key(f))) and key(g) != key(f) for g in passing)]
+
+
+def _objective_cell(finalist: dict, objective: str) -> str:
+    """A finalist's objective, predicted / simulated where the simulation gives it."""
+    text = _f(finalist["objectives"].get(objective), "{:.3f}")
+    sim = finalist["simulated"].get("objectives", {}).get(objective)
+    if objective != "actuator_mass_kg" and sim is not None:
+        text += f" / {_f(sim, '{:.3f}')}"
+    return text
+
+
+def _limits(limits: dict | None) -> str:
+    """A maneuver's limits (run.at_limits) in a cell: the motors' largest share at a limit,
+    the joint limits reached, the step check's finding."""
+    if not limits or limits["motor_share"] is None:
+        return "—"
+    parts = [f"motors {limits['motor_share']:.1%} at a limit"]
+    if limits["joint_limits"]:
+        parts.append("reached " + ", ".join(limits["joint_limits"]))
+    if limits["step_marginal"] is not None:
+        parts.append("step check " + ("MARGINAL" if limits["step_marginal"] else "ok"))
+    return "; ".join(parts)
+
+
+def _finite(x) -> bool:
+    return isinstance(x, (int, float)) and math.isfinite(x)
 
 
 def _f(x, pattern: str = "{:.2f}") -> str:
@@ -161,14 +235,23 @@ def markdown(spec: CodesignSpec, report: dict) -> str:
         rec = r["simulated"]["maneuvers"][name] if r else {"verdict": "—", "figures": {},
                                                              "margins": {}}
         lines.append(f"| {name} | verdict | {rec['verdict']} | | {d['verdict']} | |")
+        lines.append(f"| {name} | limits | {_limits(rec.get('limits'))} | | "
+                     f"{_limits(d.get('limits'))} | |")
         for check in d["figures"] or rec["figures"]:
             lines.append(f"| {name} | {check} | {_f(rec['figures'].get(check))} | "
                          f"{_f(rec['margins'].get(check))} | {_f(d['figures'].get(check))} | "
                          f"{_f(d['margins'].get(check))} |")
+    if report["compared"]:
+        lines += ["", "## Compared designs (simulated beside the default)", "",
+                  "| design | actuator mass kg | simulated |", "|---|---|---|"]
+        lines += [f"| {c['name']} | {c['actuator_mass_kg']:.3f} | "
+                  f"{_outcome(c['simulated'], spec.accept)} |" for c in report["compared"]]
     lines += ["", "## Predicted vs simulated", "",
-              "Predicted: (a) closed form (trot maneuvers), (b) the optimal-maneuver floor "
-              "(jumps and drops: the motors' peak over the least any controller needs, so an "
-              f"upper bound on the simulated). Flagged: more than {FLAG:.0%} apart.", "",
+              "Predicted: (a) closed form (trot maneuvers), (b) the optimal-maneuver floors "
+              "(jumps and drops: optimal/vertical_jump; walks, bounds and pronks: "
+              "optimal/gait_floor, the body free to surge, heave and pitch): the motors' peak "
+              "over the least any controller needs, so an upper bound on the simulated. "
+              f"Flagged: more than {FLAG:.0%} apart.", "",
               "| finalist | maneuver | level | predicted SF | simulated SF | difference | |",
               "|---|---|---|---|---|---|---|"]
     for f in report["finalists"]:
@@ -178,16 +261,25 @@ def markdown(spec: CodesignSpec, report: dict) -> str:
                          f"{_f(c['difference'], '{:+.0%}')} | "
                          f"{'FLAG' if c['flagged'] else ''} |")
     lines += ["", "## Finalists", "",
+              "Objectives: predicted / simulated (the power objectives: predicted on the gait "
+              "floors' motions, simulated over the runs' statistics windows; the jump ceiling "
+              "is a prediction only).", "",
               "| finalist | design | " + " | ".join(spec.objectives)
               + " | predicted margin | simulated | least simulated margin |",
               "|---|---|" + "---|" * len(spec.objectives) + "---|---|---|"]
     for f in report["finalists"]:
         margin, where = least(f["simulated"], spec.accept)
         lines.append(f"| {f['key']} | {f['name']} | " + " | ".join(
-            _f(f["objectives"][o], "{:.3f}") for o in spec.objectives)
+            _objective_cell(f, o) for o in spec.objectives)
             + f" | {_f(f['margin'])} ({f['short_of']}) | "
             + ("passes" if f["simulated"]["passes"] else "fails")
             + f" | {_f(margin)} ({where}) |")
+    if len(spec.objectives) > 1:
+        front = verified_front(spec, report["finalists"])
+        lines += ["", "## Pareto front (verified)", "",
+                  "The finalists that pass in simulation and that no other such finalist beats "
+                  "on every objective (simulated where the simulation gives it, else predicted): "
+                  + (", ".join(f"{f['key']} ({f['name']})" for f in front) or "none") + "."]
     if report["corrections"]:
         lines += ["", "The finalists were chosen in turn, each predicted margin scaled by what the "
                   "simulations before showed (the least simulated over predicted margin, below "
@@ -204,7 +296,13 @@ def markdown(spec: CodesignSpec, report: dict) -> str:
               + (", ".join(unpredicted) or "none") + ".",
               "Assumptions: a catalogue motor keeps the base parameter file's friction and "
               "thermal model (the catalogue gives neither); robot.motors_kg is the 8 "
-              "actuators' mass. The envelope's runs have no step check.", ""]
+              "actuators' mass. "
+              + ("Every run was step-checked (run again at half the plant step; a marginal "
+                 "verdict fails)." if spec.step_check else "The envelope's runs have no step "
+                 "check.")
+              + (" A run at a limit fails: a motor at its torque or voltage limit in any "
+                 "sample, or a leg at a joint or extension limit." if spec.never_at_limit
+                 else ""), ""]
     return "\n".join(lines)
 
 
@@ -235,6 +333,14 @@ def pareto_figure(spec: CodesignSpec, report: dict):
         pts = [f for f in report["finalists"] if f["simulated"]["passes"] == passes]
         ax.scatter([f["objectives"][first] for f in pts], [y(f) for f in pts], label=label,
                    zorder=3, **style)
+    verified = [f for f in report["finalists"] if second and all(
+        _finite(f["simulated"].get("objectives", {}).get(o)) for o in (first, second))]
+    for f in verified:                  # the simulated objectives beside the predicted
+        sim = f["simulated"]["objectives"]
+        ax.plot([f["objectives"][first], sim[first]], [y(f), sim[second]], color="0.5", lw=0.8)
+        ax.scatter([sim[first]], [sim[second]], marker="D", facecolors="none",
+                   edgecolors="tab:green" if f["simulated"]["passes"] else "tab:red", zorder=3,
+                   label="finalist: simulated objectives" if f is verified[0] else None)
     r = report["recommended"]
     if r is not None:
         ax.annotate("recommended\n" + r["name"].replace(", ", "\n").replace(" at ", "\nat "),
@@ -244,7 +350,9 @@ def pareto_figure(spec: CodesignSpec, report: dict):
     if first == "actuator_mass_kg":
         ax.axvline(report["default"]["actuator_mass_kg"], color="k", ls="--",
                    label="default design's actuator")
-    ax.set(xlabel=first, ylabel=ylabel, title="co-design: every trial (predicted)")
+    ax.set(xlabel=first, ylabel=ylabel,
+           title="co-design: every trial (predicted)" + (", finalists simulated" if verified
+                                                         else ""))
     ax.legend(fontsize=8)
     for i, f in enumerate(report["finalists"]):
         sim = least(f["simulated"], spec.accept)[0]

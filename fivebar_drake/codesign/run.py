@@ -29,13 +29,17 @@ import math
 from contextlib import ExitStack
 from pathlib import Path
 
-from fivebar_drake.core.files import lock_folder
+import numpy as np
+
+from fivebar_drake.core.files import json_ready, lock_folder
 from fivebar_drake.core.progress import Progress
-from fivebar_drake.codesign.designs import design_envelope, design_name
-from fivebar_drake.codesign.predict import CHECKS, DUTY, needs
-from fivebar_drake.codesign.report import DEFAULT, CodesignRun, write_report
+from fivebar_drake.codesign.designs import actuator_mass, design_envelope, design_name
+from fivebar_drake.codesign.predict import CHECKS, DUTY, needs, power_maneuvers
+from fivebar_drake.codesign.report import COMPARED, DEFAULT, CodesignRun, write_report
 from fivebar_drake.codesign.search import predictions, ranked, search
-from fivebar_drake.codesign.spec import CodesignSpec
+from fivebar_drake.codesign.spec import ON_MANEUVER, CodesignSpec
+from fivebar_drake.mechanisms.fivebar import MOTORS
+from fivebar_drake.optimal import gait_floor
 from fivebar_drake.envelope.run import run_envelope
 from fivebar_drake.sweep.engine import (check_output_folder, check_scheduler,
                                         check_workers, dask_client)
@@ -85,22 +89,86 @@ def next_finalist(spec: CodesignSpec, entries: list[dict], done: set[str],
     return order[0] if order else None
 
 
-def simulated(report: dict, spec: CodesignSpec) -> dict:
-    """An envelope's outcome (envelope.json's dictionary) against the requirements: per
-    maneuver, and for the duty cycle (DUTY), its verdict, deciding check, each check's worst
-    figure over the motors and legs (torque: safety factor, speed: least margin, thermal:
-    current margin; the duty cycle: its hottest winding's current margin) and its margin (the
-    figure over what the accepted verdict needs, predict.needs); `passes` when every verdict
-    is accepted."""
+def at_limits(summary: dict | None) -> dict:
+    """A run's limits (its summary.json's dictionary): the largest share of the samples any
+    motor spent at its torque or voltage limit (limit_shares, either quadrant), the joint and
+    extension limits a leg reached, and whether the step check found the run marginal (None
+    without a step check)."""
+    if summary is None:
+        return {"motor_share": None, "joint_limits": [], "step_marginal": None}
+    shares = [sum(m["limit_shares"].values()) for motors in summary["legs"].values()
+              for m in motors.values()]
+    step = summary.get("step_check")
+    return {"motor_share": max(shares, default=0.0),
+            "joint_limits": sorted({f"{h['leg']} {h['limit']}" for h in
+                                    (summary.get("limits") or {}).get("hits", [])}),
+            "step_marginal": None if step is None else bool(step["marginal"])}
+
+
+def power_figures(result, maneuver) -> dict:
+    """A simulated gait maneuver's electrical figures (ManeuverResult.power_W over its
+    statistics window): the robot's peak electrical power (W, summed over the motors) and the
+    cost of transport (the positive electrical energy over m g times the distance the body
+    made: its mean forward speed times the window); nan without them."""
+    power = getattr(result, "power_W", None)
+    if power is None or not power.size or result.summary is None:
+        return {"peak_W": math.nan, "cost_of_transport": math.nan}
+    params, dt = maneuver.params, result.current_dt_s
+    mass = gait_floor.whole_body(params, maneuver.scenario.payload_kg)[0]
+    distance = result.summary["mean_forward_speed_m_s"] * power.size * dt
+    energy = float(np.clip(power, 0.0, None).sum() * dt)
+    return {"peak_W": float(power.max()),
+            "cost_of_transport": (energy / (mass * params.robot.gravity_m_s2 * distance)
+                                  if distance > 0 else math.nan)}
+
+
+def simulated_objectives(spec: CodesignSpec, design: dict | None, results: dict) -> dict:
+    """The spec's objectives as the simulation gives them (the power ones, power_figures, on
+    the maneuvers predict.power_maneuvers names), the actuator mass as designed; the others
+    (the jump ceiling) are predictions only."""
+    base = spec.envelope.maneuvers[0].params
+    out = {"actuator_mass_kg": actuator_mass(design) if design is not None else
+           base.robot.motors_kg / (base.robot.legs * len(MOTORS))}
+    for objective in spec.objectives:
+        kind = objective.partition(":")[0]
+        if kind not in ON_MANEUVER:
+            continue
+        figures = [power_figures(results[m.name], m) for m in power_maneuvers(spec, objective)
+                   if m.name in results]
+        values = [f["peak_W"] if kind == "peak_electrical_power_W" else f["cost_of_transport"]
+                  for f in figures]
+        out[objective] = (max(values) if values and kind == "peak_electrical_power_W" else
+                          values[0] if values else math.nan)
+    return out
+
+
+def simulated(report: dict, spec: CodesignSpec, summaries: dict | None = None) -> dict:
+    """An envelope's outcome (envelope.json's dictionary; summaries: each maneuver's
+    summary.json dictionary) against the requirements: per maneuver, and for the duty cycle
+    (DUTY), its verdict, deciding check, each check's worst figure over the motors and legs
+    (torque: safety factor, speed: least margin, thermal: current margin; the duty cycle: its
+    hottest winding's current margin), its margin (the figure over what the accepted verdict
+    needs, predict.needs) and its limits (at_limits); `passes` when every verdict is accepted
+    (with the step check a marginal one is not) and, where the spec requires it, no maneuver
+    was at a limit."""
     need = needs(spec.envelope.maneuvers[0].params, spec.accept)
     keys = {"torque": "sf", "speed": "least_margin", "thermal": "margin"}
+    summaries = summaries or {}
     out = {}
     for name, e in report["maneuvers"].items():
         rows = [r for r in (e["motors"] or {}).values() if r["checks"] is not None]
         figures = {c: min(_finite(r["checks"][c][keys[c]]) for r in rows) for c in CHECKS} \
             if rows and len(rows) == len(e["motors"]) else {}
-        out[name] = {"verdict": e["verdict"], "deciding_check": e.get("deciding_check"),
-                     "figures": figures, "margins": {c: f / need[c] for c, f in figures.items()}}
+        limits = at_limits(summaries.get(name))
+        verdict = e["verdict"]
+        if spec.never_at_limit and verdict in spec.accept and (
+                limits["motor_share"] is None or limits["motor_share"] > 0.0
+                or limits["joint_limits"]):
+            verdict = "at a limit"
+        out[name] = {"verdict": verdict, "deciding_check": (
+            "limits" if verdict == "at a limit" else e.get("deciding_check")),
+                     "figures": figures, "margins": {c: f / need[c] for c, f in figures.items()},
+                     "limits": limits}
     duty = report["duty_cycle"]
     if duty is not None:
         margin = min(_finite(m["margin"]) for m in duty["motors"].values())
@@ -131,7 +199,7 @@ def run_codesign(spec: CodesignSpec, out: str | Path, workers: int | None = None
     study = search(spec, out, progress)
     entries = predictions(study)
     chosen, verified, pairs = [], {}, []
-    bar = Progress(spec.finalists + 1, 0, progress, "verify", "envelopes")
+    bar = Progress(spec.finalists + 1 + len(spec.compare), 0, progress, "verify", "envelopes")
     with ExitStack() as stack:
         opened = []                 # the Dask client, opened when a simulation is first needed
 
@@ -143,7 +211,10 @@ def run_codesign(spec: CodesignSpec, out: str | Path, workers: int | None = None
                     opened.append(stack.enter_context(dask_client(workers, scheduler, client)))
                 run = run_envelope(design_envelope(spec.envelope, design),
                                    out / FINALISTS_DIR / key, progress=False, client=opened[0])
-                study.set_user_attr(attr, simulated(run.report, spec))
+                outcome = simulated(run.report, spec, {
+                    name: r.summary for name, r in run.results.items()})
+                outcome["objectives"] = simulated_objectives(spec, design, run.results)
+                study.set_user_attr(attr, json_ready(outcome))
             verified[key] = study.user_attrs[attr]
             return verified[key]
 
@@ -154,6 +225,8 @@ def run_codesign(spec: CodesignSpec, out: str | Path, workers: int | None = None
                 break
             if not chosen:
                 bar.add(1, int(not check(DEFAULT, None)["passes"]))
+                for i, design in enumerate(spec.compare):
+                    bar.add(1, int(not check(f"{COMPARED}{i}", design)["passes"]))
             chosen.append(entry)
             pairs.append((entry, check(f"trial_{entry['trial']}", entry["design"])))
             passing = ranked(spec, [e for e, sim in pairs if sim["passes"]])

@@ -11,7 +11,14 @@ to minimise and how much to spend.
       envelope: envelope_demo.yaml  # an envelope spec (file or mapping): its maneuvers, duty
                                     # cycle and base parameter file (its `config`)
       accept: pass                  # every check of every motor of every maneuver: pass, or warn
-    objectives: [actuator_mass_kg, max_jump_height_m]   # the first decides; default the mass
+      step_check: true              # the simulations judged with their step check (each run
+                                    # again at half the plant step: a marginal verdict fails)
+      never_at_limit: true          # and no motor at its torque or voltage limit, no leg at a
+                                    # joint or extension limit, in any sample
+    compare:                        # optional: designs simulated beside the default design,
+      - {motor: odrive_d5065_270kv, motor.gear_ratio: 8.0}   # e.g. the obvious fix
+    objectives: [actuator_mass_kg, max_jump_height_m]   # the first decides; default the mass;
+                        # also peak_electrical_power_W[:MANEUVER], cost_of_transport:MANEUVER
     budget: {trials: 40, finalists: 3, seed: 0}
 
 A built-in actuator (CubeMars AK, Mini Cheetah) keeps its own gearbox and ratio: for it the
@@ -35,10 +42,14 @@ from fivebar_drake.envelope.spec import EnvelopeSpec, spec_from_dict as envelope
 from fivebar_drake.robots.quadruped.config import with_changes
 from fivebar_drake.sweep.spec import Varied
 
-KEYS = ("variables", "requirements", "objectives", "budget")
+KEYS = ("variables", "requirements", "objectives", "budget", "compare")
 MOTOR, GEARBOX, RATIO = "motor", "gearbox", "motor.gear_ratio"
-OBJECTIVES = {"actuator_mass_kg": "minimize", "max_jump_height_m": "maximize"}
+OBJECTIVES = {"actuator_mass_kg": "minimize", "max_jump_height_m": "maximize",
+              "peak_electrical_power_W": "minimize", "cost_of_transport": "minimize"}
+ON_MANEUVER = ("peak_electrical_power_W", "cost_of_transport")  # NAME:MANEUVER (a gait's)
+GAITS = ("trot", "walk", "bound", "pronk")      # the gaits whose floors predict them
 ACCEPT = {"pass": ("pass",), "warn": ("pass", "warn")}
+FLAGS = ("step_check", "never_at_limit")
 BUDGET = {"trials": (1, 100_000), "finalists": (1, 100), "seed": (0, 2**31 - 1)}
 DEFAULT_BUDGET = {"trials": 40, "finalists": 3, "seed": 0}
 
@@ -59,12 +70,15 @@ class CodesignSpec:
     trials: int
     finalists: int
     seed: int
+    step_check: bool = False
+    never_at_limit: bool = False
+    compare: tuple[dict, ...] = ()
     text: str = field(default="", compare=False)
     source: str = field(default="", compare=False)
 
     @property
     def directions(self) -> list[str]:
-        return [OBJECTIVES[o] for o in self.objectives]
+        return [OBJECTIVES[o.split(":")[0]] for o in self.objectives]
 
     def fingerprint(self) -> str:
         """A hash of everything that decides the search and its result: the spec's text and the
@@ -95,7 +109,7 @@ def spec_from_dict(data, folder: Path, source: str = "") -> CodesignSpec:
     kinds = (_names("variables.gearbox", variables[GEARBOX], gearboxes())
              if GEARBOX in variables else ())
     vary = tuple(_varied(str(k), v) for k, v in variables.items() if k not in (MOTOR, GEARBOX))
-    envelope, accept = _requirements(data.get("requirements"), folder, source)
+    envelope, accept, flags = _requirements(data.get("requirements"), folder, source)
     for v in vary:                  # each path and value alone against the base parameters
         for value in (v.values or (v.low, v.high)):
             try:
@@ -103,18 +117,66 @@ def spec_from_dict(data, folder: Path, source: str = "") -> CodesignSpec:
             except ParameterError as err:
                 raise ParameterError(f"variables.{v.path} = {value!r}: {err.message}",
                                      f"variables.{v.path}") from None
-    objectives = data.get("objectives", ["actuator_mass_kg"])
-    require(isinstance(objectives, list) and objectives and len(set(objectives)) == len(
-        objectives) and all(o in OBJECTIVES for o in objectives), "objectives", objectives,
-        f"must be a list of distinct names of {list(OBJECTIVES)}")
+    objectives = _objectives(data.get("objectives", ["actuator_mass_kg"]), envelope)
     budget = data.get("budget", {})
     require(isinstance(budget, dict) and set(budget) <= set(BUDGET), "budget", budget,
             f"must be a mapping of {list(BUDGET)}")
     counts = {k: check_number(f"budget.{k}", budget.get(k, DEFAULT_BUDGET[k]), *BUDGET[k],
                               integer=True) for k in BUDGET}
+    compare = _compare(data.get("compare", []), envelope)
     return CodesignSpec(motors=motors, gearboxes=kinds, vary=vary, envelope=envelope,
                         accept=ACCEPT[accept], objectives=tuple(objectives), source=source,
-                        **counts)
+                        compare=compare, **flags, **counts)
+
+
+def _compare(value, envelope: EnvelopeSpec) -> tuple[dict, ...]:
+    """The designs to simulate beside the default: each a mapping {motor: NAME, gearbox: TYPE
+    (optional), motor.gear_ratio: N, PATH: value}, resolved (designs.design_of) and checked
+    against the base parameters."""
+    from fivebar_drake.codesign.designs import design_of, design_params
+
+    require(isinstance(value, list) and len(value) <= 10, "compare", value,
+            "must be a list of at most 10 designs, each {motor: NAME, motor.gear_ratio: N, ...}")
+    out = []
+    for i, given in enumerate(value):
+        where = f"compare[{i}]"
+        require(isinstance(given, dict) and MOTOR in given, where, given,
+                "must be a mapping {motor: NAME, gearbox: TYPE (optional), motor.gear_ratio: N, "
+                "PATH: value}")
+        _names(f"{where}.motor", [given[MOTOR]], catalog())
+        if GEARBOX in given:
+            _names(f"{where}.gearbox", [given[GEARBOX]], gearboxes())
+        for k, v in given.items():
+            if k not in (MOTOR, GEARBOX):
+                check_number(f"{where}.{k}", v)
+        try:
+            design = design_of(dict(given))
+            design_params(envelope.maneuvers[0].params, design)
+        except ParameterError as err:
+            raise ParameterError(f"{where}: {err.message}", f"{where}.{err.field}") from None
+        out.append(design)
+    return tuple(out)
+
+
+def _objectives(value, envelope: EnvelopeSpec) -> list[str]:
+    """The objectives: distinct names of OBJECTIVES; peak_electrical_power_W and
+    cost_of_transport over a gait maneuver of the envelope as NAME:MANEUVER (the peak power
+    without one: over all its gait maneuvers)."""
+    gaits = [m.name for m in envelope.maneuvers if m.scenario.gait.kind in GAITS]
+    require(isinstance(value, list) and value and len(set(map(str, value))) == len(value),
+            "objectives", value, f"must be a list of distinct names of {list(OBJECTIVES)}")
+    for i, o in enumerate(value):
+        name, _, maneuver = str(o).partition(":")
+        require(name in OBJECTIVES, f"objectives[{i}]", o, f"must be one of {list(OBJECTIVES)}"
+                f" ({', '.join(ON_MANEUVER)} optionally as NAME:MANEUVER)")
+        require(not maneuver or name in ON_MANEUVER and maneuver in gaits, f"objectives[{i}]",
+                o, f"only {', '.join(ON_MANEUVER)} take a maneuver, one of the envelope's gaits "
+                f"{gaits}")
+        require(name != "cost_of_transport" or maneuver, f"objectives[{i}]", o,
+                f"cost_of_transport is on a maneuver: cost_of_transport:NAME, NAME one of {gaits}")
+        require(name != "peak_electrical_power_W" or maneuver or gaits, f"objectives[{i}]", o,
+                "the envelope has no gait (trot, walk, bound, pronk) to predict it on")
+    return [str(o) for o in value]
 
 
 def _names(where: str, value, known) -> tuple[str, ...]:
@@ -140,23 +202,36 @@ def _varied(path: str, value) -> Varied:
     return Varied(path, values=tuple(float(v) for v in value))
 
 
-def _requirements(value, folder: Path, source: str) -> tuple[EnvelopeSpec, str]:
-    """(the envelope spec, the accepted verdict's name) of `requirements`."""
+def _requirements(value, folder: Path, source: str) -> tuple[EnvelopeSpec, str, dict]:
+    """(the envelope spec, the accepted verdict's name, {step_check, never_at_limit}) of
+    `requirements`."""
     require(isinstance(value, dict) and "envelope" in value and set(value) <= {
-        "envelope", "accept"}, "requirements", value,
-        "must be a mapping {envelope: FILE or an envelope spec's mapping, accept: pass|warn}")
+        "envelope", "accept", *FLAGS}, "requirements", value,
+        "must be a mapping {envelope: FILE or an envelope spec's mapping, accept: pass|warn, "
+        "step_check: true|false, never_at_limit: true|false}")
     accept = value.get("accept", "pass")
     require(accept in ACCEPT, "requirements.accept", accept, f"must be one of {list(ACCEPT)}")
-    given = value["envelope"]
+    flags = {k: value.get(k, False) for k in FLAGS}
+    for k, v in flags.items():
+        require(isinstance(v, bool), f"requirements.{k}", v, "must be true or false")
+    envelope = _envelope(value["envelope"], folder, source)
+    if flags["step_check"]:
+        envelope = dataclasses.replace(envelope, maneuvers=tuple(
+            dataclasses.replace(m, step_check=True) for m in envelope.maneuvers))
+    return envelope, accept, flags
+
+
+def _envelope(given, folder: Path, source: str) -> EnvelopeSpec:
+    """The envelope spec of `requirements.envelope` (a file name or a mapping)."""
     if isinstance(given, str):
         path = folder / given
         require(path.is_file(), "requirements.envelope", given,
                 f"must name an existing envelope spec (relative to {folder})")
-        return load_spec_file(path, "envelope spec", envelope_from_dict), accept
+        return load_spec_file(path, "envelope spec", envelope_from_dict)
     require(isinstance(given, dict), "requirements.envelope", given,
             "must be a file name or an envelope spec's mapping (maneuvers, duty_cycle, ...)")
     try:
-        return envelope_from_dict(given, folder, source), accept
+        return envelope_from_dict(given, folder, source)
     except ParameterError as err:
         if err.source:                  # a file the envelope names: its own error
             raise

@@ -548,6 +548,15 @@ class BldcMotor(Motor):
         """Copper loss (W) at current amplitudes (A): 1.5 R i^2."""
         return DQ_POWER * self.winding_resistance_ohm * np.square(current_A)
 
+    def electrical_power_W(self, torque_Nm, speed_rad_s) -> np.ndarray:
+        """Electrical power (W; negative: regenerated) the drive draws for output torques at
+        output speeds (arrays of one shape): the copper loss 1.5 R i^2 and the back-EMF's
+        k_t N w i, the current signed as the torque (the voltage law of current_limits)."""
+        torque = np.asarray(torque_Nm, dtype=float)
+        current = self.currents(torque, speed_rad_s) * np.sign(torque)
+        return self.copper_loss_W(current) + (self.torque_constant_Nm_per_A * self.gear_ratio
+                                              * np.asarray(speed_rad_s) * current)
+
     def steady_winding_C(self, rms_current_A):
         """Winding temperature (deg C) reached at an RMS current (A) held for ever: ambient +
         copper loss x thermal resistance."""

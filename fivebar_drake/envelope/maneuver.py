@@ -15,7 +15,7 @@ import numpy as np
 from fivebar_drake.core.summary_schema import Summary
 from fivebar_drake.envelope.spec import Maneuver
 from fivebar_drake.mechanisms.fivebar import MOTORS
-from fivebar_drake.pipeline import run_simulation, write_simulation
+from fivebar_drake.pipeline import run_simulation, run_step_check, write_simulation
 from fivebar_drake.simulation.signals import per_motor
 from fivebar_drake.simulation.run_statistics import window_rows
 
@@ -31,7 +31,9 @@ class ManeuverResult:
     statistics window; the whole run without one), decimated: joint speed (rad/s) and demand
     (N*m), arrays (2, n); the motor currents of those rows (rows, legs, 2) in A and the interval
     of a row current_dt_s (s) for the duty cycle; `rows`: "window" or "whole run"; `error`: why
-    the task raised ("" if it ran; a run that stopped early says so in its summary)."""
+    the task raised ("" if it ran; a run that stopped early says so in its summary); power_W:
+    the robot's electrical power over those rows (W, summed over the motors;
+    Motor.electrical_power_W; None for a motor without an electrical model)."""
 
     name: str
     summary: Summary | None = None
@@ -42,6 +44,7 @@ class ManeuverResult:
     current_dt_s: float = 0.0
     rows: str = ""
     error: str = ""
+    power_W: np.ndarray | None = None
 
 
 def run_maneuvers(points: int, maneuvers: list[Maneuver]) -> list[ManeuverResult]:
@@ -52,10 +55,13 @@ def run_maneuvers(points: int, maneuvers: list[Maneuver]) -> list[ManeuverResult
 def run_maneuver(maneuver: Maneuver, points: int = OPERATING_POINTS) -> ManeuverResult:
     """Simulate the maneuver (pipeline.run_simulation), write its `simulate` outputs in a
     temporary folder (pipeline.write_simulation, the recording named for the maneuver) and
-    return them with the operating points and currents (ManeuverResult)."""
+    return them with the operating points and currents (ManeuverResult); with its step check,
+    judged against its run at half the plant step (pipeline.run_step_check)."""
     record = run_simulation(maneuver.scenario, maneuver.params, progress=False)
+    half = (run_step_check(record, progress=False)
+            if maneuver.step_check and not record.error and not record.interrupted else None)
     with tempfile.TemporaryDirectory(prefix="fivebar-envelope-") as tmp:
-        summary, written = write_simulation(record, tmp, name=maneuver.name)
+        summary, written = write_simulation(record, tmp, half=half, name=maneuver.name)
         files = tuple((p.name, Path(p).read_bytes()) for p in written)
     t = record.table["t"]
     rows = window_rows(t, summary["window_s"])
@@ -66,13 +72,16 @@ def run_maneuver(maneuver: Maneuver, points: int = OPERATING_POINTS) -> Maneuver
     demand = per_motor(record, "command")[rows]
     keep = [decimate(speed[..., j].ravel(), demand[..., j].ravel(), points)
             for j in range(len(MOTORS))]
-    current = record.params.motor.currents(per_motor(record, "motor_torque")[rows], speed)
+    torque = per_motor(record, "motor_torque")[rows]
+    current = record.params.motor.currents(torque, speed)
+    power = getattr(record.params.motor, "electrical_power_W", None)
     dt = float(np.median(np.diff(t))) if len(t) > 1 else record.scenario.log_period_s
     return ManeuverResult(
         name=maneuver.name, summary=summary, files=files,
         speed=np.stack([speed[..., j].ravel()[k] for j, k in enumerate(keep)]),
         demand=np.stack([demand[..., j].ravel()[k] for j, k in enumerate(keep)]),
-        current=current, current_dt_s=dt, rows=which)
+        current=current, current_dt_s=dt, rows=which,
+        power_W=None if power is None else power(torque, speed).sum(axis=(1, 2)))
 
 
 def decimate(speed: np.ndarray, torque: np.ndarray, points: int) -> np.ndarray:

@@ -42,12 +42,14 @@ MAX_DUTY_CYCLE_S = 86_400.0  # a day of operation: 200 of the default winding's 
 @dataclass(frozen=True)
 class Maneuver:
     """A maneuver: its name, the scenario fields the spec gives it (over the base scenario),
-    and the checked scenario and parameters it runs with."""
+    the checked scenario and parameters it runs with, and whether its run is step-checked (run
+    again at half the plant step, as `simulate --step-check`; set by the co-design)."""
 
     name: str
     changes: dict
     scenario: Scenario
     params: Params
+    step_check: bool = False
 
 
 @dataclass(frozen=True)
