@@ -15,8 +15,8 @@
     more; the floor neglects the swing legs and the links' inertia).
 
 The duty cycle's thermal margin is predicted as the least closed-form thermal margin of its
-maneuvers (duty_cycle). The stand-up has no prediction here: the simulation alone judges it. A requirement's margin is the figure over what the accepted verdict needs
-(>= 1 meets it): the safety factor over checks.sf_pass (sf_warn when warn is accepted), the
+maneuvers (duty_cycle). The stand-up has no prediction here: the simulation alone judges it.
+A requirement's margin is the figure over what the accepted verdict needs (>= 1 meets it): the safety factor over checks.sf_pass (sf_warn when warn is accepted), the
 least speed margin over checks.speed_margin_warn (1), the thermal current margin over
 checks.thermal_margin_warn (1).
 """

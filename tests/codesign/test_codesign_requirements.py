@@ -20,9 +20,6 @@ from fivebar_drake.envelope.maneuver import ManeuverResult, run_maneuver
 from fivebar_drake.optimal.gait_floor import whole_body
 
 SPEC = """\
-variables:
-  motor: [tmotor_mn5212_kv340, cubemars_ak80_9]
-  motor.gear_ratio: [8.0, 12.0]
 requirements:
   accept: pass
   step_check: true
@@ -33,6 +30,7 @@ requirements:
       - {name: trot, gait: trot, duration_s: 2.0}
       - {name: bound, gait: bound, duration_s: 2.0}
       - {name: drop, gait: {kind: drop, height_m: 0.05}, duration_s: 0.9}
+variables: {motor: [tmotor_mn5212_kv340, cubemars_ak80_9], motor.gear_ratio: [8.0, 12.0]}
 compare:
   - {motor: odrive_d5065_270kv, motor.gear_ratio: 8.0}
 objectives: [actuator_mass_kg, "cost_of_transport:bound"]
