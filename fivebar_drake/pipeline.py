@@ -27,10 +27,10 @@ from fivebar_drake.analysis.plots import write_plots
 from fivebar_drake.analysis.report import ANALYSIS_FILES, write_report
 from fivebar_drake.analysis.torques import Analysis, analyze, seed_results
 from fivebar_drake.core.files import prepare_output_dir
-from fivebar_drake.core.footpath import Jump as JumpPath, Landing
+from fivebar_drake.core.footpath import Jump as JumpPath, Landing, StandUp
 from fivebar_drake.core.summary_schema import AnyController, Summary
 from fivebar_drake.core.validation import ParameterError
-from fivebar_drake.optimal import gait_floor, vertical_jump
+from fivebar_drake.optimal import gait_floor, stand_up, vertical_jump
 from fivebar_drake.robots.quadruped.config import load_params, sampling_error
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.simulation.plots import CAPABILITY_FILE, SIM_PLOT_FILES, write_sim_plots
@@ -122,9 +122,11 @@ def any_controller(record: SimulationRecord, summary: Summary) -> AnyController 
     extension_m below standing), what the run's controller asked in each phase, and whom a
     failing verdict blames: any controller where no torque the motors have does a phase, or
     where the torque check decided and even the floor's safety factor (the driving peak over
-    the floor) is below checks.sf_warn; else this controller. None for the other gaits and
-    maneuvers (not computed yet)."""
+    the floor) is below checks.sf_warn; else this controller. A stand-up's and a gait's:
+    stand_up_any_controller, stance_any_controller (None for a gait without a floor)."""
     path, params = record.scenario.gait, record.params
+    if isinstance(path, StandUp):
+        return stand_up_any_controller(record, summary)
     if not isinstance(path, Landing):
         return stance_any_controller(record, summary)
     g, payload = params.robot.gravity_m_s2, record.scenario.payload_kg
@@ -160,6 +162,33 @@ def any_controller(record: SimulationRecord, summary: Summary) -> AnyController 
                          summary, params)
 
 
+def _most_asked(summary: Summary) -> float | None:
+    """The largest demand peak (N*m) of the run's motors (None: none finite)."""
+    return max((m["demand_peak_Nm"] for motors in summary["legs"].values()
+                for m in motors.values() if math.isfinite(m["demand_peak_Nm"])), default=None)
+
+
+def stand_up_any_controller(record: SimulationRecord, summary: Summary) -> AnyController:
+    """For a stand-up, what any controller would need (optimal/stand_up.py): its floor beside
+    the largest demand peak of the run's motors, and whom a failing verdict blames (as
+    stance_any_controller); a stand-up no loaded path does fails for any controller."""
+    params, path = record.params, record.scenario.gait
+    why = ["quasi-static, all legs alike (the body's pitch and the feet's loading order are "
+           "not modelled)"]
+    try:
+        found = stand_up.stand_up_floor(params, path, record.scenario.payload_kg)
+        floor = found.floor_Nm
+        why.append(f"the dynamics add at most {found.dynamic_share:.0%} of the weight in "
+                   f"{path.rise_s:g} s")
+    except ParameterError as err:
+        floor = None
+        why.append(err.message)
+    if record.scenario.slope_deg:
+        why.append("the floor is computed on flat ground")
+    return verdict_split(path.kind, 0.0, {"stand-up": (floor, _most_asked(summary))}, None,
+                         why, summary, params)
+
+
 def stance_any_controller(record: SimulationRecord, summary: Summary) -> AnyController | None:
     """For a trot, walk, bound or pronk, what any controller would need (optimal/gait_floor.py):
     the gait's floor at its own mean height beside the largest demand peak of the run's motors.
@@ -170,8 +199,7 @@ def stance_any_controller(record: SimulationRecord, summary: Summary) -> AnyCont
     floor = gait_floor.gait_floor(params, path, record.scenario.payload_kg)
     if floor is None:
         return None
-    asked = max((m["demand_peak_Nm"] for motors in summary["legs"].values()
-                 for m in motors.values() if math.isfinite(m["demand_peak_Nm"])), default=None)
+    asked = _most_asked(summary)
     why = ["stance legs only (the swing legs' torques are not in the floor)",
            "the least a local search found (a lower one may exist)"]
     if record.scenario.slope_deg:

@@ -1,6 +1,6 @@
 """What the legs allow for any controller, for one design (`fivebar-drake optimal`): the
-vertical jump's ceiling and floor and the drop's landing (vertical_jump.py), the gaits'
-floors (gait_floor.py: trot, walk, bound, pronk), as optimal.json, optimal.md and optimal_jump.png: the answer first, then the
+vertical jump's ceiling and floor and the drop's landing (vertical_jump.py), the stand-up's
+floor (stand_up.py), the gaits' floors (gait_floor.py: trot, walk, bound, pronk), as optimal.json, optimal.md and optimal_jump.png: the answer first, then the
 figures beside the bounds."""
 
 from __future__ import annotations
@@ -13,11 +13,13 @@ from pathlib import Path
 import numpy as np
 
 from fivebar_drake.core.files import json_ready, save_figure, write_atomic
-from fivebar_drake.core.footpath import EXTENSION_STOP_S, PUSH_SHARES, Drop, Jump as JumpPath
+from fivebar_drake.core.footpath import (EXTENSION_STOP_S, PUSH_SHARES, Drop, Jump as JumpPath,
+                                         StandUp)
 from fivebar_drake.core.validation import ParameterError, check_number
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.optimal.recording import RECORDING_FILE, write_recording
 from fivebar_drake.optimal.gait_floor import KINDS, fastest_gait, gait_floor, max_pitch_rad
+from fivebar_drake.optimal.stand_up import stand_up_floor
 from fivebar_drake.optimal.vertical_jump import (Jump, highest_drop, landing_floor,
                                                  point_mass_bound, push, reach, stroke,
                                                  torque_floor)
@@ -111,6 +113,7 @@ def jump_limits(params: Params, height_m: float | None = None,
     except ParameterError as err:
         result["floor_why_none"] = err.message
     result["drop"] = drop_limits(params, payload_kg)
+    result["stand_up"] = stand_up_limits(params, payload_kg)
     result["gaits"] = {kind: gait_limits(params, kind, payload_kg) for kind in KINDS}
     result["fastest"] = {kind: fastest_gait(params, kind, payload_kg) for kind in FASTEST}
     result["published"] = published_jump(params, result["ceiling"])
@@ -163,6 +166,25 @@ def drop_limits(params: Params, payload_kg: float = 0.0) -> dict:
     return out
 
 
+def stand_up_limits(params: Params, payload_kg: float = 0.0) -> dict:
+    """The packaged stand-up's floor for any controller (optimal/stand_up.py): the least peak
+    motor torque, where the feet take the load, the maneuver's straight path's own peak, the
+    dynamics' bound; the floor None with why where no loaded path reaches standing."""
+    plan = StandUp()
+    out = {"rise_s": plan.rise_s, "least_peak_torque_Nm": None, "lift_x_m": None,
+           "straight_path_peak_Nm": None, "dynamic_share": None, "beyond_motors": False,
+           "why_none": ""}
+    try:
+        found = stand_up_floor(params, plan, payload_kg)
+    except ParameterError as err:
+        out["why_none"] = err.message
+        return out
+    out.update(least_peak_torque_Nm=found.floor_Nm, lift_x_m=found.lift_x_m,
+               straight_path_peak_Nm=found.straight_Nm, dynamic_share=found.dynamic_share,
+               beyond_motors=found.floor_Nm > params.motor.peak_torque_Nm)
+    return out
+
+
 def answer(r: dict, params: Params) -> str:
     """The result in two sentences: how high the legs can jump, what the packaged jump needs."""
     c = r["ceiling"]
@@ -188,6 +210,15 @@ def answer(r: dict, params: Params) -> str:
              f"{d['landing_stroke_m'] * 1e3:.0f} mm needs at least "
              f"{d['least_peak_torque_Nm']:.2f} N·m (braking); that stroke absorbs a drop of up "
              f"to {d['highest_drop_m'] * 1e3:.0f} mm.")
+    u = r["stand_up"]
+    third += (f" Standing up from lying: {u['why_none']}." if u["least_peak_torque_Nm"] is None
+              else f" Standing up from lying needs at least {u['least_peak_torque_Nm']:.2f} N·m "
+                   f"(quasi-static; the feet taking the load "
+                   f"{u['lift_x_m'] * 1e3:.0f} mm from the hips; the maneuver's straight path "
+                   + ("leaves the reach" if u["straight_path_peak_Nm"] is None else
+                      f"asks {u['straight_path_peak_Nm']:.2f} N·m")
+                   + f"; its dynamics add at most {u['dynamic_share']:.0%} in "
+                     f"{u['rise_s']:g} s).")
     fourth = "".join(
         f" The {kind} needs at least {t['floor_Nm']:.2f} N·m in stance at its own height (the "
         f"body heaving {t['height_swing_m'] * 1e3:.0f} mm and pitching through "
@@ -322,9 +353,13 @@ def max_jump_plan(params: Params, ceiling: Jump, payload_kg: float = 0.0) -> Jum
 
 def beyond(result: dict) -> str:
     """What the design cannot do for any controller, in a line ("" where it can do all)."""
-    why = [result["ceiling_why_none"], result["floor_why_none"], result["drop"]["why_none"]]
+    why = [result["ceiling_why_none"], result["floor_why_none"], result["drop"]["why_none"],
+           result["stand_up"]["why_none"]]
     why += [f"the {kind} needs at least {t['floor_Nm']:.2f} N·m in stance"
             for kind, t in result["gaits"].items() if t["beyond_motors"]]
+    u = result["stand_up"]
+    if u["beyond_motors"]:
+        why.append(f"standing up needs at least {u['least_peak_torque_Nm']:.2f} N·m")
     return "; ".join(w for w in why if w)
 
 
