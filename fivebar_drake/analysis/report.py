@@ -133,14 +133,14 @@ def markdown(analysis: Analysis, sampled: dict | None = None) -> str:
         "",
     ]
     lines += [f"- **{name}**: {text}" for name, text in analysis.results["models"].items()]
-    lines += ["", "## Table 3: peak dynamic torque", "",
+    lines += ["", "## Peak dynamic torque (the seed's Table 3)", "",
               "| motor | model | peak torque (N·m) | where in the cycle |", "|---|---|---|---|"]
     for motor in MOTORS:
         for model in SIDE_BY_SIDE:
             m = r[model][motor]
             lines.append(f"| {motor} | {model} | {m['peak_torque_Nm']:.3f} | "
                          f"{_where(m['peak_at'])} |")
-    lines += ["", "## Table 4: static vs dynamic torque", "",
+    lines += ["", "## Static against dynamic torque (the seed's Table 4)", "",
               "| motor | model | static torque (N·m) | peak dynamic torque (N·m) | dynamic/static "
               "| static peak at |", "|---|---|---|---|---|---|"]
     for motor in MOTORS:
@@ -149,7 +149,8 @@ def markdown(analysis: Analysis, sampled: dict | None = None) -> str:
             lines.append(f"| {motor} | {model} | {m['static_torque_Nm']:.3f} | "
                          f"{m['peak_torque_Nm']:.3f} | {m['dynamic_to_static_ratio']:.4f}x | "
                          f"{_where(m['static_peak_at'])} |")
-    lines += ["", f"## Table 5: safety factor against {p.motor.peak_torque_Nm:g} N·m", "",
+    lines += ["", f"## Safety factor against {p.motor.peak_torque_Nm:g} N·m (the seed's Table 5)",
+              "",
               f"The seed's: {p.motor.peak_torque_Nm:g} N·m over the peak |joint torque|, whatever "
               "its quadrant (the torque check below takes each sample against its own "
               "quadrant's limit).", "",
