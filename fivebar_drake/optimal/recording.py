@@ -1,6 +1,8 @@
-"""The optimal jumps as a Rerun recording (optimal.rrd; open it beside a simulation's run.rrd):
-each jump's leg drawn in its leg plane as the hip rises, the hip's height and speed, and each
-motor's delivered torque against the envelope's limit at its speed, over the push."""
+"""The optimal motions as a Rerun recording (optimal.rrd; open it beside a simulation's run.rrd):
+each optimal jump's leg drawn in its leg plane as the hip rises, the hip's height and speed, and
+each motor's delivered torque against the envelope's limit at its speed, over the push; each
+gait's floor (one tab per gait) over its period: the body's height and pitch, the feet's
+vertical forces and the stance motors' torques."""
 
 from __future__ import annotations
 
@@ -12,7 +14,9 @@ import rerun.blueprint as rrb
 
 from fivebar_drake.core.rerun_files import TIMELINE, pose_frames, recording_file, scalars
 from fivebar_drake.mechanisms.fivebar import MOTORS
+from fivebar_drake.optimal.gait_floor import GaitFloor
 from fivebar_drake.optimal.vertical_jump import Jump
+from fivebar_drake.robots.quadruped.legs import LEGS
 from fivebar_drake.robots.quadruped.params import Params
 
 RECORDING_FILE = "optimal.rrd"
@@ -21,13 +25,36 @@ SPACING_M = 0.2          # the jumps' legs side by side along y
 COLORS = {"ceiling": (31, 119, 180), "floor": (255, 127, 14)}
 
 
-def blueprint() -> rrb.Blueprint:
-    return rrb.Blueprint(rrb.Horizontal(
+GAIT_SERIES = (("body_height_m", "body above its mean height (m)"),
+               ("pitch_deg", "pitch, nose down (deg)"),
+               ("force_z_N", "feet's vertical forces (N)"),
+               ("torque_Nm", "stance motors' torques (N·m)"))
+
+
+def blueprint(gaits=()) -> rrb.Blueprint:
+    """The vertical jump's tab, then one per gait's floor (gaits: their kinds)."""
+    jump = rrb.Horizontal(
         rrb.Spatial3DView(origin="world", name="the leg in its plane"),
         rrb.Vertical(rrb.TimeSeriesView(origin="hip/height_m", name="hip above standing (m)"),
                      rrb.TimeSeriesView(origin="hip/speed_m_s", name="hip speed (m/s)"),
                      *[rrb.TimeSeriesView(origin=f"torque/{m}", name=f"motor {m} (N·m)")
-                       for m in MOTORS])))
+                       for m in MOTORS]), name="vertical jump")
+    tabs = [rrb.Vertical(*[rrb.TimeSeriesView(origin=f"gait/{kind}/{series}", name=title)
+                           for series, title in GAIT_SERIES], name=f"{kind} floor")
+            for kind in gaits]
+    return rrb.Blueprint(rrb.Tabs(jump, *tabs))
+
+
+def log_gait(rec, kind: str, floor: GaitFloor) -> None:
+    """A gait's floor over its period (time from its start, s) under gait/KIND/."""
+    t, root = floor.t, f"gait/{kind}"
+    scalars(rec, f"{root}/body_height_m/z", t, floor.z_m - floor.z_m.mean(), "height")
+    scalars(rec, f"{root}/pitch_deg/pitch", t, np.degrees(floor.pitch_rad), "pitch")
+    for i, leg in enumerate(LEGS):
+        scalars(rec, f"{root}/force_z_N/{leg}", t, floor.force_N[i, :, 1], leg)
+        for m, motor in enumerate(MOTORS):
+            scalars(rec, f"{root}/torque_Nm/{leg}_{motor}", t, floor.torque_Nm[i, :, m],
+                    f"{leg} {motor}")
 
 
 def leg_strips(params: Params, q, hip_height) -> np.ndarray:
@@ -44,10 +71,13 @@ def leg_strips(params: Params, q, hip_height) -> np.ndarray:
     return out
 
 
-def write_recording(path: Path, jumps: dict[str, Jump | None], params: Params) -> Path:
-    """optimal.rrd of the jumps by name (None: skipped)."""
-    standing = -params.gait.y_home_m
-    with recording_file(path, "fivebar_drake-optimal", blueprint()) as rec:
+def write_recording(path: Path, jumps: dict[str, Jump | None], params: Params,
+                    gaits: dict[str, GaitFloor] | None = None) -> Path:
+    """optimal.rrd of the jumps by name (None: skipped) and the gaits' floors by kind."""
+    standing, gaits = -params.gait.y_home_m, gaits or {}
+    with recording_file(path, "fivebar_drake-optimal", blueprint(gaits)) as rec:
+        for kind, floor in gaits.items():
+            log_gait(rec, kind, floor)
         for i, (name, j) in enumerate(jumps.items()):
             if j is None:
                 continue

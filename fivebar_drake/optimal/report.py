@@ -366,8 +366,10 @@ def beyond(result: dict) -> str:
 def write(result: dict, jumps: dict[str, Jump], params: Params,
           out: Path) -> list[Path]:
     """Write OPTIMAL_FILES of jump_limits' result and jumps into out; the paths."""
+    gaits = {kind: gait_floor(with_path_defaults(params, kind), kind, result["payload_kg"])
+             for kind in result["gaits"]}                 # computed by jump_limits: cached
     files = [plot(jumps, params, out / "optimal_jump.png"),
-             write_recording(out / RECORDING_FILE, jumps, params),
+             write_recording(out / RECORDING_FILE, jumps, params, gaits),
              write_atomic(out / "optimal.md", markdown(result)),
              write_atomic(out / "optimal.json", json.dumps(json_ready(result), indent=2))]
     return files

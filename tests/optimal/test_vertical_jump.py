@@ -160,6 +160,13 @@ def test_the_command_writes_the_answer_first(tmp_path, capsys):
         result["ceiling"]["motors"]["A"]["peak_torque_Nm"])
     _, height = read_series(tmp_path / "optimal.rrd", "/hip/height_m/floor")
     assert height[-1] == pytest.approx(PLAN.extension_m, abs=1e-6)         # takeoff
+    for kind, gait in result["gaits"].items():        # each gait's floor, beside the jumps
+        worst = max(np.abs(read_series(tmp_path / "optimal.rrd",
+                                       f"/gait/{kind}/torque_Nm/{leg}_{m}")[1]).max()
+                    for leg in ("FL", "FR", "RL", "RR") for m in "AB")
+        assert worst == pytest.approx(gait["floor_Nm"], rel=1e-6)
+        _, pitch = read_series(tmp_path / "optimal.rrd", f"/gait/{kind}/pitch_deg/pitch")
+        assert np.ptp(pitch) == pytest.approx(gait["pitch_swing_deg"], rel=1e-6)
     assert main(["optimal", "--out", str(tmp_path), "--height", "0.5"]) == 1
     assert "beyond what the motors allow" in capsys.readouterr().err
     assert main(["optimal", "--out", str(tmp_path), "--payload", "-1"]) == 2
