@@ -118,5 +118,10 @@ def design_lines(results: dict, params: Params) -> list[str]:
               "the direction of the torque the motor delivers (each sample's quadrant) to that "
               "torque: the joint's, the reflected rotor inertia's and the output friction:", "",
               f"- current {gr['current']:g}:1: safety factor {gr['safety_factor_at_current']:.2f}",
-              f"- best {gr['best']:.2f}:1: safety factor {gr['safety_factor_at_best']:.2f}"]
+              f"- the largest at {gr['best']:.2f}:1: safety factor "
+              f"{gr['safety_factor_at_best']:.2f}", "",
+              "A one-parameter trade of the torque check on this path, not a recommendation: "
+              "the no-load speed falls as 1/N, and the other checks and maneuvers are not "
+              "weighed here. Which motor, gearbox and leg pass every maneuver in simulation is "
+              "`fivebar-drake codesign`'s answer (README \"Co-design\")."]
     return lines

@@ -61,6 +61,9 @@ def write_sweep_report(summary: dict, varied: list[str], fidelity: str, out: Pat
     thresholds, the Pareto front as a table."""
     lines = [f"# Sweep: {summary['points']} design points ({fidelity})", "",
              answer(summary, varied), "",
+             "A sweep of the spec's parameters on its path: a trade, not a recommendation "
+             "(which motor, gearbox and leg pass every maneuver in simulation is `fivebar-drake "
+             "codesign`'s answer).", "",
              "Outcomes (the worst motor's verdict; failed: no result, see points.csv's "
              "`error`): " + ", ".join(f"{k} {v}" for k, v in sorted(summary["outcomes"].items()))
              + (f". {thresholds}" if thresholds else "")]
