@@ -15,7 +15,8 @@ GUIDE = Path(__file__).resolve().parents[1] / "docs" / "output_style.md"
 ANSWER_WORDS = re.compile(r"\b(PASS|WARN|FAIL|INSUFFICIENT|NOT ACHIEVED|No verdict|"
                           r"No design recommended|Recommended|reproduce[sd]?|allow)\b")
 # ... and a figure: a number with its unit, a safety factor or a count
-FIGURE = re.compile(r"\bSF \d|\d+ of \d+|\d(?:\.\d+)? ?(?:N·m|N\b|%|°C|m/s|mm|m\b|rad/s|A\b|kg|W\b|deg\b|s\b)")
+FIGURE = re.compile(r"\bSF \d|\d+ of \d+|"
+                    r"\d(?:\.\d+)? ?(?:N·m|N\b|%|°C|m/s|mm|m\b|rad/s|A\b|kg|W\b|deg\b|s\b)")
 # rule 2: spellings the guide forbids, with the unit they mean
 WRONG_UNITS = {
     "N m": re.compile(r"(?<![\w.])N m\b"), "N*m": re.compile(r"N\*m"),
@@ -25,6 +26,7 @@ WRONG_UNITS = {
     "degrees": re.compile(r"\bdegrees\b"), "rad/s²": re.compile(r"rad/s²|rad/s/s"),
     "m²": re.compile(r"m²"), "sec": re.compile(r"\d ?secs?\b"), "um": re.compile(r"\d ?um\b"),
     "×": re.compile(r"\d ?×"),
+    "NOT_ACHIEVED for NOT ACHIEVED": re.compile(r"\bNOT_ACHIEVED\b"),
 }
 # rule 3
 NOT_A_NUMBER = re.compile(r"(?<![\w`])(nan|NaN|inf|-inf)(?![\w`])")

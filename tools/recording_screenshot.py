@@ -6,7 +6,8 @@ DevTools protocol (tornado's websocket client, from the test extras).
 
 Without RUN.rrd it simulates the default trot (6 s) and a jump (3 s) into a temporary folder and
 writes docs/recording_trot.png and docs/recording_jump.png (--gait to choose, --duration to
-change a run's length): the viewer at the recording's default layout, as a reader first sees it. The viewer gets --wait seconds to load the wasm and the file, then the page is captured
+change a run's length): the viewer at the recording's default layout, as a reader first sees it.
+The viewer gets --wait seconds to load the wasm and the file, then the page is captured
 until two screenshots are the same; the PNG is reduced to a 256-colour palette (< 300 kB)."""
 
 from __future__ import annotations

@@ -16,3 +16,8 @@ def figure(x, pattern: str = "{:.2f}") -> str:
         return DASH
     text = pattern.format(x)
     return _NEGATIVE_ZERO.sub(r"\1\2", text)
+
+
+def verdict_word(verdict: str) -> str:
+    """A verdict as the reports write it: PASS, WARN, FAIL, INSUFFICIENT, NOT ACHIEVED."""
+    return str(verdict).upper().replace("_", " ")

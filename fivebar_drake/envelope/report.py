@@ -17,7 +17,7 @@ from pathlib import Path
 
 from fivebar_drake.core.checks import (CHECK_ORDER, SEVERITY, limit_shares_text, thresholds_text,
                                         worst_check)
-from fivebar_drake.core.text import figure
+from fivebar_drake.core.text import figure, verdict_word
 from fivebar_drake.core.files import json_ready, write_atomic
 from fivebar_drake.core.summary_schema import MotorSummary, Summary
 from fivebar_drake.core.verdicts import badness
@@ -169,7 +169,7 @@ def answer(maneuvers: dict, sized: dict, duty: dict | None) -> tuple[str, str]:
     if not candidates:
         return "insufficient", f"No verdict: no maneuver has one.{tail}"
     _, verdict, reason = max(candidates, key=lambda c: c[0])
-    label = verdict.upper().replace("_", " ")
+    label = verdict_word(verdict)
     if missing and verdict in ("pass", "warn"):   # what did not run cannot pass
         return "insufficient", (f"No verdict for {', '.join(missing)} (see their entries), so "
                                 f"none for the envelope; the others' worst is {label}: "
@@ -201,6 +201,13 @@ def envelope_report(spec, results: dict, duty: dict | None, duty_why: str,
                       for s in spec.duty_cycle], **duty},
         "duty_cycle_why_none": duty_why,
     }
+
+
+def _achieved(check: dict) -> str:
+    """The achieved check in a cell: yes, or no with the leg and why."""
+    if check["verdict"] == "pass":
+        return "yes"
+    return f"no ({check['leg']}): {check.get('why') or check['verdict'].replace('_', ' ')}"
 
 
 def _at_limit(check: dict) -> str:
@@ -239,25 +246,25 @@ def markdown(report: dict) -> str:
         lines += [f"## Motor {motor}", "",
                   "| maneuver | verdict | deciding | torque: SF (leg) | speed: least margin, "
                   "beyond envelope (leg) | thermal: continuous / RMS current, RMS A (leg) | "
-                  "achieved (leg) |", "|---|---|---|---|---|---|---|"]
+                  "achieved |", "|---|---|---|---|---|---|---|"]
         for name, e in report["maneuvers"].items():
             row = (e["motors"] or {}).get(motor)
             if not row or row["checks"] is None:
-                lines.append(f"| {name} | {e['verdict'].upper()} | — | — | — | — | "
+                lines.append(f"| {name} | {verdict_word(e['verdict'])} | — | — | — | — | "
                              f"{e['status']}: {e['error'] or 'no whole gait cycle'} |")
                 continue
             c = row["checks"]
             lines.append(
-                f"| {name} | {row['verdict'].upper()} | {row['deciding_check'] or '—'} | "
+                f"| {name} | {verdict_word(row['verdict'])} | {row['deciding_check'] or '—'} | "
                 f"{_sf(c['torque'])} ({c['torque']['leg']}){_at_limit(c['torque'])} | "
                 f"{figure(c['speed']['least_margin'])}, {c['speed']['outside_fraction']:.1%} "
                 f"({c['speed']['leg']}){_at_limit(c['speed'])} | "
                 f"{figure(c['thermal'].get('margin'))}, "
                 f"{figure(c['thermal'].get('rms_current_A'), '{:.3f}')} ({c['thermal']['leg']}) | "
-                f"{c['achieved']['verdict']} ({c['achieved']['leg']}) |")
+                f"{_achieved(c['achieved'])} |")
         s = report["sized_by"][motor]
         lines += ["", "Sized by: " + ("no maneuver with a verdict" if s is None else
-                  f"**{s['maneuver']}** ({s['verdict'].upper()}, "
+                  f"**{s['maneuver']}** ({verdict_word(s['verdict'])}, "
                   f"{s['deciding_check']} check, leg {s['leg']}); worst torque "
                   f"{s['worst_per_check']['torque']}, speed {s['worst_per_check']['speed']}, "
                   f"thermal {s['worst_per_check']['thermal']}."), ""]
@@ -286,7 +293,8 @@ def markdown(report: dict) -> str:
         floor = ("—" if not a else f"none / {figure(a['asked_Nm'])}" if a["floor_Nm"] is None
                  else f"{a['floor_Nm']:.2f} / {figure(a['asked_Nm'])}")
         lines.append(f"| {name} | {e['gait']} | {changes or '—'} | {e['status']} | "
-                     f"{e['verdict'].upper()} | {floor} | {(a or {}).get('fails_for') or '—'} | "
+                     f"{verdict_word(e['verdict'])} | {floor} | "
+                     f"{(a or {}).get('fails_for') or '—'} | "
                      f"{figure(e.get('duration_s'))} | "
                      f"{figure(e.get('time_step_s') and e['time_step_s'] * 1e3, '{:g}')} | "
                      f"{figure(timing.get('real_time_factor'))} | `{e['folder']}/` |")
@@ -297,13 +305,13 @@ def markdown(report: dict) -> str:
     else:
         steps = " → ".join(f"{s['maneuver']} {s['duration_s']:g} s" for s in d["steps"])
         lines += [f"{steps}; winding from {d['ambient_C']:g} °C, limit "
-                  f"{d['winding_limit_C']:g} °C; verdict {d['verdict'].upper()}.", "",
+                  f"{d['winding_limit_C']:g} °C; verdict {verdict_word(d['verdict'])}.", "",
                   "| motor | peak °C | leg | at s | end °C | equivalent current A | margin | "
                   "verdict |", "|---|---|---|---|---|---|---|---|"]
         for motor, v in d["motors"].items():
             lines.append(f"| {motor} | {v['peak_C']:.1f} | {v['leg']} | {v['at_s']:.0f} | "
                          f"{v['end_C']:.1f} | {v['equivalent_current_A']:.3f} | "
-                         f"{figure(v['margin'])} | {v['verdict'].upper()} |")
+                         f"{figure(v['margin'])} | {verdict_word(v['verdict'])} |")
         lines += ["", "Equivalent current: the constant current that would hold the winding "
                   "at the peak for ever; margin: the thermal model's continuous current over "
                   "it (fail below 1, as the thermal check)."]

@@ -7,7 +7,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from fivebar_drake.core import text
+from fivebar_drake.core import text as words
 from fivebar_drake.core.checks import Checks, thresholds_text
 from fivebar_drake.core.files import read_input_text, save_figure, write_atomic
 from fivebar_drake.core.summary_schema import MotorSummary, Summary
@@ -93,7 +93,7 @@ def _summary(path: Path) -> Summary:
 
 
 def _num(value, fmt=".2f") -> str:
-    return text.figure(value, "{:" + fmt + "}")
+    return words.figure(value, "{:" + fmt + "}")
 
 
 def _labels(folders: list[Path]) -> list[str]:
@@ -114,9 +114,9 @@ def _verdict_cell(m: MotorSummary) -> str:
     """A motor's verdict, its deciding check and the checks' figures, in one table cell."""
     c = m.get("checks")
     if not isinstance(c, dict):
-        return str(m.get("verdict", "n/a")).upper()
+        return words.verdict_word(m.get("verdict", "—"))
     torque, speed, thermal = (c.get(k) or {} for k in ("torque", "speed", "thermal"))
-    return (f"{str(m.get('verdict')).upper()} ({m.get('deciding_check')}): SF "
+    return (f"{words.verdict_word(m.get('verdict'))} ({m.get('deciding_check')}): SF "
             f"{_num(torque.get('sf'))}, {_num((speed.get('outside_fraction') or 0) * 100, '.1f')} "
             f"% beyond the envelope, current margin {_num(thermal.get('margin'))}")
 
@@ -138,7 +138,7 @@ def answer(summaries: list[Labelled]) -> str:
     change turned one check's failure into another's."""
     def one(s: Labelled) -> str:
         check = s.get("deciding_check")
-        return (f"{_label(s)}: {str(s['verdict']).upper()}"
+        return (f"{_label(s)}: {words.verdict_word(s['verdict'])}"
                 + (f" by the {check} check (worst motor {s.get('worst_motor')}"
                    f"{_deciding_figure(s, check)})" if check else ""))
 
@@ -159,14 +159,15 @@ def _deciding_figure(s: Labelled, check: str) -> str:
     c = (((s.get("legs") or {}).get(leg) or {}).get(motor) or {}).get("checks") or {}
     c = c.get(check) or {}
     if check == "torque" and c.get("sf") is not None:
-        return (f", SF {text.figure(c['sf'])}: {text.figure(c.get('torque_Nm'))} N·m of its "
-                f"{text.figure(c.get('limit_Nm'))} N·m {c.get('quadrant') or ''} limit").replace(
+        return (f", SF {words.figure(c['sf'])}: {words.figure(c.get('torque_Nm'))} N·m of its "
+                f"{words.figure(c.get('limit_Nm'))} N·m {c.get('quadrant') or ''} limit").replace(
                     "  ", " ")
     if check == "speed" and c:
-        return (f", {text.figure((c.get('outside_fraction') or 0) * 100, '{:.1f}')} % of the time "
-                f"beyond the torque–speed envelope, least margin {text.figure(c.get('least_margin'))}")
+        share = words.figure((c.get("outside_fraction") or 0) * 100, "{:.1f}")
+        return (f", {share} % of the time beyond the torque–speed envelope, least margin "
+                f"{words.figure(c.get('least_margin'))}")
     if check == "thermal" and c:
-        return f", continuous / RMS current {text.figure(c.get('margin'))}"
+        return f", continuous / RMS current {words.figure(c.get('margin'))}"
     return ""
 
 
@@ -182,10 +183,10 @@ def markdown(summaries: list[Labelled]) -> str:
         lines.append(f"- **{_label(s)}** ({s['gait']} gait, {s['closure']} closure, gear "
                      f"{_num((s.get('motor') or {}).get('gear_ratio'), 'g')}:1): {s['answer']} "
                      + (f"Walking {_num(s['mean_forward_speed_m_s'], '.3f')} m/s of the path's "
-                        f"{_num(s['gait_speed_m_s'], '.3f')} m/s, largest" if s.get("periodic", True)
-                        else "Largest")
+                        f"{_num(s['gait_speed_m_s'], '.3f')} m/s, largest"
+                        if s.get("periodic", True) else "Largest")
                      + f" tilt {_num(s['max_tilt_deg'], '.1f')} deg, verdict "
-                     f"{s['verdict'].upper()}.")
+                     f"{words.verdict_word(s['verdict'])}.")
     lines += ["", "## Verdicts", "", "Each motor's verdict, the check that decided it (torque: "
               "safety factor; speed: the demand beyond the actuator's envelope; thermal: "
               "continuous / RMS current):", "", *verdict_table(summaries), "", "## Torques", ""]
@@ -235,7 +236,7 @@ def figure(summaries: list[Labelled]):
         color = f"C{k}"
         rating = s.get("motor") or {}
         top.bar(at, demand, width, color=color, alpha=0.75,
-                label=f"{_run_name(s)}: demand p99, verdict {s['verdict'].upper()} "
+                label=f"{_run_name(s)}: demand p99, verdict {words.verdict_word(s['verdict'])} "
                       f"({s.get('deciding_check') or 'no check'})")
         top.hlines(limit, at - width / 2, at + width / 2, color=color, lw=2.5,
                    label=f"{_run_name(s)}: its limit, driving "

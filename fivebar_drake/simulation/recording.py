@@ -32,6 +32,7 @@ import rerun as rr
 import rerun.blueprint as rrb
 
 from fivebar_drake.core.checks import thresholds_text
+from fivebar_drake.core.text import verdict_word
 from fivebar_drake.core.rerun_files import TIMELINE, pose_frames, recording_file, scalars
 from fivebar_drake.core.rotation import body_rotations
 from fivebar_drake.core.summary_schema import Summary
@@ -186,7 +187,7 @@ def verdict_text(sig: Signals, head: Headline, params: Params, summary: Summary)
     """The verdict panel (markdown): the verdict and the check that decided it, the worst
     motor's figure against its limit (N·m and share) and when its demand peaked (in which
     phase), the thresholds, the phases, the run's answer."""
-    verdict = str(summary["verdict"]).upper().replace("_", " ")
+    verdict = verdict_word(summary["verdict"])
     check = summary.get("deciding_check")
     m = summary["legs"][head.leg][head.motor]
     torque = ((m.get("checks") or {}).get("torque") or {})

@@ -14,7 +14,7 @@ from pathlib import Path
 
 from fivebar_drake.core.checks import CHECK_ORDER, demand_unmet, limit_shares_text, thresholds_text
 from fivebar_drake.core.files import json_ready, write_atomic
-from fivebar_drake.core.text import figure
+from fivebar_drake.core.text import figure, verdict_word
 from fivebar_drake.core.summary_schema import (AnyController, JumpFigures, LandingFigures, LimitReport,
                                                MotorSummary, Ran, SpeedCheck, Summary,
                                                ThermalCheck, TorqueCheck)
@@ -83,7 +83,7 @@ def answer(s: Summary, params: Params) -> str:
         return (f"{head} the motion was NOT ACHIEVED ({why}): {need}; the saturated demand is "
                 f"the controller's error growing, not what the gait takes. {seed}").rstrip()
     checks = "; ".join(check_text(k, c[k]) for k in CHECK_ORDER)
-    verdict_text = (f"{s['verdict'].upper()}, decided by the {s['deciding_check']} check"
+    verdict_text = (f"{verdict_word(s['verdict'])}, decided by the {s['deciding_check']} check"
                     if s["verdict"] != "marginal" else
                     f"MARGINAL: {s['step_check']['why']} (step check at half the plant step)")
     static = m["static_trot_Nm"]
@@ -181,7 +181,7 @@ def markdown(s: Summary, params: Params) -> str:
                     "static_seed_Nm", "static_trot_Nm", "static_contact_Nm"))
                 + f" | {figure(m['dynamic_to_seed_static'], '{:.2f}x')} | "
                 f"{figure(m['dynamic_to_trot_static'], '{:.2f}x')} | "
-                f"{figure(m['safety_factor'])} ({_quadrant(m)}) | {m['verdict'].upper()} | "
+                f"{figure(m['safety_factor'])} ({_quadrant(m)}) | {verdict_word(m['verdict'])} | "
                 f"{_clipped(m)} | {figure(m['p99_speed_rad_s'])} |")
     lines += ["", "Torque split (RMS over the window, N·m): contact -J^T F, links M q'' + c + G, "
               "rotor N^2 J q'', friction; residual = applied - their sum.", "",
