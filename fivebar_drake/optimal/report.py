@@ -18,7 +18,8 @@ from fivebar_drake.core.footpath import (EXTENSION_STOP_S, PUSH_SHARES, Drop, Ju
 from fivebar_drake.core.validation import ParameterError, check_number
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.optimal.recording import RECORDING_FILE, write_recording
-from fivebar_drake.optimal.gait_floor import KINDS, fastest_gait, gait_floor, max_pitch_rad
+from fivebar_drake.optimal.gait_floor import (KINDS, fastest_gait, fastest_joint, gait_floor,
+                                              max_pitch_rad)
 from fivebar_drake.optimal.stand_up import stand_up_floor
 from fivebar_drake.optimal.vertical_jump import (Jump, highest_drop, landing_floor,
                                                  point_mass_bound, push, reach, stroke,
@@ -126,12 +127,21 @@ def gait_limits(params: Params, kind: str, payload_kg: float = 0.0) -> dict:
     defaults over the parameter file's, as simulate runs it): at the gait's own mean height,
     held level (None where no forces hold the body level: a single pair down) and with the
     height free; the motion the floor takes; the thermal floor (the least worst-motor RMS
-    torque) against the continuous current; whether the floor is beyond the motors."""
+    torque) against the continuous current; the best speed margin any controller has (the
+    least of the floor's stance operating points' against the envelope, Motor.speed_margins,
+    and of the no-load speed over the path's fastest joint, swing included: the path fixes the
+    joints' speeds); whether the floor is beyond the motors."""
     params = with_path_defaults(params, kind)
     at_gait, free = (gait_floor(params, kind, payload_kg, free_height=f) for f in (False, True))
     thermal = gait_floor(params, kind, payload_kg, thermal=True)
     continuous = params.motor.rated_continuous_current_A
+    motor = params.motor
+    stance = at_gait.speed_rad_s != 0.0
+    margins = motor.speed_margins(
+        at_gait.torque_Nm + motor.friction(at_gait.speed_rad_s), at_gait.speed_rad_s)[0]
     return {"floor_Nm": at_gait.floor_Nm,
+            "speed_margin": float(min(np.nanmin(np.where(stance, margins, np.inf)),
+                                      motor.no_load_speed_rad_s / fastest_joint(params, kind))),
             "beyond_motors": at_gait.floor_Nm > params.motor.peak_torque_Nm,
             "level_floor_Nm": at_gait.level_Nm,
             "height_swing_m": float(np.ptp(at_gait.z_m)),
@@ -232,6 +242,7 @@ def answer(r: dict, params: Params) -> str:
         + ("" if t["thermal_margin"] is None else
            f"; its thermal floor {t['thermal_floor_rms_current_A']:.2f} A RMS, "
            f"{t['thermal_margin']:.2f} of the continuous {t['continuous_current_A']:.2f} A")
+        + f"; its best speed margin {t['speed_margin']:.2f}"
         + "." for kind, t in r["gaits"].items())
     fifth = "".join(
         f" The fastest {kind} at its stride and duty factor: "
@@ -268,7 +279,7 @@ def markdown(r: dict) -> str:
         lines += ["", f"Floor: none — {r['floor_why_none']}."]
     lines += ["", "## Gaits", "", "| gait | Hz | floor (N·m) | heave (mm) | pitch (deg, "
               "peak to peak) | held level (N·m) | height free (N·m) | thermal floor (A RMS) | "
-              "fastest (m/s) |", "|---|---|---|---|---|---|---|---|---|"]
+              "speed margin | fastest (m/s) |", "|---|---|---|---|---|---|---|---|---|---|"]
     for kind, t in r["gaits"].items():
         fast = r["fastest"].get(kind)
         level = t["level_floor_Nm"]
@@ -276,7 +287,7 @@ def markdown(r: dict) -> str:
                      f"{t['height_swing_m'] * 1e3:.0f} | {t['pitch_swing_deg']:.1f} | "
                      f"{'none' if level is None else f'{level:.2f}'} | "
                      f"{t['free_height_floor_Nm']:.2f} | "
-                     f"{t['thermal_floor_rms_current_A']:.2f} | "
+                     f"{t['thermal_floor_rms_current_A']:.2f} | {t['speed_margin']:.2f} | "
                      + ("—" if fast is None else "none" if fast["limited_by"] ==
                         "its own frequency" else f"{fast['speed_m_s']:.3f} "
                         f"({fast['limited_by']})") + " |")

@@ -160,6 +160,10 @@ def test_the_command_writes_the_answer_first(tmp_path, capsys):
         result["ceiling"]["motors"]["A"]["peak_torque_Nm"])
     _, height = read_series(tmp_path / "optimal.rrd", "/hip/height_m/floor")
     assert height[-1] == pytest.approx(PLAN.extension_m, abs=1e-6)         # takeoff
+    for kind, fast in result["fastest"].items():      # the path's joint speeds bound it
+        gait = result["gaits"][kind]
+        assert 0 < gait["speed_margin"] <= (fast["speed_limit_frequency_hz"]
+                                            / fast["gait_frequency_hz"]) + 1e-9
     for kind, gait in result["gaits"].items():        # each gait's floor, beside the jumps
         worst = max(np.abs(read_series(tmp_path / "optimal.rrd",
                                        f"/gait/{kind}/torque_Nm/{leg}_{m}")[1]).max()
