@@ -155,3 +155,25 @@ def test_an_envelope_maneuver_with_its_step_check_is_judged_at_half_the_step(spe
     assert check is not None
     assert check["half_time_step_s"] == pytest.approx(check["time_step_s"] / 2)
     assert result.power_W is not None and result.power_W.size == result.current.shape[0]
+
+
+def test_better_candidates_kept_out_by_the_corrections_are_named_not_hidden(spec):
+    from fivebar_drake.codesign.report import not_simulated
+
+    def entry(trial, motor, mass, bound):
+        return {"trial": trial, "name": f"{motor} {trial}", "meets": True, "margin": bound,
+                "design": {"motor": motor}, "objectives": {"actuator_mass_kg": mass},
+                "maneuvers": {"bound": {"margins": {"torque": bound}}}}
+
+    light, nearer, other = (entry(0, "a", 0.30, 1.1), entry(1, "a", 0.35, 1.8),
+                            entry(2, "b", 0.40, 1.5))
+    simulated_, recommended, heavier = (entry(3, "c", 0.33, 2.0), entry(4, "d", 0.45, 3.0),
+                                        entry(5, "e", 0.50, 3.0))
+    entries = [light, nearer, other, simulated_, recommended, heavier]
+    kept_out = not_simulated(spec, entries, [simulated_, recommended], recommended,
+                             {"bound torque": 0.5})
+    # of motor a the one nearest to passing (1.8 x 0.5), not the lightest; never the
+    # simulated, the recommended or a heavier one
+    assert [c["name"] for c in kept_out] == ["a 1", "b 2"]
+    assert kept_out[0]["corrected_margin"] == pytest.approx(0.9)
+    assert kept_out[0]["kept_out_by"] == "bound torque"
