@@ -38,7 +38,7 @@ def compare(prediction: dict, sim: dict) -> list[dict]:
     for name, p in prediction["maneuvers"].items():
         if "safety_factor" not in p:
             continue
-        simulated_sf = sim["maneuvers"][name]["figures"].get("torque")
+        simulated_sf = sim["maneuvers"].get(name, {}).get("figures", {}).get("torque")
         predicted_sf = p.get("safety_factor")
         diff = (predicted_sf / simulated_sf - 1.0 if predicted_sf is not None and simulated_sf
                 and math.isfinite(simulated_sf) else None)
@@ -270,8 +270,8 @@ def markdown(spec: CodesignSpec, report: dict) -> str:
               "| maneuver | check | recommended | margin | default design | margin |",
               "|---|---|---|---|---|---|"]
     for name, d in default["maneuvers"].items():
-        rec = r["simulated"]["maneuvers"][name] if r else {"verdict": "—", "figures": {},
-                                                             "margins": {}}
+        rec = (r["simulated"]["maneuvers"] if r else {}).get(
+            name, {"verdict": "—", "figures": {}, "margins": {}})
         lines.append(f"| {name} | verdict | {rec['verdict']} | | {d['verdict']} | |")
         lines.append(f"| {name} | limits | {_limits(rec.get('limits'))} | | "
                      f"{_limits(d.get('limits'))} | |")

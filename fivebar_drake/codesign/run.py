@@ -60,11 +60,13 @@ def pareto(spec: CodesignSpec, entries: list[dict]) -> list[dict]:
 
 def corrections(pairs: list[tuple[dict, dict]]) -> dict[str, float]:
     """Per requirement ("maneuver check"), the least ratio of the simulated margin to the
-    predicted one over the (prediction, simulated) pairs, where below 1."""
+    predicted one over the (prediction, simulated) pairs, where below 1 (a requirement the
+    simulation has no figure for, e.g. the duty cycle of an envelope with a maneuver without a
+    verdict, corrects nothing)."""
     out = {}
     for entry, sim in pairs:
         for name, predicted in entry["maneuvers"].items():
-            margins = sim["maneuvers"][name]["margins"]
+            margins = sim["maneuvers"].get(name, {}).get("margins", {})
             for check, margin in predicted["margins"].items():
                 key = f"{name} {check}"
                 if check in margins and margin > 0:

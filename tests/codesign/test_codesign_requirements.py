@@ -177,3 +177,13 @@ def test_better_candidates_kept_out_by_the_corrections_are_named_not_hidden(spec
     assert [c["name"] for c in kept_out] == ["a 1", "b 2"]
     assert kept_out[0]["corrected_margin"] == pytest.approx(0.9)
     assert kept_out[0]["kept_out_by"] == "bound torque"
+
+
+def test_an_envelope_without_its_duty_cycle_corrects_only_what_it_simulated():
+    from fivebar_drake.codesign.run import corrections
+
+    predicted = {"maneuvers": {"bound": {"margins": {"torque": 2.0}},
+                               "duty cycle": {"margins": {"thermal": 1.5}}}}
+    # a maneuver without a verdict: the envelope builds no duty cycle
+    sim = {"maneuvers": {"bound": {"margins": {"torque": 1.0}}}}
+    assert corrections([(predicted, sim)]) == {"bound torque": 0.5}
