@@ -37,6 +37,9 @@ def gearing(motor: str, ratio: float | None, kind: str | None) -> tuple[float | 
     own = catalog()[motor].built_in_gearbox
     if own is not None:
         return own.ratio.value, BUILT_IN
+    if ratio is None:
+        raise ParameterError(f"{motor} has no gearbox of its own: give its gear ratio "
+                             f"({RATIO})", RATIO)
     if kind is not None:
         gearboxes()[kind].check_ratio(ratio)
         return ratio, kind

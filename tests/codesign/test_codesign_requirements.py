@@ -66,6 +66,8 @@ def test_the_spec_holds_the_step_check_the_limits_the_compared_designs_and_objec
     (("step_check: true", "step_check: yes please"), ["requirements.step_check"]),
     (("motor: odrive_d5065_270kv, motor", "motor: odrive, motor"), ["compare[0].motor"]),
     (("motor.gear_ratio: 8.0}", "motor.gear_ratio: 80.0}"), ["compare[0]"]),
+    (("motor: odrive_d5065_270kv, motor.gear_ratio: 8.0}", "motor: odrive_d5065_270kv}"),
+     ["compare[0]", "give its gear ratio"]),
 ])
 def test_bad_requirements_objectives_and_compared_designs_are_refused(tmp_path, capsys, change,
                                                                      words):
