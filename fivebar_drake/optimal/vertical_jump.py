@@ -338,7 +338,9 @@ class Catch:
     """A landing along a Stroke, braked at the largest deceleration allowed from touchdown at
     the stroke's top node: the node where the hip comes to rest (`stop`, None: it does not
     within the stroke), the distance it sank (m), the time (s), and over each cell the motors'
-    joint and delivered torques (cells, 2) N*m at their speeds (cells, 2) rad/s."""
+    joint and delivered torques (cells, 2) N*m at their speeds (cells, 2) rad/s, each cell's
+    from its upper node; the hip's speed w (m/s, <= 0) at the nodes from the lowest (the stop)
+    to the top."""
 
     stroke: Stroke
     stop: int | None
@@ -347,6 +349,7 @@ class Catch:
     torque_Nm: np.ndarray
     delivered_Nm: np.ndarray
     speed_rad_s: np.ndarray
+    w: np.ndarray
 
 
 def catch(s: Stroke, touchdown_speed: float, peak_Nm: float = math.inf) -> Catch:
@@ -375,7 +378,7 @@ def catch(s: Stroke, touchdown_speed: float, peak_Nm: float = math.inf) -> Catch
     tau = s.alpha[cells] * b[cells, None] + s.beta[cells] * x[cells, None] + s.gamma[cells]
     dt = np.diff(s.u[first:]) * 2.0 / np.maximum(-(w[first:-1] + w[first + 1:]), 1e-12)
     return Catch(s, stop, float(s.u[-1] - s.u[first]), float(dt.sum()), tau,
-                 tau + s.motor.friction(omega), omega)
+                 tau + s.motor.friction(omega), omega, w[first:])
 
 
 def landing_floor(s: Stroke, touchdown_speed: float) -> tuple[float, Catch]:

@@ -19,10 +19,12 @@ from typing import ClassVar
 
 import numpy as np
 
-from fivebar_drake.core.footpath import Jump as JumpPath
-from fivebar_drake.core.validation import require
+from fivebar_drake.core.footpath import Jump as JumpPath, Landing
+from fivebar_drake.core.validation import ParameterError, require
+from fivebar_drake.mechanisms.fivebar import KNEES_OUT
 from fivebar_drake.optimal.gait_floor import KINDS, GaitFloor, gait_floor, whole_body
-from fivebar_drake.optimal.vertical_jump import Jump, maneuver_push
+from fivebar_drake.optimal.vertical_jump import (Catch, Jump, catch, landing_floor,
+                                                 maneuver_push, stroke)
 from fivebar_drake.robots.quadruped.control_law import plane_forces, split_wrench
 from fivebar_drake.robots.quadruped.legs import LEGS
 from fivebar_drake.robots.quadruped.sdf import body_height
@@ -135,44 +137,83 @@ class JumpPlan:
         return line(self.torque), line(self.speed), float(np.interp(u, self.u, self.w))
 
 
-class JumpTrackingController(FootLegController):
-    """The foot/leg controller (FootLegController) whose legs, from the push's onset until each
-    reaches the takeoff height (or the push's window ends), deliver the optimal push's motor
-    torques at their measured hip height (feed-forward: the links' and rotors' inertia, the
-    links' weight and -J_F^T F of the optimal ground force, friction), plus -J_F^T of a
-    feedback ground force: along the leg's y, the hip's speed towards the optimum's at its
-    height; along x, the foot towards the stroke's line x_center (both at the swing loop's
-    bandwidth on a quarter of the robot); roll and pitch towards level with the foot/leg
-    controller's gains, shared by the four feet (split_wrench, no net force). The controller
-    asks no more than the envelope at the joints' speeds (JumpTrackingController._within)."""
+class CatchPlan:
+    """A landing's least-torque catch (optimal/vertical_jump.landing_floor) as functions of the
+    hip's height u above the foot (m), linear between its nodes from the stop to the top: the
+    vertical ground force the optimum's foot carries (N: the quarter robot decelerated and the
+    links' terms) and the hip's sinking speed w (m/s, <= 0); followed from start_s to end_s (s,
+    the run's time)."""
 
-    def __init__(self, params, layout, gains, knobs, transfer_s, plan: JumpPlan):
+    def __init__(self, catch: Catch, start_s: float, end_s: float):
+        s = catch.stroke
+        first = s.u.size - catch.w.size
+        self.u, self.w = s.u[first:], catch.w
+        x = self.w**2
+        b = 0.5 * np.gradient(x, self.u)                    # u'' = d(u'^2)/du / 2
+        self.force = s.fy[first:, 0] * b + s.fy[first:, 1] * x + s.fy[first:, 2]
+        self.start_s, self.end_s = start_s, end_s
+
+    def at(self, u: float) -> tuple[float, float]:
+        """(vertical ground force N, hip speed m/s) at hip height u (m)."""
+        return float(np.interp(u, self.u, self.force)), float(np.interp(u, self.u, self.w))
+
+
+class JumpTrackingController(FootLegController):
+    """The foot/leg controller (FootLegController) following a jump's or a drop's optimal
+    strokes:
+    - the push (a jump's; JumpPlan): from its onset until each leg reaches the takeoff height
+      (or the push's window ends), the leg's motors deliver the optimal push's torques at its
+      measured hip height (feed-forward: the links' and rotors' inertia, the links' weight,
+      -J_F^T F of the optimal ground force, friction) plus -J_F^T of a feedback ground force:
+      along the leg's y the hip's speed towards the optimum's at its height, along x the foot
+      towards the stroke's line x_center (both at the swing loop's bandwidth on a quarter of
+      the robot), roll and pitch towards level (_level); within the envelope at the joints'
+      measured speeds and the optimum's (_within);
+    - the landing (CatchPlan): on each foot measured on the ground while its hip sinks, the
+      stance law's vertical force gives way to the least-torque catch's at the measured hip
+      height (scaled by the foot's support weight) plus the levelling moment's share and a
+      feedback on the hip's sinking speed towards the catch's (at the body loop's bandwidth);
+      the horizontal force stays the stance law's. The links' weight, the swing legs and
+      everything between the strokes are the foot/leg controller's."""
+
+    def __init__(self, params, layout, gains, knobs, transfer_s, push: JumpPlan | None,
+                 landing: CatchPlan):
         super().__init__(params, layout, gains, knobs, transfer_s)
-        self._jump, self._x_center, self._motor = plan, params.gait.x_center_m, params.motor
-        omega = 2.0 * math.pi * knobs.swing_bandwidth_hz
+        self._push, self._landing = push, landing
+        self._x_center, self._motor = params.gait.x_center_m, params.motor
         quarter = layout.mass_kg / len(layout.legs)
+        omega = 2.0 * math.pi * knobs.body_bandwidth_hz
         self._kx, self._dx = quarter * omega**2, 2.0 * knobs.damping_ratio * quarter * omega
         self._dw = quarter * omega
+        self._landing_q = params.fivebar_leg.inverse(      # the touchdown pose, the catch's top
+            np.array([params.gait.x_center_m, -landing.u[-1]]), KNEES_OUT).q
 
     def stance_torques(self, plan, state, t: float) -> tuple:
         base, jf, forces = super().stance_torques(plan, state, t)
-        jump, k = self._jump, self.constants
-        if not jump.onset_s <= t < jump.end_s:
+        push, land, k = self._push, self._landing, self.constants
+        landing = land.start_s <= t < land.end_s
+        if not (landing or push is not None and push.onset_s <= t < push.end_s):
             return base, jf, forces
         state = np.asarray(state, dtype=float)
         qd = state[k.state.nq + k.state.v_index]                  # (legs, 2)
         level = self._level(plan, state)
         base, forces = base.copy(), forces.copy()
+        q = state[k.state.q_index]                                 # (legs, 2)
         for i in range(qd.shape[0]):
-            u = -plan.fy[i]
-            if u >= jump.takeoff_u:
-                continue                                           # pushed: the foot/leg's
-            torque, speed, w_ref = jump.at(u)
-            v = jf[i] @ qd[i]                                      # the foot's, from the hip
-            force = level[i] + (self._kx * (plan.fx[i] - self._x_center) + self._dx * v[0],
-                                self._dw * (w_ref + v[1]))
-            base[k.state.actuators[i]] = self._within(torque, -jf[i].T @ force, qd[i], speed)
-            forces[i] = 0.0
+            u, v = -plan.fy[i], jf[i] @ qd[i]                      # the foot's, from the hip
+            if not landing and u < push.takeoff_u:                # pushing
+                torque, speed, w_ref = push.at(u)
+                force = level[i] + (self._kx * (plan.fx[i] - self._x_center) + self._dx * v[0],
+                                    self._dw * (w_ref + v[1]))
+                base[k.state.actuators[i]] = self._within(torque, -jf[i].T @ force, qd[i], speed)
+                forces[i] = 0.0
+            elif plan.weights[i] == 0.0:                          # pushed, in the air
+                base[k.state.actuators[i]] = (k.gains.kp * (self._landing_q - q[i])
+                                              - k.gains.kd * qd[i])
+                forces[i] = 0.0
+            elif landing and v[1] > 0.0:                          # down, sinking
+                force, w_ref = land.at(u)
+                forces[i, 1] = force + level[i, 1] + self._dw * (w_ref + v[1])
         return base, jf, forces
 
     def _within(self, torque, feedback, speed, planned) -> np.ndarray:
@@ -218,9 +259,9 @@ class Tracking(FootLeg):
 
     def check_scenario(self, scenario) -> None:
         path = scenario.gait
-        require(path.kind in KINDS or isinstance(path, JumpPath), "scenario.gait", path.kind,
-                f"the tracking controller follows a gait's floor or a jump's optimal push: one "
-                f"of {[*KINDS, JumpPath.kind]}")
+        require(path.kind in KINDS or isinstance(path, Landing), "scenario.gait", path.kind,
+                f"the tracking controller follows a gait's floor or a jump's or a drop's optimal "
+                f"strokes: one of {[*KINDS, 'jump', 'drop']}")
         own = [path.leg_phase(leg) for leg in LEGS]
         require(np.allclose(scenario.phases_rad, own), "scenario.phases_rad",
                 scenario.phases_rad, f"the tracking controller follows the gait's own leg "
@@ -228,23 +269,37 @@ class Tracking(FootLeg):
 
     def add_to(self, builder, params, layout, scenario) -> FootLegController:
         path = scenario.gait
-        if isinstance(path, JumpPath):
-            return self._add_jump(builder, params, layout, scenario)
+        if isinstance(path, Landing):
+            return self._add_strokes(builder, params, layout, scenario)
         plan = Plan(gait_floor(params, path, scenario.payload_kg), params,
                     path.stance_speed(params.gait), whole_body(params, scenario.payload_kg)[1])
         return builder.AddNamedSystem("leg_controller", TrackingController(
             params, layout, self.gains(params, layout), self, scenario.load_transfer_s, plan,
             path.start_s(scenario.stand_s), scenario.ramp_s))
 
-    def _add_jump(self, builder, params, layout, scenario) -> JumpTrackingController:
-        """The jump's controller: the optimal push to the path's height (or the highest one)
-        from the path's push-off onwards, its window the longer of the path's push and the
-        optimum's, and PUSH_WINDOW_SLACK more."""
-        path = scenario.gait
-        jump = maneuver_push(params, path.crouch_m, path.extension_m, path.height_m,
-                             scenario.payload_kg)
-        onset = path.start_s(scenario.stand_s) + path.events(params.gait).onset
-        push_s = max(path.timing(params.gait)[0], jump.stance_s) * (1.0 + PUSH_WINDOW_SLACK)
+    def _add_strokes(self, builder, params, layout, scenario) -> JumpTrackingController:
+        """A jump's or a drop's controller: a jump's optimal push to the path's height (or the
+        highest one) from the path's push-off onwards, its window the longer of the path's push
+        and the optimum's, and PUSH_WINDOW_SLACK more; the landing's least-torque catch of the
+        path's touchdown speed within its landing stroke (the soonest stop, where none does),
+        from the push's window's end (a drop: its start) to the planned touchdown and twice the
+        catch's time."""
+        path, g, payload = scenario.gait, params.gait, scenario.payload_kg
+        start, events = path.start_s(scenario.stand_s), path.events(g)
+        push, falling = None, start
+        if isinstance(path, JumpPath):
+            jump = maneuver_push(params, path.crouch_m, path.extension_m, path.height_m, payload)
+            onset = start + events.onset
+            falling = onset + max(path.timing(g)[0], jump.stance_s) * (1.0 + PUSH_WINDOW_SLACK)
+            push, touchdown = JumpPlan(jump, onset, falling), path.takeoff_speed(g)
+        else:
+            touchdown = math.sqrt(2.0 * params.robot.gravity_m_s2 * path.height_m)
+        top = -g.y_home_m + path.extension_m
+        legs = stroke(params, top - path.landing_stroke_m, top, payload)
+        try:
+            landing = landing_floor(legs, touchdown)[1]
+        except ParameterError:                         # the legs give way for any controller
+            landing = catch(legs, touchdown)
         return builder.AddNamedSystem("leg_controller", JumpTrackingController(
-            params, layout, self.gains(params, layout), self, scenario.load_transfer_s,
-            JumpPlan(jump, onset, onset + push_s)))
+            params, layout, self.gains(params, layout), self, scenario.load_transfer_s, push,
+            CatchPlan(landing, falling, start + events.touchdown + 2.0 * landing.duration_s)))

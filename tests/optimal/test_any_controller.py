@@ -38,11 +38,11 @@ def test_a_jump_beyond_the_motors_fails_for_any_controller():
 
 
 @pytest.mark.slow
-def test_the_drops_landing_floor_is_below_what_the_controller_asked():
+def test_the_drops_landing_floor_is_below_what_the_controller_asked(simulated):
     """The drop from 0.1 m: the landing's floor (stopping the touchdown speed within the
     landing stroke, braking) is below what the package's controller asked over its landing;
     the highest drop the stroke absorbs lies above the drop."""
-    s = summarize_run(run_simulation(load_scenario(gait="drop", duration_s=2.0), progress=False))
+    s = summarize_run(simulated(gait="drop", duration_s=2.0))
     a = s["any_controller"]
     landing = a["phases"]["landing"]
     assert landing["floor_Nm"] <= landing["asked_Nm"] and a["ceiling_m"] > 0.1
