@@ -404,6 +404,11 @@ def pareto_figure(spec: CodesignSpec, report: dict):
     if first == "actuator_mass_kg":
         ax.axvline(report["default"]["actuator_mass_kg"], color="k", ls="--",
                    label="default design's actuator")
+        for c in report["compared"]:
+            sim = c["simulated"]
+            ax.axvline(c["actuator_mass_kg"], color="tab:purple", ls=":",
+                       label=f"compared: {c['name'].split(' ')[0]} ("
+                             + ("passes" if sim and sim["passes"] else "fails") + ")")
     ax.set(xlabel=first, ylabel=ylabel,
            title="co-design: every trial (predicted)" + (", finalists simulated" if verified
                                                          else ""))
