@@ -1,6 +1,7 @@
 """A controller that tracks an optimal motion: the controller variant "tracking" (scenario
 `controller: {kind: tracking}`), for the gaits with a floor (optimal/gait_floor.py: trot, walk,
-bound, pronk) and the jump (optimal/vertical_jump.py: JumpTrackingController).
+bound, pronk), the jump and the drop (optimal/vertical_jump.py: the push and the landing's
+catch, JumpTrackingController).
 
 For a gait, once the gait source's ramp has ended it commands, on each foot the support holds, the floor's
 ground force at that instant of the period (feed-forward, turned from the world's x-z plane into
