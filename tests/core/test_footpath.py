@@ -238,7 +238,9 @@ def test_a_jump_is_achieved_only_near_the_height_asked():
     ({"kind": "jump", "crouch_m": 0.0, "extension_m": 0.0}, "scenario.gait.crouch_m"),
     ({"kind": "jump", "landing_stroke_m": 0.0}, "scenario.gait.landing_stroke_m"),
     ({"kind": "drop", "height_m": 0.0}, "scenario.gait.height_m"),
-    ({"kind": "drop", "landing_stroke_m": 0.0}, "scenario.gait.landing_stroke_m")])
+    ({"kind": "drop", "landing_stroke_m": 0.0}, "scenario.gait.landing_stroke_m"),
+    ({"kind": "jump", "push_share": 0.5}, "scenario.gait.push_share"),
+    ({"kind": "jump", "push_share": 1.3}, "scenario.gait.push_share")])
 def test_a_maneuver_length_that_divides_a_time_is_refused_at_zero(gait, field):
     """Issue 33's third class (and 15: a drop from 0 m crashed): a push-off or landing over no
     distance, a drop from no height, each refused naming its field."""
@@ -248,6 +250,28 @@ def test_a_maneuver_length_that_divides_a_time_is_refused_at_zero(gait, field):
     with pytest.raises(ParameterError) as err:
         load_scenario(gait=gait)
     assert err.value.field == field
+
+
+def test_the_push_share_sets_the_push_time_and_the_events():
+    """A jump's push_share scales its push-off's time (2 stroke / takeoff speed at 1), its
+    planned takeoff and touchdown with it; its foot reference still starts at rest at the
+    crouch and reaches the takeoff point at the takeoff speed."""
+    from fivebar_drake.core.footpath import Jump
+    from fivebar_drake.robots.quadruped.config import load_params
+
+    gait = load_params().gait
+    own, quick = Jump(), Jump(push_share=0.7)
+    v = own.takeoff_speed(gait)
+    stroke = own.crouch_m + own.extension_m
+    assert own.timing(gait)[0] == pytest.approx(2 * stroke / v)
+    assert quick.timing(gait)[0] == pytest.approx(0.7 * 2 * stroke / v)
+    assert own.events(gait).touchdown - quick.events(gait).touchdown == pytest.approx(
+        0.3 * 2 * stroke / v)
+    onset, takeoff = quick.events(gait).onset, quick.events(gait).takeoff
+    at = evaluate(gait, quick, np.array([onset, takeoff - 1e-9]))
+    assert at.pos[0, 1] == pytest.approx(gait.y_home_m + quick.crouch_m)
+    assert at.pos[1, 1] == pytest.approx(gait.y_home_m - quick.extension_m, abs=1e-6)
+    assert at.vel[1, 1] == pytest.approx(-v, rel=1e-6)
 
 
 def test_a_length_in_millimetres_is_refused_with_a_hint():
