@@ -44,4 +44,4 @@ def test_envelope_and_checks_in_report(tmp_path, params):
             assert report["results"][model][motor]["safety_factor"] == pytest.approx(
                 5.0 / np.max(np.abs(tau)), rel=1e-12)             # Table 5: the seed's
     md = (tmp_path / "report.md").read_text()
-    assert "## Verdict: the actuator's checks" in md and "## Table 5" in md
+    assert "## Verdict: the actuator's checks" in md and "(the seed's Table 5)" in md
