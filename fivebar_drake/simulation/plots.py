@@ -35,7 +35,7 @@ STYLE = {"font.size": 8, "text.hinting": "none"}
 # in its shade: applied full, demand light, the static estimates dark
 TORQUE_LINES = (("command", "demand (command)", dict(lw=0.8, alpha=0.45)),
                 ("applied", "applied (motor output)", dict(lw=1.3)),
-                ("static_trot", "static: trot load", dict(lw=1.0, ls=":", color_dark=True)),
+                ("static_trot", "static: same loads", dict(lw=1.0, ls=":", color_dark=True)),
                 ("static_seed", "static: seed G(q)", dict(lw=0.9, ls="--", color_dark=True)))
 MOTOR_COLORS = {"A": ("#1f6fd1", "#0b2f6b"), "B": ("#ef6c0f", "#7a3000")}
 LEG_COLORS = ("C0", "C1", "C2", "C3")
