@@ -91,8 +91,9 @@ def headline(sig: Signals, legs, params: Params, summary: Summary) -> Headline:
     standing and ramp before its statistics window."""
     worst = (summary.get("worst_motor") or "").split()
     if len(worst) != 2:
-        peak = np.nanmax(np.abs(sig.command), axis=0) if len(sig.t) else np.zeros((len(legs), 2))
-        i, j = np.unravel_index(np.nanargmax(np.nan_to_num(peak, nan=-1.0)), peak.shape)
+        peak = (np.max(np.nan_to_num(np.abs(sig.command), nan=-1.0), axis=0) if len(sig.t)
+                else np.zeros((len(legs), 2)))
+        i, j = np.unravel_index(np.argmax(peak), peak.shape)
         worst = [legs[i], MOTORS[j]]
     torque = ((summary["legs"].get(worst[0], {}).get(worst[1], {}).get("checks") or {})
               .get("torque") or {})
@@ -183,18 +184,19 @@ def blueprint(legs, height_m: float, head: Headline | None = None,
         rrb.TimePanel(state="collapsed", timeline=TIMELINE))
 
 
-def verdict_text(sig: Signals, head: Headline, params: Params, summary: Summary) -> str:
+def verdict_text(sig: Signals, legs, head: Headline, params: Params, summary: Summary) -> str:
     """The verdict panel (markdown): the verdict and the check that decided it, the worst
     motor's figure against its limit (N·m and share) and when its demand peaked (in which
     phase), the thresholds, the phases, the run's answer."""
     verdict = verdict_word(summary["verdict"])
     check = summary.get("deciding_check")
-    m = summary["legs"][head.leg][head.motor]
+    m = (summary.get("legs") or {}).get(head.leg, {}).get(head.motor, {})
     torque = ((m.get("checks") or {}).get("torque") or {})
-    i, j = list(summary["legs"]).index(head.leg), MOTORS.index(head.motor)
+    i, j = list(legs).index(head.leg), MOTORS.index(head.motor)
     start, end = summary["window_s"]
     inside = (sig.t > start) & (sig.t <= end) if len(sig.t) else np.zeros(0, bool)
-    demand = np.where(inside, np.abs(sig.command[:, i, j]), -np.inf) if len(sig.t) else []
+    demand = (np.where(inside, np.nan_to_num(np.abs(sig.command[:, i, j]), nan=-np.inf),
+                       -np.inf) if len(sig.t) else [])
     k = int(np.argmax(demand)) if len(demand) and np.isfinite(np.max(demand)) else None
     when = ""
     if k is not None:
@@ -256,7 +258,7 @@ def write_recording(path: Path, sig: Signals, record: SimulationRecord, summary:
     with recording_file(path, title,
                         blueprint(legs, float(sig.body_p[0, 2]) if len(sig.t) else 0.0, head,
                                   bool(summary["periodic"]))) as rec:
-        rec.log("verdict", rr.TextDocument(verdict_text(sig, head, record.params, summary),
+        rec.log("verdict", rr.TextDocument(verdict_text(sig, legs, head, record.params, summary),
                                            media_type=rr.MediaType.MARKDOWN), static=True)
         if len(sig.t):
             _log_scene(rec, sig, record)
