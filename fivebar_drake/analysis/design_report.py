@@ -46,8 +46,8 @@ def design_lines(results: dict, params: Params) -> list[str]:
     fc, m = results["force_capability"], params.motor
     x, y = (v * 1e3 for v in fc["home_foot_m"])
     lines = ["", "## Force capability", "",
-             f"Foot forces the motors (±{fc['peak_torque_Nm']:g} N·m) hold statically at the home "
-             f"foot position ({x:g}, {y:g}) mm, per assembly mode (knees_out: knee C forward, knee D back, the diamond; knees_in: both toward the leg's centre line; knees_forward / knees_back: both knees on one side):", "",
+             f"Foot forces the motors (±{fc['peak_torque_Nm']:.2f} N·m) hold statically at the "
+             f"home foot position ({x:g}, {y:g}) mm, per assembly mode (knees_out: knee C forward, knee D back, the diamond; knees_in: both toward the leg's centre line; knees_forward / knees_back: both knees on one side):", "",
              "| mode | largest vertical (N) | largest horizontal (N) | every direction (N) |",
              "|---|---|---|---|"]
     for mode in MODE_NAMES:

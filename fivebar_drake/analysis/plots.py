@@ -82,7 +82,7 @@ def total_torque(an: Analysis) -> plt.Figure:
                     color=line.get_color(), alpha=0.6, label=f"{name}: static")
         for sign in (1, -1):
             ax.axhline(sign * limit, color="r", lw=1.5,
-                       label=f"motor limit ±{limit:g} N·m" if sign > 0 else None)
+                       label=f"motor limit ±{limit:.2f} N·m" if sign > 0 else None)
             ax.axhline(sign * limit / p.checks.sf_pass, color="orange", ls="--", lw=1,
                        label=f"SF = {p.checks.sf_pass:g}" if sign > 0 else None)
         ax.set(title=f"motor {motor}", xlabel="time (s)", ylabel="torque (N·m)")

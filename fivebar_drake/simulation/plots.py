@@ -149,7 +149,7 @@ def torque_figure(sig: Signals, legs, params: Params, window) -> plt.Figure:
             chart.hline(i, sign * limit, color="r", lw=1.0)
     chart.finish()
     fig.text(0.07, 1 - 0.06 / fig.get_figheight(),
-             f"motor A blue, motor B orange; red: the motor's limit ±{limit:g} N·m; "
+             f"motor A blue, motor B orange; red: the motor's limit ±{limit:.2f} N·m; "
              "shaded: the statistics window\n" + "; ".join(
                  f"{what}: {label}" for what, (_, label, _) in zip(
                      ("light", "bold", "dotted, dark", "dashed, dark"), TORQUE_LINES)),
