@@ -3,14 +3,17 @@
 bound, pronk), the jump and the drop (optimal/vertical_jump.py: the push and the landing's
 catch, JumpTrackingController).
 
-For a gait, once the gait source's ramp has ended it commands, on each foot the support holds, the floor's
-ground force at that instant of the period (feed-forward, turned from the world's x-z plane into
+For a gait, from its takeover (Tracking.takeover: the ramp's end by default; at its start the
+body enters the floor's periodic motion while the path grows, which spares the default bound's
+first full cycle the motors' limits, 16 ms of them, but not the pronk its flight), blended in
+over one period, it commands, on each foot the support holds, the floor's ground force at that
+instant of the period (feed-forward, turned from the world's x-z plane into
 the leg plane by the body's measured rotation) plus a feedback wrench on the body's deviation
 from the floor's motion, shared by the feet down as the virtual model shares its wrench (least
 weighted norm, F_z >= 0, inside the friction cone): height and vertical speed, forward speed,
 pitch and pitch rate (towards the floor's), roll and roll rate (towards level), with the foot/leg
 controller's gains (FootLeg.gains). The swing legs, the support's memory, the links' weight and
-everything before the ramp's end are the foot/leg controller's (FootLegController)."""
+everything before the takeover are the foot/leg controller's (FootLegController)."""
 
 from __future__ import annotations
 
@@ -21,7 +24,8 @@ from typing import ClassVar
 import numpy as np
 
 from fivebar_drake.core.footpath import Jump as JumpPath, Landing
-from fivebar_drake.core.validation import ParameterError, require
+from fivebar_drake.core.validation import ParameterError, check_number, require
+from fivebar_drake.core.variants import documented
 from fivebar_drake.mechanisms.fivebar import KNEES_OUT
 from fivebar_drake.optimal.gait_floor import KINDS, GaitFloor, gait_floor, whole_body
 from fivebar_drake.optimal.vertical_jump import (Catch, Jump, catch, landing_floor,
@@ -64,19 +68,19 @@ class Plan:
 
 class TrackingController(FootLegController):
     """The foot/leg controller (FootLegController) whose stance feet track the floor's forces
-    and motion (module docstring) once the gait source's ramp has ended (start_s + ramp_s, s;
-    the floor's period starts at start_s, with the gait's)."""
+    and motion (module docstring) from takeover_s (s), blended in over one period; the floor's
+    period starts at start_s (s), with the gait's."""
 
     def __init__(self, params, layout, gains, knobs, transfer_s, plan: Plan, start_s: float,
-                 ramp_s: float):
+                 takeover_s: float):
         super().__init__(params, layout, gains, knobs, transfer_s)
-        self._plan, self._start_s, self._ramp_s = plan, start_s, ramp_s
+        self._plan, self._start_s, self._takeover_s = plan, start_s, takeover_s
 
     def stance_torques(self, plan, state, t: float) -> tuple:
-        """The foot/leg controller's until the ramp's end; then, blended in over the gait's next
+        """The foot/leg controller's until the takeover; then, blended in over one
         period (the virtual model's forces giving way to the tracking ones), the floor's forces
         and the feedback on the stance feet."""
-        share = (t - self._start_s - self._ramp_s) / self._plan.period
+        share = (t - self._takeover_s) / self._plan.period
         if share <= 0.0:
             return super().stance_torques(plan, state, t)
         forces_w, body = self._plan.at(t - self._start_s)
@@ -253,10 +257,18 @@ class JumpTrackingController(FootLegController):
 @register_controller
 @dataclass(frozen=True)
 class Tracking(FootLeg):
-    """The tracking controller (module docstring): the foot/leg controller's knobs; the floor is
-    the scenario's gait's (gait_floor at the scenario's payload)."""
+    """The tracking controller (module docstring): the foot/leg controller's knobs and when a
+    gait's tracking takes over; the floor is the scenario's gait's (gait_floor at the scenario's
+    payload)."""
 
     kind: ClassVar[str] = "tracking"
+    takeover: float = documented(1.0, "when a gait's tracking takes over from the foot/leg "
+                                      "controller, as a share of the gait's ramp (0: its start, "
+                                      "1: its end), blended in over one period")
+
+    def check(self, field: str) -> None:
+        super().check(field)
+        check_number(f"{field}.takeover", self.takeover, 0.0, 1.0)
 
     def check_scenario(self, scenario) -> None:
         path = scenario.gait
@@ -276,7 +288,8 @@ class Tracking(FootLeg):
                     path.stance_speed(params.gait), whole_body(params, scenario.payload_kg)[1])
         return builder.AddNamedSystem("leg_controller", TrackingController(
             params, layout, self.gains(params, layout), self, scenario.load_transfer_s, plan,
-            path.start_s(scenario.stand_s), scenario.ramp_s))
+            path.start_s(scenario.stand_s),
+            path.start_s(scenario.stand_s) + self.takeover * scenario.ramp_s))
 
     def _add_strokes(self, builder, params, layout, scenario) -> JumpTrackingController:
         """A jump's or a drop's controller: a jump's optimal push to the path's height (or the
