@@ -5,6 +5,7 @@ or an existing scheduler), then the report (report.py):
 
     OUT/codesign.journal          the Optuna study (rerunning into OUT resumes it)
     OUT/finalists/default/        the default design's envelope (the base parameters)
+    OUT/finalists/compared_I/     each design of the spec's `compare` list's envelope
     OUT/finalists/trial_N/        each finalist's envelope: envelope.md/json and a folder per
                                   maneuver with its recordings
     OUT/design.md, design.json    the recommended design and why, margins, predicted vs simulated
@@ -12,7 +13,9 @@ or an existing scheduler), then the report (report.py):
     OUT/pareto.png                the objectives, predicted and verified
 
 A design is verified only when its simulated envelope has every maneuver (and the duty cycle)
-in the accepted verdicts. The finalists are simulated one after the other, `budget.finalists` of
+in the accepted verdicts; with requirements.step_check every run is judged against its run at
+half the plant step (a marginal verdict is not accepted), with requirements.never_at_limit a run
+with a motor at its torque or voltage limit in any sample, or a leg at a joint limit, fails. The finalists are simulated one after the other, `budget.finalists` of
 them at most: each is the best (the first objective; with several, the predicted Pareto front
 first) of the designs not simulated yet that are predicted to meet every requirement once the
 predictions are corrected by what the simulations so far showed: per requirement (a maneuver's
