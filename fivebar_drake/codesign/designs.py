@@ -26,8 +26,7 @@ from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.robots.quadruped.config import with_changes
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.simulation.builder import check_run
-from fivebar_drake.codesign.spec import GEARBOX, MOTOR, RATIO
-
+MOTOR, GEARBOX, RATIO = "motor", "gearbox", "motor.gear_ratio"    # a design's own keys
 BUS = "motor.bus_voltage_V"
 
 

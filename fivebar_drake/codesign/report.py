@@ -10,7 +10,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from fivebar_drake.codesign.designs import actuator_mass, design_name, write_parameter_file
-from fivebar_drake.codesign.search import JOURNAL_FILE, ranked
+from fivebar_drake.codesign.search import JOURNAL_FILE, corrected, ranked
 from fivebar_drake.codesign.spec import CodesignSpec
 from fivebar_drake.core.files import json_ready, save_figure, write_atomic
 from fivebar_drake.mechanisms.fivebar import MOTORS
@@ -184,8 +184,6 @@ def not_simulated(spec: CodesignSpec, entries: list[dict], finalists: list[dict]
     nearest to passing (the largest corrected least margin, run.corrected): that margin and the
     requirement whose correction kept it out. The search does not show that they fail: only
     that the predictions, corrected by the simulations, did not expect them to pass."""
-    from fivebar_drake.codesign.run import corrected
-
     done = {f["name"] for f in finalists}
     first = spec.objectives[0]
     sign = 1.0 if spec.directions[0] == "minimize" else -1.0

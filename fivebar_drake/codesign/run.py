@@ -39,7 +39,7 @@ from fivebar_drake.core.progress import Progress
 from fivebar_drake.codesign.designs import actuator_mass, design_envelope, design_name
 from fivebar_drake.codesign.predict import CHECKS, DUTY, needs, power_maneuvers
 from fivebar_drake.codesign.report import COMPARED, DEFAULT, CodesignRun, write_report
-from fivebar_drake.codesign.search import predictions, ranked, search
+from fivebar_drake.codesign.search import corrected, predictions, ranked, search
 from fivebar_drake.codesign.spec import ON_MANEUVER, CodesignSpec
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.optimal import gait_floor
@@ -75,13 +75,6 @@ def corrections(pairs: list[tuple[dict, dict]]) -> dict[str, float]:
                 if check in margins and margin > 0:
                     out[key] = min(out.get(key, 1.0), margins[check] / margin)
     return {k: v for k, v in out.items() if v < 1.0}
-
-
-def corrected(entry: dict, factors: dict[str, float]) -> float:
-    """The entry's least predicted margin with the corrections applied."""
-    return min((margin * factors.get(f"{name} {check}", 1.0)
-                for name, p in entry["maneuvers"].items()
-                for check, margin in p["margins"].items()), default=math.inf)
 
 
 def next_finalist(spec: CodesignSpec, entries: list[dict], done: set[str],

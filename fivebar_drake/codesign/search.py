@@ -10,11 +10,12 @@ same trials as an uninterrupted run.
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
-from fivebar_drake.codesign.designs import design_of
+from fivebar_drake.codesign.designs import GEARBOX, MOTOR, design_of
 from fivebar_drake.codesign.predict import predict
-from fivebar_drake.codesign.spec import GEARBOX, MOTOR, CodesignSpec
+from fivebar_drake.codesign.spec import CodesignSpec
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.core.progress import Progress
 
@@ -135,3 +136,10 @@ def best_predicted(study, spec: CodesignSpec) -> dict | None:
 
 def _objectives_text(entry: dict) -> str:
     return ", ".join(f"{k} {v:.3f}" for k, v in entry["objectives"].items())
+
+
+def corrected(entry: dict, factors: dict[str, float]) -> float:
+    """The entry's least predicted margin with the corrections applied."""
+    return min((margin * factors.get(f"{name} {check}", 1.0)
+                for name, p in entry["maneuvers"].items()
+                for check, margin in p["margins"].items()), default=math.inf)

@@ -34,6 +34,7 @@ import json
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from fivebar_drake.codesign.designs import GEARBOX, MOTOR, design_of, design_params
 from fivebar_drake.core.actuators import catalog, gearboxes
 from fivebar_drake.core.files import read_input_text
 from fivebar_drake.core.validation import ParameterError, check_number, require
@@ -43,7 +44,6 @@ from fivebar_drake.robots.quadruped.config import with_changes
 from fivebar_drake.sweep.spec import Varied
 
 KEYS = ("variables", "requirements", "objectives", "budget", "compare")
-MOTOR, GEARBOX, RATIO = "motor", "gearbox", "motor.gear_ratio"
 OBJECTIVES = {"actuator_mass_kg": "minimize", "max_jump_height_m": "maximize",
               "peak_electrical_power_W": "minimize", "cost_of_transport": "minimize"}
 ON_MANEUVER = ("peak_electrical_power_W", "cost_of_transport")  # NAME:MANEUVER (a gait's)
@@ -133,8 +133,6 @@ def _compare(value, envelope: EnvelopeSpec) -> tuple[dict, ...]:
     """The designs to simulate beside the default: each a mapping {motor: NAME, gearbox: TYPE
     (optional), motor.gear_ratio: N, PATH: value}, resolved (designs.design_of) and checked
     against the base parameters."""
-    from fivebar_drake.codesign.designs import design_of, design_params
-
     require(isinstance(value, list) and len(value) <= 10, "compare", value,
             "must be a list of at most 10 designs, each {motor: NAME, motor.gear_ratio: N, ...}")
     out = []
