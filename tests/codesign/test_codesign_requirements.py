@@ -189,3 +189,21 @@ def test_an_envelope_without_its_duty_cycle_corrects_only_what_it_simulated():
     # a maneuver without a verdict: the envelope builds no duty cycle
     sim = {"maneuvers": {"bound": {"margins": {"torque": 1.0}}}}
     assert corrections([(predicted, sim)]) == {"bound torque": 0.5}
+
+
+def test_the_verified_front_is_of_the_passing_finalists_on_their_simulated_objectives(spec):
+    from fivebar_drake.codesign.report import verified_front
+
+    def finalist(key, mass, cot_predicted, cot_simulated, passes=True):
+        return {"key": key, "objectives": {"actuator_mass_kg": mass,
+                                           "cost_of_transport:bound": cot_predicted},
+                "simulated": {"passes": passes,
+                              "objectives": {"cost_of_transport:bound": cot_simulated}}}
+
+    light = finalist("light", 0.30, 2.0, 5.0)
+    # predicted worse than light on both, but simulated cheaper to run: on the front
+    heavy = finalist("heavy", 0.40, 2.5, 4.0)
+    beaten = finalist("beaten", 0.45, 1.0, 4.5)       # its prediction would have put it on it
+    failing = finalist("failing", 0.20, 1.0, 1.0, passes=False)
+    front = verified_front(spec, [light, heavy, beaten, failing])
+    assert [f["key"] for f in front] == ["light", "heavy"]
