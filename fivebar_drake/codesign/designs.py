@@ -27,6 +27,7 @@ from fivebar_drake.robots.quadruped.config import with_changes
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.simulation.builder import check_run
 MOTOR, GEARBOX, RATIO = "motor", "gearbox", "motor.gear_ratio"    # a design's own keys
+LINKED = "="            # a variable of paths joined by it sets each to its one value
 BUS = "motor.bus_voltage_V"
 
 
@@ -50,10 +51,12 @@ def gearing(motor: str, ratio: float | None, kind: str | None) -> tuple[float | 
 
 
 def design_of(values: dict) -> dict:
-    """The design of sampled values (motor, gearbox or None, ratio or None, other paths): the
-    gearing resolved (gearing); ParameterError if no gearbox spans the ratio."""
+    """The design of sampled values (motor, gearbox or None, ratio or None, other paths, linked
+    paths "a=b" each set to the value): the gearing resolved (gearing); ParameterError if no
+    gearbox spans the ratio."""
     ratio, kind = gearing(values[MOTOR], values.get(RATIO), values.get(GEARBOX))
-    others = {k: v for k, v in values.items() if k not in (MOTOR, GEARBOX, RATIO)}
+    others = {path: v for k, v in values.items() if k not in (MOTOR, GEARBOX, RATIO)
+              for path in k.split(LINKED)}
     return {MOTOR: values[MOTOR], GEARBOX: kind, RATIO: ratio, **others}
 
 

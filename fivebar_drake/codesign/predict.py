@@ -14,6 +14,9 @@
     current: upper bounds on the simulated (no controller does better, the package's asks
     more; the floor neglects the swing legs and the links' inertia).
 
+With requirements.actuator_mass, a design's actuator mass (motor and gearbox, as designed: no
+prediction) must lie within the band: its margin is the band's half-width over the design's
+relative distance from the reference mass (capped at MASS_MARGIN_CAP).
 The duty cycle's thermal margin is predicted as the least closed-form thermal margin of its
 maneuvers (duty_cycle). The stand-up has no prediction here: the simulation alone judges it.
 A requirement's margin is the figure over what the accepted verdict needs (>= 1 meets it): the safety factor over checks.sf_pass (sf_warn when warn is accepted), the
@@ -29,7 +32,7 @@ import numpy as np
 
 from fivebar_drake.analysis.design_points import evaluate_designs
 from fivebar_drake.codesign.designs import actuator_mass, design_name, design_params
-from fivebar_drake.codesign.spec import GAITS, ON_MANEUVER, CodesignSpec
+from fivebar_drake.codesign.spec import GAITS, MASS, ON_MANEUVER, CodesignSpec
 from fivebar_drake.core.footpath import Jump, Landing
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.envelope.spec import Maneuver
@@ -41,6 +44,7 @@ SCREENED = ("trot",)              # gait kinds level (a) predicts
 FLOORED = ("walk", "bound", "pronk")   # and the gait floors of level (b)
 DUTY = "duty cycle"               # its row beside the maneuvers (no maneuver name has a space)
 CHECKS = ("torque", "speed", "thermal")
+MASS_MARGIN_CAP = 10.0            # the mass band's margin of a design at (or near) its reference
 
 
 def needs(params: Params, accept: tuple[str, ...]) -> dict[str, float]:
@@ -136,13 +140,32 @@ def duty_cycle(spec: CodesignSpec, entry: dict) -> dict | None:
             "margins": {"thermal": min(margins)}}
 
 
+def mass_band(spec: CodesignSpec, mass_kg: float) -> dict | None:
+    """The mass band's row (module docstring), None without one."""
+    if spec.mass_band is None:
+        return None
+    reference, within = spec.mass_band
+    off = abs(mass_kg / reference - 1.0)
+    return {"level": "design", "actuator_mass_kg": mass_kg, "reference_kg": reference,
+            "within": within, "margins": {
+                "within": MASS_MARGIN_CAP if off * MASS_MARGIN_CAP <= within else within / off}}
+
+
 def max_jump_height(params: Params) -> float:
     """The highest vertical jump the legs and motors allow (m above standing, any controller:
     the ceiling over the leg's whole reach, optimal/vertical_jump.push)."""
-    standing = -params.gait.y_home_m
-    low, high = vertical_jump.reach(params)
-    jump = vertical_jump.push(vertical_jump.stroke(params, low, high), standing)
+    jump = ceiling(params)
     return 0.0 if jump is None else jump.body_apex_above_standing_m
+
+
+def ceiling(params: Params):
+    """The highest jump over the leg's reach (vertical_jump.Jump), None where there is none (no
+    push reaches takeoff, or no hip height within the limits)."""
+    try:
+        low, high = vertical_jump.reach(params)
+    except ParameterError:
+        return None
+    return vertical_jump.push(vertical_jump.stroke(params, low, high), -params.gait.y_home_m)
 
 
 def power_maneuvers(spec: CodesignSpec, objective: str) -> list[Maneuver]:
@@ -216,6 +239,9 @@ def predict(spec: CodesignSpec, designs: list[dict]) -> list[dict]:
                 out[i]["maneuvers"][m.name] = result
     for i in ok:
         entry = out[i]
+        band = mass_band(spec, entry["objectives"]["actuator_mass_kg"])
+        if band is not None:        # outside it, no floors
+            entry["maneuvers"][MASS] = band
         screened = _least(entry)[0] >= 1.0
         for m in maneuvers:
             if isinstance(m.scenario.gait, Landing) and screened:

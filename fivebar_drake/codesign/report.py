@@ -116,13 +116,34 @@ def codesign_report(spec: CodesignSpec, entries: list[dict], chosen: list[dict],
                            for i, d in enumerate(spec.compare)],
               "finalists": finalists, "recommended": recommended,
               "failure": "" if recommended else nobody_meets(spec, entries, finalists),
-              "corrections": factors,
+              "corrections": factors, "actuator_mass_band": (
+                  None if spec.mass_band is None else
+                  {"reference_kg": spec.mass_band[0], "within": spec.mass_band[1]}),
               "candidates": entries}
     report["not_simulated"] = not_simulated(spec, entries, finalists, recommended, factors)
     report["pareto_verified"] = ([f["key"] for f in verified_front(spec, finalists)]
                                  if len(spec.objectives) > 1 else [])
+    report["max_jumps"] = max_jumps(report, verified) if spec.simulate_max_jump else []
     report["answer"] = answer(spec, report)
     return report
+
+
+def max_jumps(report: dict, verified: dict) -> list[dict]:
+    """The simulated designs' max-effort jumps (run.max_jump), the default design first: key,
+    name, actuator mass, the jump's figures."""
+    rows = [(DEFAULT, "the default design", report["default"]["actuator_mass_kg"])]
+    rows += [(c["key"], c["name"], c["actuator_mass_kg"]) for c in report["compared"]]
+    rows += [(f["key"], f["name"], f["objectives"]["actuator_mass_kg"])
+             for f in report["finalists"]]
+    return [{"key": k, "name": n, "actuator_mass_kg": m, **verified[k]["max_jump"]}
+            for k, n, m in rows if k in verified and "max_jump" in verified[k]]
+
+
+def _jump_text(row: dict) -> str:
+    """A simulated max jump in a few words."""
+    return (f"{row['height_m'] * 1e3:.0f} mm simulated of its {row['planned_m'] * 1e3:.0f} mm "
+            f"plan (ceiling {row['ceiling_m'] * 1e3:.0f} mm"
+            + ("" if row["landed"] else "; its landing not verified") + ")")
 
 
 def answer(spec: CodesignSpec, report: dict) -> str:
@@ -143,11 +164,17 @@ def answer(spec: CodesignSpec, report: dict) -> str:
         f" and {c['name']}'s {c['actuator_mass_kg']:.3f} kg "
         f"({_outcome(c['simulated'], spec.accept)})"
         for c in report["compared"])
+    jumps = {j["key"]: j for j in report["max_jumps"]}
+    if r["key"] in jumps:
+        others = "; ".join(f"{j['name']}'s {_jump_text(j)}" for k, j in jumps.items()
+                           if k != r["key"])
+        decided = (f"; its max-effort jump rises {_jump_text(jumps[r['key']])}"
+                   + (f", against {others}" if others else "") + decided)
     return (f"Recommended design: {r['name']} — the best by {spec.objectives[0]} of the "
             f"finalists that pass every maneuver{duty} of the requirements in full Drake "
             f"simulation ({len(passing)} of {len(report['finalists'])}; every check of every "
             f"motor, accepted {'/'.join(spec.accept)}{_strictness(spec)}): actuator mass "
-            f"{mass:.3f} kg against the default design's "
+            f"{mass:.3f} kg{_band(spec)} against the default design's "
             f"{report['default']['actuator_mass_kg']:.3f} kg"
             f" ({_outcome(report['default']['simulated'], spec.accept)}){compared}{decided}; "
             f"its least margin {margin:.2f} ({where}); verified by simulating the whole "
@@ -156,6 +183,13 @@ def answer(spec: CodesignSpec, report: dict) -> str:
                + ", ".join(c["name"] for c in report["not_simulated"])
                + ") were kept out by the corrected predictions, not simulated"
                if report["not_simulated"] else "") + ".")
+
+
+def _band(spec: CodesignSpec) -> str:
+    """The mass band in a few words ("" without one)."""
+    if spec.mass_band is None:
+        return ""
+    return f" (held within ±{spec.mass_band[1]:.0%} of {spec.mass_band[0]:.3f} kg)"
 
 
 def _strictness(spec: CodesignSpec) -> str:
@@ -299,8 +333,9 @@ def markdown(spec: CodesignSpec, report: dict) -> str:
     lines += ["", "## Finalists", "",
               "Objectives: predicted / simulated (the power objectives: predicted on the gait "
               "floors' motions, which neglect the swing legs, simulated over the runs' "
-              f"statistics windows; FLAG: more than {FLAG:.0%} apart; the jump ceiling is a "
-              "prediction only).", "",
+              f"statistics windows; FLAG: more than {FLAG:.0%} apart; the jump: its ceiling "
+              + ("predicted, its planned max jump's apex simulated)." if spec.simulate_max_jump
+                 else "a prediction only)."), "",
               "| finalist | design | " + " | ".join(spec.objectives)
               + " | predicted margin | simulated | least simulated margin |",
               "|---|---|" + "---|" * len(spec.objectives) + "---|---|---|"]
@@ -311,6 +346,21 @@ def markdown(spec: CodesignSpec, report: dict) -> str:
             + f" | {_f(f['margin'])} ({f['short_of']}) | "
             + ("passes" if f["simulated"]["passes"] else "fails")
             + f" | {_f(margin)} ({where}) |")
+    if report["max_jumps"]:
+        lines += ["", "## Max-effort jump simulated", "",
+                  "Each simulated design's highest jump (optimal --simulate's: the jump maneuver "
+                  "planned at its ceiling, taking off where the leg can still stop its "
+                  "extension, run with the tracking controller; finalists/KEY/max_jump/). "
+                  "Height: the body's apex above standing. A run stopped after the apex (the "
+                  "landing sinking past the leg's reach), or whose legs gave way at the "
+                  "landing, still measured its apex: its landing is not verified.", "",
+                  "| design | actuator mass kg | ceiling mm | plan mm | simulated mm | of the "
+                  "plan | verdict | landing |", "|---|---|---|---|---|---|---|---|"]
+        lines += [f"| {j['key']}: {j['name']} | {j['actuator_mass_kg']:.4f} | "
+                  f"{j['ceiling_m'] * 1e3:.1f} | {j['planned_m'] * 1e3:.1f} | "
+                  f"{j['height_m'] * 1e3:.1f} | {j['share_of_plan']:.1%} | {j['verdict']} | "
+                  + ("achieved" if j["landed"] else f"not verified: {j['not_landed']}")
+                  + " |" for j in report["max_jumps"]]
     if report["not_simulated"]:
         first = spec.objectives[0]
         lines += ["", "## Better candidates not simulated", "",
@@ -354,7 +404,11 @@ def markdown(spec: CodesignSpec, report: dict) -> str:
                  "check.")
               + (" A run at a limit fails: a motor at its torque or voltage limit in any "
                  "sample, or a leg at a joint or extension limit." if spec.never_at_limit
-                 else ""), ""]
+                 else "")
+              + (f" Actuator mass held equal: every design's within ±{spec.mass_band[1]:.1%} "
+                 f"of {spec.mass_band[0]:.4f} kg (motor and gearbox as the catalogue models "
+                 "them; margin: the band's half-width over the design's distance from it, at "
+                 "most 10)." if spec.mass_band else ""), ""]
     return "\n".join(lines)
 
 

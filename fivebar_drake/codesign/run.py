@@ -8,6 +8,10 @@ or an existing scheduler), then the report (report.py):
     OUT/finalists/compared_I/     each design of the spec's `compare` list's envelope
     OUT/finalists/trial_N/        each finalist's envelope: envelope.md/json and a folder per
                                   maneuver with its recordings
+    OUT/finalists/KEY/max_jump/   with requirements.simulate_max_jump, each simulated design's
+                                  max-effort jump (optimal --simulate's: the jump planned at its
+                                  ceiling, the tracking controller): its measured apex is the
+                                  design's simulated max_jump_height_m
     OUT/design.md, design.json    the recommended design and why, margins, predicted vs simulated
     OUT/design.toml               the recommended design's parameter file
     OUT/pareto.png                the objectives, predicted and verified
@@ -29,6 +33,7 @@ journal, so a rerun simulates only what it lacks, and picks the same finalists.
 from __future__ import annotations
 
 import math
+import re
 from contextlib import ExitStack
 from pathlib import Path
 
@@ -37,17 +42,22 @@ import numpy as np
 from fivebar_drake.core.files import json_ready, lock_folder
 from fivebar_drake.core.progress import Progress
 from fivebar_drake.codesign.designs import actuator_mass, design_envelope, design_name
-from fivebar_drake.codesign.predict import CHECKS, DUTY, needs, power_maneuvers
+from fivebar_drake.codesign.predict import CHECKS, DUTY, ceiling, needs, power_maneuvers
 from fivebar_drake.codesign.report import COMPARED, DEFAULT, CodesignRun, write_report
 from fivebar_drake.codesign.search import corrected, predictions, ranked, search
 from fivebar_drake.codesign.spec import ON_MANEUVER, CodesignSpec
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.optimal import gait_floor
+from fivebar_drake.optimal.report import max_jump_plan
+from fivebar_drake.pipeline import run_simulation, write_simulation
+from fivebar_drake.simulation.scenario import Scenario, load_scenario
 from fivebar_drake.envelope.run import run_envelope
 from fivebar_drake.sweep.engine import (check_output_folder, check_scheduler,
                                         check_workers, dask_client)
 
 FINALISTS_DIR = "finalists"
+MAX_JUMP_DIR = "max_jump"
+MAX_JUMP_MARGIN_S = 0.1     # the max jump's run goes this past its span (as optimal --simulate)
 
 
 def pareto(spec: CodesignSpec, entries: list[dict]) -> list[dict]:
@@ -181,6 +191,32 @@ def _finite(x) -> float:
     return math.inf if x is None else x
 
 
+def max_jump(params, folder: Path) -> dict:
+    """The design's max-effort jump simulated (as `optimal --simulate`: the jump maneuver
+    planned at its ceiling, optimal.report.max_jump_plan, run with the tracking controller) into
+    folder: the ceiling, the plan's height, the measured apex (m above standing; 0 without a
+    measured jump), its share of the plan, the run's verdict and whether it ran to its end (a
+    run stopped at the landing, e.g. a foot target out of the leg's reach, still has its
+    measured apex: the landing is then not verified)."""
+    jump = ceiling(params)
+    if jump is None:
+        return {"ceiling_m": 0.0, "planned_m": 0.0, "height_m": 0.0, "share_of_plan": 0.0,
+                "verdict": "none", "landed": False, "not_landed": "no jump: no ceiling"}
+    plan = max_jump_plan(params, jump)
+    scenario = load_scenario(gait=plan, duration_s=Scenario().stand_s + plan.span_s(params.gait)
+                             + MAX_JUMP_MARGIN_S, controller={"kind": "tracking"})
+    record = run_simulation(scenario, params, progress=False)
+    summary = write_simulation(record, folder)[0]
+    height = summary["jump"]["height_m"] if summary["jump"] else 0.0
+    achieved = record.completed and summary["verdict"] in ("pass", "warn", "fail")
+    why = re.search(r"NOT ACHIEVED \(([^()]*)\)", summary.get("answer") or "")
+    return {"ceiling_m": jump.body_apex_above_standing_m, "planned_m": plan.height_m,
+            "height_m": height, "share_of_plan": height / plan.height_m, "plan": plan.fields(),
+            "verdict": summary["verdict"], "landed": achieved,
+            "not_landed": "" if achieved else record.error or (
+                why.group(1) if why else "the run was not achieved (its summary.md says why)")}
+
+
 def run_codesign(spec: CodesignSpec, out: str | Path, workers: int | None = None,
                  scheduler: str | None = None, progress: bool = True,
                  client=None) -> CodesignRun:
@@ -212,6 +248,11 @@ def run_codesign(spec: CodesignSpec, out: str | Path, workers: int | None = None
                 outcome = simulated(run.report, spec, {
                     name: r.summary for name, r in run.results.items()})
                 outcome["objectives"] = simulated_objectives(spec, design, run.results)
+                if spec.simulate_max_jump:
+                    jump = max_jump(design_envelope(spec.envelope, design).maneuvers[0].params,
+                                    out / FINALISTS_DIR / key / MAX_JUMP_DIR)
+                    outcome["max_jump"] = jump
+                    outcome["objectives"]["max_jump_height_m"] = jump["height_m"]
                 study.set_user_attr(attr, json_ready(outcome))
             verified[key] = study.user_attrs[attr]
             return verified[key]

@@ -7,6 +7,7 @@ to minimise and how much to spend.
                                           # default: the lightest type that spans the ratio
       motor.gear_ratio: [4.0, 12.0]       # a range [low, high] (continuous) or a list
       leg.ce_m: [0.135, 0.145, 0.155]     # any dotted parameter path, as a sweep's
+      leg.ac_m=leg.bd_m: [0.07, 0.11]     # paths joined by '=': one value for all of them
     requirements:
       envelope: envelope_demo.yaml  # an envelope spec (file or mapping): its maneuvers, duty
                                     # cycle and base parameter file (its `config`)
@@ -15,6 +16,12 @@ to minimise and how much to spend.
                                     # again at half the plant step: a marginal verdict fails)
       never_at_limit: true          # and no motor at its torque or voltage limit, no leg at a
                                     # joint or extension limit, in any sample
+      actuator_mass: {equal_to: 0.266, within: 0.02}   # the actuator's mass (motor and
+                                    # gearbox) within 2 % of a mass (kg) or of a design's
+                                    # ({motor: NAME, gearbox: TYPE, motor.gear_ratio: N})
+      simulate_max_jump: true       # each simulated design's max-effort jump simulated too
+                                    # (optimal --simulate's), its measured apex the simulated
+                                    # max_jump_height_m
     compare:                        # optional: designs simulated beside the default design,
       - {motor: odrive_d5065_270kv, motor.gear_ratio: 8.0}   # e.g. the obvious fix
     objectives: [actuator_mass_kg, max_jump_height_m]   # the first decides; default the mass;
@@ -34,10 +41,11 @@ import json
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from fivebar_drake.codesign.designs import GEARBOX, MOTOR, design_of, design_params
+from fivebar_drake.codesign.designs import (GEARBOX, LINKED, MOTOR, RATIO, actuator_mass,
+                                           design_of, design_params)
 from fivebar_drake.core.actuators import catalog, gearboxes
 from fivebar_drake.core.files import read_input_text
-from fivebar_drake.core.validation import ParameterError, check_number, require
+from fivebar_drake.core.validation import MAX_MASS_KG, ParameterError, check_number, require
 from fivebar_drake.core.yaml_files import load_spec_file
 from fivebar_drake.envelope.spec import EnvelopeSpec, spec_from_dict as envelope_from_dict
 from fivebar_drake.robots.quadruped.config import with_changes
@@ -49,7 +57,9 @@ OBJECTIVES = {"actuator_mass_kg": "minimize", "max_jump_height_m": "maximize",
 ON_MANEUVER = ("peak_electrical_power_W", "cost_of_transport")  # NAME:MANEUVER (a gait's)
 GAITS = ("trot", "walk", "bound", "pronk")      # the gaits whose floors predict them
 ACCEPT = {"pass": ("pass",), "warn": ("pass", "warn")}
-FLAGS = ("step_check", "never_at_limit")
+FLAGS = ("step_check", "never_at_limit", "simulate_max_jump")
+MASS = "actuator mass"            # the mass band's row beside the maneuvers (predict.py)
+MAX_WITHIN = 0.5                  # the widest mass band: +-50 %
 BUDGET = {"trials": (1, 100_000), "finalists": (1, 100), "seed": (0, 2**31 - 1)}
 DEFAULT_BUDGET = {"trials": 40, "finalists": 3, "seed": 0}
 
@@ -72,6 +82,8 @@ class CodesignSpec:
     seed: int
     step_check: bool = False
     never_at_limit: bool = False
+    simulate_max_jump: bool = False
+    mass_band: tuple[float, float] | None = None     # (kg, relative half-width)
     compare: tuple[dict, ...] = ()
     text: str = field(default="", compare=False)
     source: str = field(default="", compare=False)
@@ -109,15 +121,18 @@ def spec_from_dict(data, folder: Path, source: str = "") -> CodesignSpec:
     kinds = (_names("variables.gearbox", variables[GEARBOX], gearboxes())
              if GEARBOX in variables else ())
     vary = tuple(_varied(str(k), v) for k, v in variables.items() if k not in (MOTOR, GEARBOX))
-    envelope, accept, flags = _requirements(data.get("requirements"), folder, source)
+    envelope, accept, flags, band = _requirements(data.get("requirements"), folder, source)
     for v in vary:                  # each path and value alone against the base parameters
         for value in (v.values or (v.low, v.high)):
             try:
-                with_changes(envelope.maneuvers[0].params, {v.path: value})
+                with_changes(envelope.maneuvers[0].params,
+                             dict.fromkeys(v.path.split(LINKED), value))
             except ParameterError as err:
                 raise ParameterError(f"variables.{v.path} = {value!r}: {err.message}",
                                      f"variables.{v.path}") from None
     objectives = _objectives(data.get("objectives", ["actuator_mass_kg"]), envelope)
+    require(not flags["simulate_max_jump"] or "max_jump_height_m" in objectives,
+            "requirements.simulate_max_jump", True, "needs the objective max_jump_height_m")
     budget = data.get("budget", {})
     require(isinstance(budget, dict) and set(budget) <= set(BUDGET), "budget", budget,
             f"must be a mapping of {list(BUDGET)}")
@@ -126,10 +141,10 @@ def spec_from_dict(data, folder: Path, source: str = "") -> CodesignSpec:
     compare = _compare(data.get("compare", []), envelope)
     return CodesignSpec(motors=motors, gearboxes=kinds, vary=vary, envelope=envelope,
                         accept=ACCEPT[accept], objectives=tuple(objectives), source=source,
-                        compare=compare, **flags, **counts)
+                        compare=compare, mass_band=band, **flags, **counts)
 
 
-def _compare(value, envelope: EnvelopeSpec) -> tuple[dict, ...]:
+def _compare(value, envelope: EnvelopeSpec, field_name: str = "") -> tuple[dict, ...]:
     """The designs to simulate beside the default: each a mapping {motor: NAME, gearbox: TYPE
     (optional), motor.gear_ratio: N, PATH: value}, resolved (designs.design_of) and checked
     against the base parameters."""
@@ -137,7 +152,7 @@ def _compare(value, envelope: EnvelopeSpec) -> tuple[dict, ...]:
             "must be a list of at most 10 designs, each {motor: NAME, motor.gear_ratio: N, ...}")
     out = []
     for i, given in enumerate(value):
-        where = f"compare[{i}]"
+        where = field_name or f"compare[{i}]"
         require(isinstance(given, dict) and MOTOR in given, where, given,
                 "must be a mapping {motor: NAME, gearbox: TYPE (optional), motor.gear_ratio: N, "
                 "PATH: value}")
@@ -185,8 +200,13 @@ def _names(where: str, value, known) -> tuple[str, ...]:
 
 
 def _varied(path: str, value) -> Varied:
-    """A list of numbers, or a range [low, high] (low < high), of a dotted parameter path."""
+    """A list of numbers, or a range [low, high] (low < high), of a dotted parameter path (or
+    of several joined by LINKED, which take the same value)."""
     where = f"variables.{path}"
+    paths = path.split(LINKED)
+    require(all(paths) and len(set(paths)) == len(paths)
+            and (len(paths) == 1 or not {MOTOR, GEARBOX, RATIO} & set(paths)),
+            where, path, f"paths joined by {LINKED!r} must be distinct parameter paths")
     numbers = isinstance(value, list) and value and all(
         isinstance(v, (int, float)) and not isinstance(v, bool) for v in value)
     require(bool(numbers), where, value, "must be a range [low, high] or a list of numbers, "
@@ -200,13 +220,14 @@ def _varied(path: str, value) -> Varied:
     return Varied(path, values=tuple(float(v) for v in value))
 
 
-def _requirements(value, folder: Path, source: str) -> tuple[EnvelopeSpec, str, dict]:
-    """(the envelope spec, the accepted verdict's name, {step_check, never_at_limit}) of
-    `requirements`."""
+def _requirements(value, folder: Path, source: str) -> tuple[EnvelopeSpec, str, dict, tuple]:
+    """(the envelope spec, the accepted verdict's name, {step_check, never_at_limit,
+    simulate_max_jump}, the mass band or None) of `requirements`."""
     require(isinstance(value, dict) and "envelope" in value and set(value) <= {
-        "envelope", "accept", *FLAGS}, "requirements", value,
+        "envelope", "accept", "actuator_mass", *FLAGS}, "requirements", value,
         "must be a mapping {envelope: FILE or an envelope spec's mapping, accept: pass|warn, "
-        "step_check: true|false, never_at_limit: true|false}")
+        "step_check: true|false, never_at_limit: true|false, actuator_mass: {equal_to: KG or "
+        "a design, within: FRACTION}, simulate_max_jump: true|false}")
     accept = value.get("accept", "pass")
     require(accept in ACCEPT, "requirements.accept", accept, f"must be one of {list(ACCEPT)}")
     flags = {k: value.get(k, False) for k in FLAGS}
@@ -216,7 +237,23 @@ def _requirements(value, folder: Path, source: str) -> tuple[EnvelopeSpec, str, 
     if flags["step_check"]:
         envelope = dataclasses.replace(envelope, maneuvers=tuple(
             dataclasses.replace(m, step_check=True) for m in envelope.maneuvers))
-    return envelope, accept, flags
+    band = _mass_band(value["actuator_mass"], envelope) if "actuator_mass" in value else None
+    return envelope, accept, flags, band
+
+
+def _mass_band(value, envelope: EnvelopeSpec) -> tuple[float, float]:
+    """(the reference actuator mass in kg, the relative half-width) of
+    requirements.actuator_mass: {equal_to: KG or a design's mapping, within: FRACTION}."""
+    where = "requirements.actuator_mass"
+    require(isinstance(value, dict) and set(value) == {"equal_to", "within"}, where, value,
+            "must be a mapping {equal_to: KG or a design {motor: NAME, gearbox: TYPE, "
+            "motor.gear_ratio: N}, within: FRACTION (e.g. 0.02: +-2 %)}")
+    within = check_number(f"{where}.within", value["within"], 0.0, MAX_WITHIN)
+    reference = value["equal_to"]
+    if isinstance(reference, dict):
+        design = _compare([reference], envelope, f"{where}.equal_to")[0]
+        return actuator_mass(design), within
+    return check_number(f"{where}.equal_to", reference, 0.0, MAX_MASS_KG, low_open=True), within
 
 
 def _envelope(given, folder: Path, source: str) -> EnvelopeSpec:
