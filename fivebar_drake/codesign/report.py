@@ -447,6 +447,19 @@ def pareto_figure(spec: CodesignSpec, report: dict):
         ax.scatter([sim[first]], [sim[second]], marker="D", facecolors="none",
                    edgecolors="tab:green" if f["simulated"]["passes"] else "tab:red", zorder=3,
                    label="finalist: simulated objectives" if f is verified[0] else None)
+    if first == "max_jump_height_m":        # the simulated max jumps beside the predicted
+        finalists = {f["key"]: f for f in report["finalists"]}
+        for j in report.get("max_jumps", []):
+            f = finalists.get(j["key"])
+            if f is None:
+                ax.axvline(j["height_m"], color="k" if j["key"] == "default" else "tab:purple",
+                           ls="--" if j["key"] == "default" else ":",
+                           label=f"{j['key']}: max jump simulated")
+            elif not second:
+                ax.plot([f["objectives"][first], j["height_m"]], [y(f)] * 2, color="0.5", lw=0.8)
+                ax.scatter([j["height_m"]], [y(f)], marker="D", facecolors="none", zorder=3,
+                           edgecolors="tab:green" if f["simulated"]["passes"] else "tab:red",
+                           label=f"{j['key']}: max jump simulated")
     r = report["recommended"]
     if r is not None:
         ax.annotate("recommended\n" + r["name"].replace(", ", "\n").replace(" at ", "\nat "),

@@ -128,3 +128,20 @@ def test_design_md_sets_each_simulated_max_jump_beside_the_default(spec):
     assert "| 900.0 |" in table and "| 700.0 |" in table
     assert "not verified: out of reach" in table
     assert not math.isnan(rows[1]["share_of_plan"])
+
+
+def test_pareto_png_draws_the_simulated_max_jumps(spec):
+    from fivebar_drake.codesign.report import pareto_figure
+
+    finalist = {"key": "trial_3", "name": "longer legs", "margin": 1.2,
+                "objectives": {"actuator_mass_kg": 0.27, "max_jump_height_m": 1.2},
+                "simulated": {"passes": True, "maneuvers": {}}}
+    rows = [{"key": "default", "height_m": 0.7}, {"key": "trial_3", "height_m": 0.9}]
+    fig = pareto_figure(spec, {"candidates": [], "finalists": [finalist], "compared": [],
+                               "recommended": None, "max_jumps": rows,
+                               "default": {"actuator_mass_kg": 0.24}})
+    ax = fig.axes[0]
+    labels = ax.get_legend_handles_labels()[1]
+    assert "default: max jump simulated" in labels and "trial_3: max jump simulated" in labels
+    # the finalist's simulated apex drawn at its measured height, joined to its prediction
+    assert any(list(line.get_xdata()) == [1.2, 0.9] for line in ax.lines)
