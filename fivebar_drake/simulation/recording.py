@@ -10,8 +10,9 @@ Entities (timeline "sim_time"), SI units unless the name says otherwise:
   force at the foot, 1 mm per N), at pose_rate_hz;
 - per log interval (means over the plant steps of the interval): torque/<leg>/<A|B>/{applied,
   commanded, static_same_loads, static_contact, static_seed} and torque/<leg>/limit_{pos,neg}
-  (N·m; A in blues, B in oranges: applied bold, commanded light, static dark, static_contact
-  and static_seed in the legend, drawn once picked); joints/angle/<leg>/<A|B> (rad),
+  (N·m; A in blues, B in oranges: applied bold, commanded light, static dark; static_contact
+  and static_seed left out of the default layout, added to a view from the blueprint panel);
+  joints/angle/<leg>/<A|B> (rad),
   joints/speed/<leg>/<A|B> (rad/s); contact/{normal, tangential}/<leg> (N, leg plane);
   loop_gap_um/<leg> (µm, worst of the interval); body/height_m, body/forward_speed_m_s (with
   body/forward_speed_m_s/gait, the gait's speed), body/tilt_deg; stats/window (1 inside the
@@ -55,14 +56,14 @@ GROUND_MARGIN_M = 0.4          # the ground patch reaches this far beyond the pa
 GRID_M = 0.1                   # spacing of the lines on the ground (the robot passes over them)
 EYE_OFFSET_M = (0.40, -0.80, 0.25)   # the camera from the body at standing height (world/follow)
 # per torque series: its Signals field, the shade of the motor's hue (0 light .. 2 dark), line
-# width, drawn at first (else once picked in the legend)
-TORQUE_SERIES = {"applied": ("applied", 1, 2.5, True), "commanded": ("command", 0, 1.2, True),
-                 "static_same_loads": ("static_trot", 2, 1.5, True),
-                 "static_contact": ("static_contact", 1, 1.0, False),
-                 "static_seed": ("static_seed", 2, 1.0, False)}
-# the worst motor's series and their names in its panel (the glossary's words)
-WORST_SERIES = {"applied": "applied", "commanded": "demand",
-                "static_same_loads": "static, same loads"}
+# width, its name in the legends (the glossary's words), in a leg's panel at first (else left
+# out of the default layout: added to a view from the blueprint panel)
+TORQUE_SERIES = {"applied": ("applied", 1, 2.5, "applied", True),
+                 "commanded": ("command", 0, 1.2, "demand", True),
+                 "static_same_loads": ("static_trot", 2, 1.5, "static, same loads", True),
+                 "static_contact": ("static_contact", 1, 1.0, "static, contact", False),
+                 "static_seed": ("static_seed", 2, 1.0, "static, seed's model", False)}
+WORST_SERIES = ("applied", "commanded", "static_same_loads")    # the worst motor's, in its panel
 MOTOR_SHADES = {"A": ((150, 200, 240), (40, 120, 220), (20, 50, 140)),      # blues
                 "B": ((255, 190, 120), (240, 110, 20), (150, 55, 0))}       # oranges
 LIMIT_COLOR = (200, 40, 40)
@@ -71,6 +72,7 @@ LEG_COLOR_NAMES = ("green", "orange", "blue", "pink")
 MOTOR_WIDTHS = {"A": 1.6, "B": 0.8}   # per-leg plots (joints, per-cycle peaks): A bold, B thin
 EVENT_MARKERS = {"takeoff": "Up", "apex": "Diamond", "touchdown": "Down", "lift-off": "Up"}
 FLIGHT_COLOR = (255, 230, 0)
+WORST_ROOM = 1.25   # the worst motor's time axis: the run and a quarter more, for its legend
 PHASE_COLORS = ((120, 120, 120), (150, 90, 200), (0, 160, 160), (200, 140, 0), (90, 90, 220),
                 (60, 160, 60))
 
@@ -109,28 +111,35 @@ def headline(sig: Signals, legs, params: Params, summary: Summary) -> Headline:
 
 
 def blueprint(legs, height_m: float, head: Headline | None = None,
-              periodic: bool = True) -> rrb.Blueprint:
+              periodic: bool = True, duration_s: float = 0.0) -> rrb.Blueprint:
     """The viewer's layout, answering at a glance: on the left the verdict (a text panel: the
     worst motor, its figure against its limit, when, the thresholds, the phases), the robot
     seen from the frame world/follow (it moves with the body over the ground; the camera
     EYE_OFFSET_M from a point height_m above the ground under the body) and the event log; on
-    the right the worst motor's torques against its limit with the phases marked, every
-    motor's share of its limit (%), the per-cycle peaks against the limit (a gait) or the body's
-    height (a maneuver), and tabs with each leg's torques, the body's speed (a gait) and tilt,
-    the foot forces, loop gaps, joint angles and speeds and the statistics window. The y ranges
-    are set so that the ticks are readable at the default size."""
+    the right, half its height, the worst motor's torques against its limit with the phases
+    marked (its time axis WORST_ROOM times the run's duration_s: the legend beside the data,
+    not over it); below it, side by side, every motor's share of its limit (%) and tabs: the
+    per-cycle peaks against the limit (a gait) or the body's height (a maneuver) in front, the
+    foot normal forces, each leg's torques, the body's speed (a gait), height and tilt, the
+    tangential forces, loop gaps, joint angles and speeds and the statistics window. Every time
+    series gets half the window's height and the torque and share panels fixed y ranges: the
+    viewer labels its ticks at powers of ten (1 N·m, 10 %) only when they lie some 25 pixels
+    apart, so at the default size (1600 x 1000) every unit of N·m and every 10 % is labelled."""
     head = head or Headline(legs[0], MOTORS[0], 1.0, "driving", ())
     span = 1.15 * head.limit_Nm
 
-    def torques(origin, name, legend="RightBottom", visible=False):
-        return rrb.TimeSeriesView(origin=origin, name=name, axis_y=rrb.ScalarAxis(
-            range=(-span, span)), plot_legend=rrb.PlotLegend(legend, visible=visible))
+    def torques(leg):
+        hidden = [f"- torque/{leg}/{m}/{name}" for m in MOTORS
+                  for name, series in TORQUE_SERIES.items() if not series[-1]]
+        return rrb.TimeSeriesView(origin=f"torque/{leg}", contents=["$origin/**", *hidden],
+                                  name=f"{leg} torque (N·m): A blue, B orange",
+                                  axis_y=rrb.ScalarAxis(range=(-span, span)),
+                                  plot_legend=rrb.PlotLegend(visible=False))
 
     worst = f"{head.leg} {head.motor}"
     colours = ", ".join(f"{leg} {name}" for leg, name in zip(legs, LEG_COLOR_NAMES))
     look = np.array([0.0, 0.0, height_m])
-    below = [rrb.TimeSeriesView(origin="cycle_peak", name=f"per-cycle peak |torque| (N·m) of "
-                                f"every motor, limit {head.limit_Nm:.2f}: A {colours}; B darker",
+    below = [rrb.TimeSeriesView(origin="cycle_peak", name="per-cycle peak (N·m)",
                                 axis_y=rrb.ScalarAxis(range=(0.0, span)),
                                 plot_legend=rrb.PlotLegend(visible=False))
              if periodic else
@@ -159,26 +168,32 @@ def blueprint(legs, height_m: float, head: Headline | None = None,
                     origin="worst", name=f"worst motor {worst}: torque (N·m) against its "
                     f"±{head.limit_Nm:.2f} N·m {head.quadrant} limit; phases marked",
                     axis_y=rrb.ScalarAxis(range=(-span, span)),
+                    axis_x=rrb.TimeAxis(view_range=rr.TimeRange(
+                        rr.TimeRangeBoundary.absolute(seconds=0.0),
+                        rr.TimeRangeBoundary.absolute(seconds=WORST_ROOM * duration_s)))
+                    if duration_s > 0 else None,
                     plot_legend=rrb.PlotLegend("RightBottom")),
-                rrb.TimeSeriesView(origin="share", name="|demand| / its limit (%) of every "
-                                   f"motor: A {colours}; B darker; 100 % is the limit",
-                                   axis_y=rrb.ScalarAxis(range=(0.0, 120.0)),
-                                   plot_legend=rrb.PlotLegend(visible=False)),
-                *below,
-                rrb.Tabs(rrb.TimeSeriesView(origin="contact/normal",
-                                            name=f"foot normal force (N): {colours}",
-                                            plot_legend=rrb.PlotLegend("RightBottom")),
-                         *[torques(f"torque/{leg}", f"{leg} torque (N·m): A blue, B orange",
-                                   visible=True) for leg in legs],
-                         *body,
-                         rrb.TimeSeriesView(origin="body/tilt_deg", name="tilt (deg)"),
-                         rrb.TimeSeriesView(origin="contact/tangential",
-                                            name="foot tangential force (N)"),
-                         rrb.TimeSeriesView(origin="loop_gap_um", name="loop gap (µm)"),
-                         rrb.TimeSeriesView(origin="joints/angle", name="joint angles (rad)"),
-                         rrb.TimeSeriesView(origin="joints/speed", name="joint speeds (rad/s)"),
-                         rrb.TimeSeriesView(origin="stats", name="statistics window")),
-                row_shares=[4, 2, 2, 2]),
+                rrb.Horizontal(
+                    rrb.TimeSeriesView(origin="share", name=f"|demand| / limit (%): A {colours}; "
+                                       "B darker",
+                                       axis_y=rrb.ScalarAxis(range=(0.0, 120.0)),
+                                       plot_legend=rrb.PlotLegend(visible=False)),
+                    rrb.Tabs(
+                        *below,
+                        rrb.TimeSeriesView(origin="contact/normal",
+                                           name="foot normal force (N)",
+                                           plot_legend=rrb.PlotLegend("RightBottom")),
+                        *[torques(leg) for leg in legs],
+                        *body,
+                        rrb.TimeSeriesView(origin="body/tilt_deg", name="tilt (deg)"),
+                        rrb.TimeSeriesView(origin="contact/tangential",
+                                           name="foot tangential force (N)"),
+                        rrb.TimeSeriesView(origin="loop_gap_um", name="loop gap (µm)"),
+                        rrb.TimeSeriesView(origin="joints/angle", name="joint angles (rad)"),
+                        rrb.TimeSeriesView(origin="joints/speed", name="joint speeds (rad/s)"),
+                        rrb.TimeSeriesView(origin="stats", name="statistics window")),
+                    column_shares=[3, 2]),
+                row_shares=[1, 1]),
             column_shares=[2, 3]),
         rrb.BlueprintPanel(state="collapsed"), rrb.SelectionPanel(state="collapsed"),
         rrb.TimePanel(state="collapsed", timeline=TIMELINE))
@@ -257,7 +272,8 @@ def write_recording(path: Path, sig: Signals, record: SimulationRecord, summary:
     head = headline(sig, legs, record.params, summary)
     with recording_file(path, title,
                         blueprint(legs, float(sig.body_p[0, 2]) if len(sig.t) else 0.0, head,
-                                  bool(summary["periodic"]))) as rec:
+                                  bool(summary["periodic"]),
+                                  float(sig.t[-1]) if len(sig.t) else 0.0)) as rec:
         rec.log("verdict", rr.TextDocument(verdict_text(sig, legs, head, record.params, summary),
                                            media_type=rr.MediaType.MARKDOWN), static=True)
         if len(sig.t):
@@ -274,14 +290,13 @@ def _log_headline(rec, sig: Signals, legs, params: Params, head: Headline):
     its speed, in the quadrant of each sample (%)."""
     i, j = list(legs).index(head.leg), MOTORS.index(head.motor)
     ends = sig.t[[0, -1]]
-    for name, label in WORST_SERIES.items():
-        field, shade, width, _ = TORQUE_SERIES[name]
+    for name in WORST_SERIES:
+        field, shade, width, label, _ = TORQUE_SERIES[name]
         scalars(rec, f"worst/{name}", sig.t, getattr(sig, field)[:, i, j],
                 f"{head.leg} {head.motor} {label}", MOTOR_SHADES[head.motor][shade], width)
     for sign, side in ((1, "pos"), (-1, "neg")):
         scalars(rec, f"worst/limit_{side}", ends, [sign * head.limit_Nm] * 2,
-                f"{'+' if sign > 0 else '-'}{head.quadrant} limit {head.limit_Nm:.2f} N·m",
-                LIMIT_COLOR, 1.5)
+                f"{head.quadrant} limit ±{head.limit_Nm:.2f} N·m", LIMIT_COLOR, 1.5)
     span = 1.15 * head.limit_Nm
     for k, (name, start, _) in enumerate(head.phases):
         path = f"worst/phase_{k}"
@@ -351,10 +366,8 @@ def _log_series(rec, sig: Signals, legs, params: Params, summary: Summary):
     ends = sig.t[[0, -1]]
     start, end = summary["window_s"]
     cycle_ends = start + summary["cycle_s"] * np.arange(1, summary["cycles_in_window"] + 1)
-    # legs whose foot forces coincide (a jump's four feet) are drawn once, named together
     force = sig.foot_force_plane
-    groups = coinciding((force[..., 1], force[..., 0]), (FORCE_SAME_N, FORCE_SAME_N))
-    first = {g[0]: " = ".join(legs[k] for k in g) for g in groups}
+    first = {i: name for i, (name, drawn) in enumerate(force_names(sig, legs)) if drawn}
     for i, leg in enumerate(legs):
         scalars(rec, f"loop_gap_um/{leg}", sig.t, sig.gap[:, i] * 1e6, leg, LEG_COLORS[i])
         for kind, axis in (("normal", 1), ("tangential", 0)):
@@ -362,15 +375,15 @@ def _log_series(rec, sig: Signals, legs, params: Params, summary: Summary):
                     first.get(i, leg), LEG_COLORS[i], 1.5, visible=i in first)
         for sign, side in ((1, "pos"), (-1, "neg")):
             scalars(rec, f"torque/{leg}/limit_{side}", ends, [sign * limit] * 2,
-                    f"{'+' if sign > 0 else '-'}limit {limit:g}", LIMIT_COLOR, 1.0)
+                    f"driving limit ±{limit:.2f} N·m", LIMIT_COLOR, 1.0)
         for j, m in enumerate(MOTORS):
             scalars(rec, f"joints/angle/{leg}/{m}", sig.t, sig.q[:, i, j], f"{leg} {m}",
                     LEG_COLORS[i], MOTOR_WIDTHS[m])
             scalars(rec, f"joints/speed/{leg}/{m}", sig.t, sig.qd[:, i, j], f"{leg} {m}",
                     LEG_COLORS[i], MOTOR_WIDTHS[m])
-            for name, (field, shade, width, visible) in TORQUE_SERIES.items():
+            for name, (field, shade, width, label, _) in TORQUE_SERIES.items():
                 scalars(rec, f"torque/{leg}/{m}/{name}", sig.t, getattr(sig, field)[:, i, j],
-                        f"{m} {name}", MOTOR_SHADES[m][shade], width, visible)
+                        f"{m} {label}", MOTOR_SHADES[m][shade], width)
             if len(cycle_ends):
                 scalars(rec, f"cycle_peak/{leg}/{m}", cycle_ends,
                         summary["legs"][leg][m]["per_cycle_peak_Nm"], f"{leg} {m}",
@@ -392,10 +405,22 @@ def _log_series(rec, sig: Signals, legs, params: Params, summary: Summary):
             "statistics window")
 
 
+def force_names(sig: Signals, legs) -> list[tuple[str, bool]]:
+    """Per leg, the name of its foot force in the legends and whether its curve is drawn: legs
+    whose foot forces coincide (a jump's four feet) are drawn once, by the first of them, named
+    together ("FL = FR")."""
+    force = sig.foot_force_plane
+    groups = coinciding((force[..., 1], force[..., 0]), (FORCE_SAME_N, FORCE_SAME_N))
+    name = {i: " = ".join(legs[k] for k in g) for g in groups for i in g}
+    return [(name[i], any(g[0] == i for g in groups)) for i in range(len(legs))]
+
+
 def _log_events(rec, sig: Signals, legs):
     """The events as a text log and as markers: a flight's on the body height plot, a foot's on
-    its normal force."""
+    its normal force (named as its leg's curve: one legend entry per curve, the markers' shapes
+    say lift-off or touchdown, the event log which)."""
     events = run_events(sig, legs)
+    names = force_names(sig, legs)
     if not events:
         return
     rec.send_columns("events", indexes=[rr.TimeColumn(TIMELINE, duration=[e.t_s for e in events])],
@@ -411,7 +436,7 @@ def _log_events(rec, sig: Signals, legs):
                         (f"contact/normal/{leg}/{kind}", sig.foot_force_plane[rows, i, 1]))
         rec.send_columns(path, indexes=[rr.TimeColumn(TIMELINE, duration=times)],
                          columns=rr.Scalars.columns(scalars=values))
-        rec.log(path, rr.SeriesPoints(names=f"{leg} {kind}".strip(),
+        rec.log(path, rr.SeriesPoints(names=names[i][0] if leg else kind,
                                       markers=EVENT_MARKERS[kind], marker_sizes=5.0,
                                       colors=LEG_COLORS[i] if leg else FLIGHT_COLOR),
                 static=True)

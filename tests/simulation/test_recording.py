@@ -320,3 +320,73 @@ def test_a_jumps_recording_answers_at_a_glance(jump_recording):
     assert "share" in views and "body/forward_speed_m_s" not in views
     entities = {c.entity_path for c in RrdReader(path).stream().to_chunks()}
     assert not any("static_trot" in e for e in entities)
+
+
+# The web viewer at the screenshots' size (tools/recording_screenshot.py): the height its panels
+# share (the window, less its top bar and collapsed time panel), what each time series loses to
+# its title, a tab bar and its time axis, and the spacing at which it labels a tick (it puts
+# ticks at powers of ten: 1 N·m, 10 %, and labels them once they are this far apart; seen in
+# its screenshots: 11 px apart unlabelled, 25 px labelled).
+VIEWER_PX, PANEL_CHROME_PX, LABEL_PX = 1000 - 80, 70, 24
+
+
+def view_heights(rows) -> dict[str, float]:
+    """Each view's share of the viewer's height at the blueprint's default layout (a view in
+    tabs has the tabs' share): view entity -> share."""
+    import uuid
+
+    root = next(v["ViewportBlueprint:root_container"][0] for v in rows.values()
+                if "ViewportBlueprint:root_container" in v)
+    shares = {}
+
+    def walk(entity, share):
+        row = rows.get(entity, {})
+        if "ContainerBlueprint:contents" not in row:
+            shares[entity] = share
+            return
+        contents = row["ContainerBlueprint:contents"]
+        split = row["ContainerBlueprint:container_kind"] == [3]                # vertical
+        weights = ((row.get("ContainerBlueprint:row_shares") if split else None)
+                   or [1.0] * len(contents))
+        for child, w in zip(contents, weights):
+            walk("/" + child, share * w / sum(weights) if split else share)
+
+    walk(f"/container/{uuid.UUID(bytes=bytes(root))}", 1.0)
+    return shares
+
+
+def labelled_ticks(low: float, high: float, share: float) -> int:
+    """How many ticks the viewer labels on a fixed y range (low, high) in a panel with this
+    share of its height: the finest power of ten at least LABEL_PX apart."""
+    pixels = share * VIEWER_PX - PANEL_CHROME_PX
+    step = 10.0 ** np.ceil(np.log10(LABEL_PX * (high - low) / pixels))
+    return int(np.floor(high / step) - np.ceil(low / step)) + 1
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("run", ["trot", "jump"])
+def test_every_fixed_range_plot_labels_its_ticks_at_the_default_layout(run, request):
+    """Issue 32: at the default layout, without maximizing anything, each torque panel (the
+    worst motor's, each leg's in its tab, the per-cycle peaks) labels every N·m and the share
+    panel every 10 % (not a lone "0" or only 0 and 100); every plot with a fixed range labels
+    at least 4 ticks; the worst motor's time axis leaves room beside the run for its legend."""
+    path = (request.getfixturevalue("short_run")[3] / "run.rrd" if run == "trot"
+            else request.getfixturevalue("jump_recording")[3])
+    rows = blueprint_rows(path)
+    shares = view_heights(rows)
+    origin = {k: v["ViewBlueprint:space_origin"][0] for k, v in rows.items()
+              if "ViewBlueprint:space_origin" in v}
+    ranged = {origin[k.rsplit("/", 1)[0]]: (v["ScalarAxis:range"][0], shares[k.rsplit("/", 1)[0]])
+              for k, v in rows.items() if "ScalarAxis:range" in v}
+    assert {"worst", "share", *(f"torque/{leg}" for leg in LEGS)} <= set(ranged)
+    for name, ((low, high), share) in ranged.items():
+        pixels = share * VIEWER_PX - PANEL_CHROME_PX
+        unit = 10.0 if name == "share" else 1.0 if ("torque" in name or name in (
+            "worst", "cycle_peak")) else None
+        if unit is not None:
+            assert pixels * unit / (high - low) >= LABEL_PX, (name, share)
+        assert labelled_ticks(low, high, share) >= 4, (name, low, high, share)
+    end_s = next(v["TimeAxis:view_range"][0]["end"] for k, v in rows.items()
+                 if "TimeAxis:view_range" in v and origin[k.rsplit("/", 1)[0]] == "worst") * 1e-9
+    t, _ = read_series(path, "/worst/applied")
+    assert end_s >= 1.2 * t[-1]
