@@ -349,17 +349,20 @@ def markdown(spec: CodesignSpec, report: dict) -> str:
     if report["max_jumps"]:
         lines += ["", "## Max-effort jump simulated", "",
                   "Each simulated design's highest jump (optimal --simulate's: the jump maneuver "
-                  "planned at its ceiling, taking off where the leg can still stop its "
-                  "extension, run with the tracking controller; finalists/KEY/max_jump/). "
-                  "Height: the body's apex above standing. A run stopped after the apex (the "
+                  "planned at its ceiling, max_jump_height_m predicted, taking off where the leg "
+                  "can still stop its extension, the jump height it asks, run with the "
+                  "tracking controller; finalists/KEY/max_jump/). "
+                  "Heights: the body's apex above standing. A run stopped after the apex (the "
                   "landing sinking past the leg's reach), or whose legs gave way at the "
                   "landing, still measured its apex: its landing is not verified.", "",
-                  "| design | actuator mass kg | ceiling mm | plan mm | simulated mm | of the "
-                  "plan | verdict | landing |", "|---|---|---|---|---|---|---|---|"]
+                  "| design | actuator mass (kg) | max_jump_height_m predicted (mm) | jump height "
+                  "(mm) | body apex above standing: simulated (mm) | share of jump height | "
+                  "verdict | achieved |", "|---|---|---|---|---|---|---|---|"]
         lines += [f"| {j['key']}: {j['name']} | {j['actuator_mass_kg']:.4f} | "
                   f"{j['ceiling_m'] * 1e3:.1f} | {j['planned_m'] * 1e3:.1f} | "
                   f"{j['height_m'] * 1e3:.1f} | {j['share_of_plan']:.1%} | {j['verdict']} | "
-                  + ("achieved" if j["landed"] else f"not verified: {j['not_landed']}")
+                  + ("yes" if j["landed"] else f"no, its landing not verified: "
+                                               f"{j['not_landed']}")
                   + " |" for j in report["max_jumps"]]
     if report["not_simulated"]:
         first = spec.objectives[0]

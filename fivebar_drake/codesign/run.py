@@ -203,8 +203,8 @@ def max_jump(params, folder: Path) -> dict:
         return {"ceiling_m": 0.0, "planned_m": 0.0, "height_m": 0.0, "share_of_plan": 0.0,
                 "verdict": "none", "landed": False, "not_landed": "no jump: no ceiling"}
     plan = max_jump_plan(params, jump)
-    scenario = load_scenario(gait=plan, duration_s=Scenario().stand_s + plan.span_s(params.gait)
-                             + MAX_JUMP_MARGIN_S, controller={"kind": "tracking"})
+    duration = round(Scenario().stand_s + plan.span_s(params.gait) + MAX_JUMP_MARGIN_S, 3)
+    scenario = load_scenario(gait=plan, duration_s=duration, controller={"kind": "tracking"})
     record = run_simulation(scenario, params, progress=False)
     summary = write_simulation(record, folder)[0]
     height = summary["jump"]["height_m"] if summary["jump"] else 0.0

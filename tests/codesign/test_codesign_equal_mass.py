@@ -108,7 +108,9 @@ def test_bad_mass_bands_and_linked_paths_are_refused(tmp_path, capsys, change, w
     assert not (tmp_path / "out").exists()
 
 
-def test_design_md_sets_each_simulated_max_jump_beside_the_default(spec):
+def test_design_md_sets_each_simulated_max_jump_beside_the_default(spec, tmp_path):
+    from style_rules import violations
+
     def jump(height, landed):
         return {"max_jump": {"ceiling_m": 1.0, "planned_m": 0.8, "height_m": height,
                              "share_of_plan": height / 0.8, "verdict": "insufficient",
@@ -126,8 +128,10 @@ def test_design_md_sets_each_simulated_max_jump_beside_the_default(spec):
                            "candidates": [], "trials": 0, "predicted_meeting": 0})
     table = text.split("## Max-effort jump simulated")[1]
     assert "| 900.0 |" in table and "| 700.0 |" in table
-    assert "not verified: out of reach" in table
+    assert "no, its landing not verified: out of reach" in table
     assert not math.isnan(rows[1]["share_of_plan"])
+    (tmp_path / "design.md").write_text("Recommended: 2 of 3 pass.\n" + table)
+    assert not violations(tmp_path / "design.md")       # the table's headers in the glossary
 
 
 def test_pareto_png_draws_the_simulated_max_jumps(spec):
