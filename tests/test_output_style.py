@@ -105,3 +105,19 @@ def written(tmp_path_factory, simulated):
 def test_the_demos_reports_keep_the_guide(written, report):
     assert (written / report).is_file()
     assert report_violations(written / report) == []
+
+
+@pytest.mark.parametrize("run", ["trot", "jump"])
+def test_a_runs_answer_opens_with_its_verdict(written, run):
+    """A gait's and a maneuver's summary.md alike: the answer's first words are the verdict and
+    the check that decided it, then the worst motor and its figure (not the figure first)."""
+    import json
+
+    s = json.loads((written / run / "summary.json").read_text())
+    first = [line for line in (written / run / "summary.md").read_text().splitlines()
+             if line.strip()][1]
+    if s["verdict"] in ("pass", "warn", "fail"):
+        assert first.startswith(f"{s['verdict'].upper()}, decided by the {s['deciding_check']} "
+                                f"check: worst motor {s['worst_motor']}, "), first
+    else:
+        assert first.startswith(("NOT ACHIEVED", "No verdict")), first

@@ -43,9 +43,11 @@ def seed_analysis_load(params: Params) -> str:
 
 
 def answer(s: Summary, params: Params) -> str:
-    """The plain sentence that answers 'how much torque does the gait need?' for this run,
-    naming the check that decided the verdict; the static torque on the same poses with the
-    same load schedule beside it, and the seed's own figure separately with its load model."""
+    """The answer to 'how much torque does the gait (or maneuver) need?' for this run, opening
+    (as every report's first line, docs/output_style.md) with the verdict, the check that
+    decided it, the worst motor and its figure against its limit (opening); then the need in
+    words, each check, the static torque on the same poses with the same load schedule beside
+    it, and a gait's seed figure separately with its load model."""
     if s["verdict"] == "insufficient":
         if not s["completed"] and not s["interrupted"]:
             return (f"No verdict: the run stopped early, at {s['duration_s']:.2f} s of the "
@@ -80,12 +82,10 @@ def answer(s: Summary, params: Params) -> str:
         else:
             need = (f"its demand p99 of {m['demand_p99_Nm']:.2f} N·m (worst motor {leg} {name}) "
                     "is not a need")
-        return (f"{head} the motion was NOT ACHIEVED ({why}): {need}; the saturated demand is "
-                f"the controller's error growing, not what the gait takes. {seed}").rstrip()
+        return (f"NOT ACHIEVED, decided by the achieved check ({why}). {head} {need}; the "
+                "saturated demand is the controller's error growing, not what the "
+                f"{'gait' if s['periodic'] else 'maneuver'} takes. {seed}").rstrip()
     checks = "; ".join(check_text(k, c[k]) for k in CHECK_ORDER)
-    verdict_text = (f"{verdict_word(s['verdict'])}, decided by the {s['deciding_check']} check"
-                    if s["verdict"] != "marginal" else
-                    f"MARGINAL: {s['step_check']['why']} (step check at half the plant step)")
     static = m["static_trot_Nm"]
     over = f"over {s['cycles_in_window']} cycles" if s["periodic"] else "over the maneuver"
     limited = demand_unmet(c)
@@ -94,22 +94,35 @@ def answer(s: Summary, params: Params) -> str:
     if limited:
         need = (f"the motors worked at their limits (worst motor {leg} {name}, at "
                 f"{limit_shares_text(limited['limits'])}, {over}): they delivered "
-                f"{m['p99_torque_Nm']:.2f} N·m ({PERCENTILE:g}th percentile; against each "
-                f"sample's own quadrant {t['share_of_limit']:.0%} of the {t['quadrant']} limit, "
-                f"{t['limit_Nm']:.2f} N·m), and what the controller asked beyond the limit was "
-                "not needed: the motion was achieved without it (the demand's "
+                f"{m['p99_torque_Nm']:.2f} N·m ({PERCENTILE:g}th percentile), and what the "
+                "controller asked beyond the limit was not needed: the motion was achieved "
+                "without it (the demand's "
                 f"{PERCENTILE:g}th percentile: {m['demand_p99_Nm']:.2f} N·m)")
     else:
         reached = ("it never reached a limit" if not m["saturated_fraction"] else
                    f"it sat at {limit_shares_text(m['limit_shares'])}")
         need = (f"the motors need {m['demand_p99_Nm']:.2f} N·m ({PERCENTILE:g}th percentile "
-                f"of the demand {over}, worst motor {leg} {name}; against each sample's own "
-                f"quadrant {t['share_of_limit']:.0%} of the {t['quadrant']} limit, "
-                f"{t['limit_Nm']:.2f} N·m; {reached})")
-    return (f"{head} {need}. "
-            f"Verdict {verdict_text}. Checks: {checks}. On the same poses with the same load schedule "
+                f"of the demand {over}, worst motor {leg} {name}; {reached})")
+    return (f"{opening(s, leg, name, t, c)} {head} {need}. "
+            f"Checks: {checks}. On the same poses with the same load schedule "
             f"(the robot's weight shared by the feet in stance) the static torque is "
             f"{static:.2f} N·m: the dynamics add {figure / static - 1:+.0%}. {seed}").rstrip()
+
+
+def opening(s: Summary, leg: str, name: str, t: TorqueCheck, c) -> str:
+    """The answer's first sentence: "FAIL, decided by the torque check: worst motor RL A, SF
+    1.46 (3.43 N·m, 69 % of its 5.00 N·m driving limit)." — the verdict, the deciding check
+    and its figure for a speed or thermal one, then the worst motor's torque figure against the
+    limit of its quadrant (each sample's own: driving or braking)."""
+    verdict = (f"{verdict_word(s['verdict'])}, decided by the {s['deciding_check']} check"
+               if s["verdict"] != "marginal" else
+               f"MARGINAL ({s['step_check']['why']}; step check at half the plant step)")
+    check = s.get("deciding_check")
+    deciding = (f"{check_text(check, c[check])}; " if check in ("speed", "thermal") else "")
+    torque = ("no torque demand" if t["sf"] is None else
+              f"SF {t['sf']:.2f} ({t['torque_Nm']:.2f} N·m, {t['share_of_limit'] * 100:.0f} % "
+              f"of its {t['limit_Nm']:.2f} N·m {t['quadrant']} limit)")
+    return f"{verdict}: worst motor {leg} {name}, {deciding}{torque}."
 
 
 def check_text(name: str, c: TorqueCheck | SpeedCheck | ThermalCheck) -> str:

@@ -57,6 +57,9 @@ def test_each_maneuver_is_achieved(runs, name):
     record, sig, s = runs[name]
     assert record.completed, record.error
     assert s["verdict"] not in ("not_achieved", "insufficient"), s["answer"]
+    # the answer opens with the verdict, its check and the worst motor, as a gait's does
+    assert s["answer"].startswith(f"{s['verdict'].upper()}, decided by the "
+                                  f"{s['deciding_check']} check: worst motor {s['worst_motor']}, ")
     for leg in s["legs"].values():
         for m in leg.values():
             assert m["checks"]["achieved"]["verdict"] == "pass", m["checks"]["achieved"]

@@ -281,7 +281,14 @@ def test_simulate_cli_writes_outputs_and_recording(tmp_path, capsys):
                 "real_time_factor", "verdict", "answer"):
         assert key in summary, key
     assert summary["gait"] == "trot" and summary["closure"] == "ball"
-    assert summary["answer"].startswith("At 1 Hz with the trot gait the motors need")
+    # the answer first (docs/output_style.md): the verdict, its check, the worst motor's figure
+    leg, motor = summary["worst_motor"].split()
+    sf = summary["legs"][leg][motor]["checks"]["torque"]["sf"]
+    assert summary["answer"].startswith(
+        f"{summary['verdict'].upper()}, decided by the {summary['deciding_check']} check: "
+        f"worst motor {leg} {motor}, ")
+    assert f"SF {sf:.2f} (" in summary["answer"].split(". ")[0]
+    assert "At 1 Hz with the trot gait the motors need" in summary["answer"]
     for leg in ("FL", "FR", "RL", "RR"):
         for motor in ("A", "B"):
             m = summary["legs"][leg][motor]
