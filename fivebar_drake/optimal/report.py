@@ -236,7 +236,8 @@ def answer(r: dict, params: Params) -> str:
         + ("no level body balances" if t["level_floor_Nm"] is None else
            f"{t['level_floor_Nm']:.2f} N·m held level")
         + f"; {t['free_height_floor_Nm']:.2f} N·m with the body "
-        f"{t['free_height_change_m'] * 1e3:.0f} mm higher)"
+        f"{abs(t['free_height_change_m']) * 1e3:.0f} mm "
+        f"{'higher' if t['free_height_change_m'] >= 0 else 'lower'})"
         + (f", beyond the motors' {params.motor.peak_torque_Nm:.2f} N·m (the least found)"
            if t["beyond_motors"] else "")
         + ("" if t["thermal_margin"] is None else
