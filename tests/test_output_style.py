@@ -7,7 +7,10 @@ sweep.md (its closed-form points). The demo's other reports are held where their
 them: the design study's design.md with its envelopes' envelope.md and summary.md
 (tests/codesign), optimal.md (tests/optimal/test_vertical_jump.py), the envelope's
 (tests/envelope/test_envelope.py), the seed studies' report.md (tests/studies) and the packaged
-robots' (tests/robots)."""
+robots' (tests/robots). Here too, cheaply: the demo's gear comparison of two real runs (the
+shared 4.5 s trot at 8:1 and one at 11.5:1) and the Doggo- and Minitaur-style robots'
+optimal.md (all but its gait floors: their rows are the default robot's code, held in
+tests/optimal; the floors would cost 14 s per robot)."""
 
 from pathlib import Path
 
@@ -121,3 +124,57 @@ def test_a_runs_answer_opens_with_its_verdict(written, run):
                                 f"check: worst motor {s['worst_motor']}, "), first
     else:
         assert first.startswith(("NOT ACHIEVED", "No verdict")), first
+
+
+@pytest.fixture(scope="module")
+def gear_comparison(tmp_path_factory, simulated):
+    """The demo's gear_comparison.md (`compare` of the trot at 8:1 and at 11.5:1): the 4.5 s
+    ball-closure trot the session shares (tests/simulation/test_simulation.py,
+    tests/test_pipeline.py) and the same at 11.5:1 (2.5 s to simulate and summarize)."""
+    from fivebar_drake.pipeline import run_simulation, summarize_run
+    from fivebar_drake.robots.quadruped.config import load_params
+    from fivebar_drake.simulation.comparison import load_summaries, markdown
+    from fivebar_drake.simulation.scenario import load_scenario
+    from fivebar_drake.simulation.summary_text import write_summary
+    from fivebar_drake.studies.fivebar_leg import with_sets
+
+    out = tmp_path_factory.mktemp("gear")
+    geared = with_sets(load_params(), ["motor.gear_ratio=11.5"])
+    records = {"trot": simulated(duration_s=4.5, closure="ball"),
+               "trot_gear_11.5": run_simulation(load_scenario(duration_s=4.5, closure="ball"),
+                                                geared, progress=False)}
+    for name, record in records.items():
+        write_summary(summarize_run(record), record.params, out / name)
+    path = out / "gear_comparison.md"
+    path.write_text(markdown(load_summaries([out / name for name in records])))
+    return path
+
+
+def test_the_gear_comparison_of_two_real_runs_answers_first(gear_comparison):
+    """Issue 32: that the 11.5:1 gearbox turns the torque failure into a speed failure is said
+    in the first line, each run's verdict with its deciding check and figure."""
+    assert report_violations(gear_comparison) == []
+    first = gear_comparison.read_text().split("\n\n")[1]
+    assert first.startswith("**Answer:** trot: FAIL by the torque check (worst motor ")
+    assert "trot_gear_11.5: FAIL by the speed check" in first
+    assert "% of the time beyond the torque–speed envelope" in first
+    assert "the torque check's fail became a fail of the speed check" in first
+
+
+@pytest.mark.parametrize("robot", ["doggo", "minitaur"])
+def test_the_packaged_robots_optimal_report_keeps_the_guide(tmp_path, monkeypatch, robot):
+    """optimal.md of a Doggo- or Minitaur-style robot (`make demo`'s robots/<robot>/optimal):
+    its jump, drop, stand-up and published figures as the command writes them, the gait floors
+    left out (monkeypatched to none: 1 s instead of 15 s a robot)."""
+    import fivebar_drake.optimal.report as optimal
+    from fivebar_drake.core.parameter_files import packaged
+    from fivebar_drake.robots.quadruped.config import load_params
+
+    monkeypatch.setattr(optimal, "KINDS", ())
+    monkeypatch.setattr(optimal, "FASTEST", ())
+    result, _ = optimal.jump_limits(load_params(packaged(f"{robot}.toml")))
+    assert result["published"], "a packaged robot's published jump is in its report"
+    path = tmp_path / "optimal.md"
+    path.write_text(optimal.markdown(result))
+    assert path.read_text().splitlines()[2] == result["answer"]
+    assert report_violations(path) == []

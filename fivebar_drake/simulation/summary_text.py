@@ -111,14 +111,21 @@ def answer(s: Summary, params: Params) -> str:
 
 def opening(s: Summary, leg: str, name: str, t: TorqueCheck, c) -> str:
     """The answer's first sentence: "FAIL, decided by the torque check: worst motor RL A, SF
-    1.46 (3.43 N·m, 69 % of its 5.00 N·m driving limit)." — the verdict, the deciding check
-    and its figure for a speed or thermal one, then the worst motor's torque figure against the
-    limit of its quadrant (each sample's own: driving or braking)."""
+    1.46 (3.43 N·m, 69 % of its 5.00 N·m driving limit)." — the verdict, the deciding check,
+    the worst motor, the deciding figure of a speed check ("3.2 % of the time beyond the
+    torque–speed envelope (least margin 1.00)") or a thermal one, then its torque figure
+    against the limit of its quadrant (each sample's own: driving or braking)."""
     verdict = (f"{verdict_word(s['verdict'])}, decided by the {s['deciding_check']} check"
                if s["verdict"] != "marginal" else
                f"MARGINAL ({s['step_check']['why']}; step check at half the plant step)")
-    check = s.get("deciding_check")
-    deciding = (f"{check_text(check, c[check])}; " if check in ("speed", "thermal") else "")
+    check, d = s.get("deciding_check"), c.get(s.get("deciding_check")) or {}
+    deciding = ""
+    if check == "speed":
+        least = "none driving" if d["least_margin"] is None else f"{d['least_margin']:.2f}"
+        deciding = (f"{d['outside_fraction'] * 100:.1f} % of the time beyond the torque–speed "
+                    f"envelope (least margin {least}); ")
+    elif check == "thermal" and d.get("margin") is not None:
+        deciding = f"continuous / RMS current {d['margin']:.2f}; "
     torque = ("no torque demand" if t["sf"] is None else
               f"SF {t['sf']:.2f} ({t['torque_Nm']:.2f} N·m, {t['share_of_limit'] * 100:.0f} % "
               f"of its {t['limit_Nm']:.2f} N·m {t['quadrant']} limit)")
