@@ -33,7 +33,6 @@ journal, so a rerun simulates only what it lacks, and picks the same finalists.
 from __future__ import annotations
 
 import math
-import re
 from contextlib import ExitStack
 from pathlib import Path
 
@@ -195,9 +194,9 @@ def max_jump(params, folder: Path) -> dict:
     """The design's max-effort jump simulated (as `optimal --simulate`: the jump maneuver
     planned at its ceiling, optimal.report.max_jump_plan, run with the tracking controller) into
     folder: the ceiling, the plan's height, the measured apex (m above standing; 0 without a
-    measured jump), its share of the plan, the run's verdict and whether it ran to its end (a
-    run stopped at the landing, e.g. a foot target out of the leg's reach, still has its
-    measured apex: the landing is then not verified)."""
+    measured jump), its share of the plan, the run's verdict and why its landing is not verified
+    (landing_not_verified; a run stopped at the landing, e.g. a foot target out of the leg's
+    reach, or whose legs gave way, still has its measured apex)."""
     jump = ceiling(params)
     if jump is None:
         return {"ceiling_m": 0.0, "planned_m": 0.0, "height_m": 0.0, "share_of_plan": 0.0,
@@ -208,13 +207,24 @@ def max_jump(params, folder: Path) -> dict:
     record = run_simulation(scenario, params, progress=False)
     summary = write_simulation(record, folder)[0]
     height = summary["jump"]["height_m"] if summary["jump"] else 0.0
-    achieved = record.completed and summary["verdict"] in ("pass", "warn", "fail")
-    why = re.search(r"NOT ACHIEVED \(([^()]*)\)", summary.get("answer") or "")
+    not_landed = landing_not_verified(summary, record.error)
     return {"ceiling_m": jump.body_apex_above_standing_m, "planned_m": plan.height_m,
             "height_m": height, "share_of_plan": height / plan.height_m, "plan": plan.fields(),
-            "verdict": summary["verdict"], "landed": achieved,
-            "not_landed": "" if achieved else record.error or (
-                why.group(1) if why else "the run was not achieved (its summary.md says why)")}
+            "verdict": summary["verdict"], "landed": not not_landed, "not_landed": not_landed}
+
+
+def landing_not_verified(summary: dict, error: str = "") -> str:
+    """Why a max jump's run does not verify its landing ("" where it does: the run went to its
+    end with a verdict, the motion achieved): the run's error where it stopped, else the
+    achieved check's reasons (summary.json's legs), else a pointer to its summary.md."""
+    if error:
+        return error
+    if summary["verdict"] in ("pass", "warn", "fail"):
+        return ""
+    why = sorted({m["checks"]["achieved"]["why"] for motors in summary["legs"].values()
+                  for m in motors.values()
+                  if ((m.get("checks") or {}).get("achieved") or {}).get("why")})
+    return "; ".join(why) or f"{summary['verdict']}: its summary.md says why"
 
 
 def run_codesign(spec: CodesignSpec, out: str | Path, workers: int | None = None,

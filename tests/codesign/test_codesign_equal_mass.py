@@ -149,3 +149,19 @@ def test_pareto_png_draws_the_simulated_max_jumps(spec):
     assert "default: max jump simulated" in labels and "trial_3: max jump simulated" in labels
     # the finalist's simulated apex drawn at its measured height, joined to its prediction
     assert any(list(line.get_xdata()) == [1.2, 0.9] for line in ax.lines)
+
+
+def test_a_max_jump_landing_is_verified_only_by_a_run_to_its_end_with_a_verdict():
+    from fivebar_drake.codesign.run import landing_not_verified
+
+    def summary(verdict, why=None):
+        checks = {"achieved": {"passed": why is None, "why": why}}
+        return {"verdict": verdict, "legs": {leg: {m: {"checks": checks} for m in "AB"}
+                                             for leg in ("FL", "RR")}}
+
+    assert landing_not_verified(summary("fail")) == ""      # a verdict: the landing was done
+    assert landing_not_verified(summary("not_achieved", "the legs gave way")) == \
+        "the legs gave way"
+    assert landing_not_verified(summary("insufficient"), "foot target out of reach") == \
+        "foot target out of reach"
+    assert "summary.md" in landing_not_verified(summary("insufficient"))
