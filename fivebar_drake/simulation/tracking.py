@@ -171,15 +171,18 @@ class JumpTrackingController(FootLegController):
       measured hip height (feed-forward: the links' and rotors' inertia, the links' weight,
       -J_F^T F of the optimal ground force, friction) plus -J_F^T of a feedback ground force:
       along the leg's y the hip's speed towards the optimum's at its height, along x the foot
-      towards the stroke's line x_center (both at the swing loop's bandwidth on a quarter of
+      towards the stroke's line x_center (both at the body loop's bandwidth on a quarter of
       the robot), roll and pitch towards level (_level); within the envelope at the joints'
       measured speeds and the optimum's (_within);
+    - the flight: a leg off the ground (support weight 0) after its push, or a drop's before
+      touchdown, is held at the touchdown pose (the catch's top) by the swing loop's joint PD,
+      with no weight to carry in free fall, whatever the path's clock says;
     - the landing (CatchPlan): on each foot measured on the ground while its hip sinks, the
       stance law's vertical force gives way to the least-torque catch's at the measured hip
-      height (scaled by the foot's support weight) plus the levelling moment's share and a
+      height, in full from the first contact, plus the levelling moment's share and a
       feedback on the hip's sinking speed towards the catch's (at the body loop's bandwidth);
-      the horizontal force stays the stance law's. The links' weight, the swing legs and
-      everything between the strokes are the foot/leg controller's."""
+      the horizontal force stays the stance law's.
+    The crouch, the recovery and the links' weight are the foot/leg controller's."""
 
     def __init__(self, params, layout, gains, knobs, transfer_s, push: JumpPlan | None,
                  landing: CatchPlan):
