@@ -111,10 +111,11 @@ def answer(s: Summary, params: Params) -> str:
 
 def opening(s: Summary, leg: str, name: str, t: TorqueCheck, c) -> str:
     """The answer's first sentence: "FAIL, decided by the torque check: worst motor RL A, SF
-    1.46 (3.43 N·m, 69 % of its 5.00 N·m driving limit)." — the verdict, the deciding check,
-    the worst motor, the deciding figure of a speed check ("3.2 % of the time beyond the
-    torque–speed envelope (least margin 1.00)") or a thermal one, then its torque figure
-    against the limit of its quadrant (each sample's own: driving or braking)."""
+    1.46 (its demand's 99th percentile at 69 % of its 5.00 N·m driving limit, ...)." — the
+    verdict, the deciding check, the worst motor, the deciding figure of a speed check ("3.2 %
+    of the time beyond the torque–speed envelope (least margin 1.00)") or a thermal one, then
+    its torque figure as a share of the limit of its quadrant (each sample's own: driving or
+    braking; no torque in N·m: the demand's p99 in N·m, quadrants mixed, follows it)."""
     verdict = (f"{verdict_word(s['verdict'])}, decided by the {s['deciding_check']} check"
                if s["verdict"] != "marginal" else
                f"MARGINAL ({s['step_check']['why']}; step check at half the plant step)")
@@ -127,8 +128,9 @@ def opening(s: Summary, leg: str, name: str, t: TorqueCheck, c) -> str:
     elif check == "thermal" and d.get("margin") is not None:
         deciding = f"continuous / RMS current {d['margin']:.2f}; "
     torque = ("no torque demand" if t["sf"] is None else
-              f"SF {t['sf']:.2f} ({t['torque_Nm']:.2f} N·m, {t['share_of_limit'] * 100:.0f} % "
-              f"of its {t['limit_Nm']:.2f} N·m {t['quadrant']} limit)")
+              f"SF {t['sf']:.2f} (its demand's 99th percentile at "
+              f"{t['share_of_limit'] * 100:.0f} % of its {t['limit_Nm']:.2f} N·m {t['quadrant']} "
+              f"limit, each sample against its own quadrant's)")
     return f"{verdict}: worst motor {leg} {name}, {deciding}{torque}."
 
 
