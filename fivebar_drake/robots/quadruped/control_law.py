@@ -411,9 +411,9 @@ def leg_plan(k, references, state, loads, memory, t):
     share = min(weights.sum() / expected, 1.0) if expected > 0.0 else min(weights.sum(), 1.0)
     base = np.zeros(2 * n)
     for i in range(n):
-        for j in range(2):
-            base[k.state.actuators[i, j]] = (weights[i] * stance[i, j]
-                                             + (1.0 - weights[i]) * swing[i, j])
+        for j in range(2):          # a leg wholly in stance needs no reachable swing target
+            swung = (1.0 - weights[i]) * swing[i, j] if weights[i] < 1.0 else 0.0
+            base[k.state.actuators[i, j]] = weights[i] * stance[i, j] + swung
     return LegPlan(base, goal, body, weights, share, fx, fy, r_wb, jf_now)
 
 

@@ -158,3 +158,21 @@ def test_the_first_foot_down_after_a_flight_takes_its_share_only(params, standin
             vertical = delivered_forces(params, layout, state, command) @ plane_rotation()[2, :2]
             w = smoothstep(since / transfer)
             assert 4 * w < 1.0 and vertical.sum() == pytest.approx(4 * w * weight, rel=0.01)
+
+
+def test_a_leg_wholly_in_stance_needs_no_reachable_swing_target(params, standing):
+    """A foot on the ground with its whole support weight is held by the stance law alone: its
+    target out of the leg's reach (a landing that sank past it) still gives a finite command
+    (before, the unused swing command's NaN times 0 stopped the run), while the same target on
+    a leg partly in swing is refused naming it."""
+    from fivebar_drake.mechanisms.fivebar import UnreachableError
+
+    controller, layout, state = standing
+    references, weights = at_home(params, len(layout.legs))
+    weights[:] = 1.0
+    targets = reference_parts(references)[0]
+    targets[0] = (params.gait.x_center_m, -0.01)                 # 10 mm below the hip
+    assert np.isfinite(controller.command(references, state)).all()
+    weights[0] = 0.5
+    with pytest.raises(UnreachableError):
+        controller.command(references, state)
