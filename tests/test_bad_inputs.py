@@ -191,6 +191,16 @@ CASES = {
                                       "> most -30 deg ([limits].theta_b_max_deg)"),
     "tracking a path without a floor": scen("gait: seed_ellipse\ncontroller: {kind: tracking}\n",
                                             "scenario.gait", "follows a gait's floor"),
+    "tracking a stand-up": scen("gait: stand_up\ncontroller: {kind: tracking}\n",
+                                "scenario.gait = 'stand_up'", "a jump's or a drop's"),
+    "tracking takeover beyond the ramp": scen(
+        "gait: bound\ncontroller: {kind: tracking, takeover: 2}\n",
+        "scenario.controller.takeover = 2.0: must be in [0, 1]"),
+    "tracking takeover in words": scen(
+        "gait: bound\ncontroller: {kind: tracking, takeover: soon}\n",
+        "scenario.controller.takeover = 'soon': must be a number"),
+    "push share beyond the quintic": scen("gait: {kind: jump, push_share: 3}\n",
+                                          "scenario.gait.push_share = 3.0: must be in (0.5, 1.25]"),
     "tracking with other leg phases": scen(
         "gait: bound\ncontroller: {kind: tracking}\nphases_rad: [0, 0, 0, 0]\n",
         "scenario.phases_rad", "the gait's own leg phases"),

@@ -586,8 +586,9 @@ class Maneuver(FootPath):
     def check(self, field: str) -> None:
         for f in dataclasses.fields(self):
             time = f.name.endswith("_s")
-            check_number(f"{field}.{f.name}", getattr(self, f.name), 0.0,
-                         MAX_MANEUVER_S if time else MAX_LENGTH_M, low_open=time)
+            if time or f.name.endswith("_m"):       # another kind of field: its class's check
+                check_number(f"{field}.{f.name}", getattr(self, f.name), 0.0,
+                             MAX_MANEUVER_S if time else MAX_LENGTH_M, low_open=time)
 
 
 def hold(duration_s: float, stance: bool, foot) -> tuple:
