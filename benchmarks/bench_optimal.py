@@ -2,8 +2,9 @@
 of the default robot on one core, warm (each computed once before timing), the median of
 --repeats; the linear program's solve (Drake MathematicalProgram) for the same floor; the
 gaits' floors (optimal/gait_floor.py: trot, walk, bound, pronk; uncached: each repeat solves
-them). Prints a table, then one JSON object: ceiling_s, floor_s, lp_s, lp_solver,
-bisection_steps, and KIND_floor_s, KIND_programs per gait."""
+them); the stand-up's floor (optimal/stand_up.py). Prints a table, then one JSON object:
+ceiling_s, floor_s, lp_s, lp_solver, bisection_steps, KIND_floor_s, KIND_programs per gait,
+stand_up_floor_s."""
 
 from __future__ import annotations
 
@@ -14,6 +15,7 @@ import time
 
 from fivebar_drake.core.footpath import Jump as JumpPath
 from fivebar_drake.optimal import gait_floor as gf
+from fivebar_drake.optimal import stand_up
 from fivebar_drake.optimal import vertical_jump as vj
 from fivebar_drake.robots.quadruped.config import load_params, with_path_defaults
 
@@ -65,6 +67,8 @@ def main() -> None:
     gaits = {kind: timed(lambda kind=kind: gf._solve(with_path_defaults(params, kind),
                                                     gf.foot_path(kind), 0.0, False, False),
                          args.repeats) for kind in gf.KINDS}
+    stand_up.stand_up_floor(params)                      # warm
+    stand_s, rise = timed(lambda: stand_up.stand_up_floor(params), args.repeats)
     print(f"vertical jump, default robot, {vj.GRID_POINTS} nodes, median of {args.repeats}:")
     print(f"  ceiling (highest jump, {jump.com_rise_from_standing_m * 1e3:.1f} mm): "
           f"{ceiling_s * 1e3:.0f} ms")
@@ -76,10 +80,12 @@ def main() -> None:
         print(f"  {kind} floor ({floor.floor_Nm:.3f} N m, {floor.programs} linear programs, "
               f"pitch residual {floor.moment_residual_Nm:.1e} N m): {seconds * 1e3:.0f} ms   "
               f"(target <= 10 s)")
+    print(f"  stand-up floor ({rise.floor_Nm:.3f} N m, a 1 mm grid): {stand_s * 1e3:.0f} ms")
     print(json.dumps({"ceiling_s": ceiling_s, "floor_s": floor_s, "lp_s": lp_s,
                       "lp_solver": solver, "bisection_steps": steps,
                       **{f"{kind}_floor_s": seconds for kind, (seconds, _) in gaits.items()},
-                      **{f"{kind}_programs": f.programs for kind, (_, f) in gaits.items()}}))
+                      **{f"{kind}_programs": f.programs for kind, (_, f) in gaits.items()},
+                      "stand_up_floor_s": stand_s}))
 
 
 if __name__ == "__main__":
