@@ -131,27 +131,24 @@ def any_controller(record: SimulationRecord, summary: Summary) -> AnyController 
         return stance_any_controller(record, summary)
     g, payload = params.robot.gravity_m_s2, record.scenario.payload_kg
     standing = -params.gait.y_home_m
-    top = standing + path.extension_m
     phases, why, ceiling = {}, [], None
     asked = {name: figures["demand_peak_Nm"] for name, figures in
              (summary["phases"] or {}).items()}
     if isinstance(path, JumpPath):
-        push = vertical_jump.stroke(params, standing - path.crouch_m, top, payload)
+        push = vertical_jump.push_stroke(params, path, payload)
         highest = vertical_jump.push(push, standing)
         ceiling = None if highest is None else highest.body_apex_above_standing_m
-        touchdown = path.takeoff_speed(params.gait)
         try:
             phases["push-off"] = vertical_jump.torque_floor(push, standing, path.height_m)[0]
         except ParameterError as err:
             phases["push-off"] = None
             why.append(err.message)
-    else:
-        touchdown = math.sqrt(2.0 * g * path.height_m)
-    land = vertical_jump.stroke(params, top - path.landing_stroke_m, top, payload)
+    land = vertical_jump.landing_stroke(params, path, payload)
     if not isinstance(path, JumpPath):
         ceiling = vertical_jump.highest_drop(land) ** 2 / (2.0 * g)
     try:
-        phases["landing"] = vertical_jump.landing_floor(land, touchdown)[0]
+        phases["landing"] = vertical_jump.landing_floor(land,
+                                                        path.touchdown_speed(params.gait))[0]
     except ParameterError as err:
         phases["landing"] = None
         why.append(err.message)

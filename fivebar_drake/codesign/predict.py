@@ -83,19 +83,16 @@ def floors(maneuver: Maneuver, params: Params, accept) -> dict:
     """Level (b) of a jump or a drop: its push-off's and landing's floors (N*m), the motors'
     safety factor on the larger, the torque margin; a phase no torque the motors have does is
     a margin of 0 with why (as pipeline.any_controller computes them from a run)."""
-    path, g = maneuver.scenario.gait, params.robot.gravity_m_s2
+    path = maneuver.scenario.gait
     payload, standing = maneuver.scenario.payload_kg, -params.gait.y_home_m
-    top = standing + path.extension_m
     phases, why = {}, []
     try:
         if isinstance(path, Jump):
-            push = vertical_jump.stroke(params, standing - path.crouch_m, top, payload)
-            phases["push-off"] = vertical_jump.torque_floor(push, standing, path.height_m)[0]
-            touchdown = path.takeoff_speed(params.gait)
-        else:
-            touchdown = math.sqrt(2.0 * g * path.height_m)
-        land = vertical_jump.stroke(params, top - path.landing_stroke_m, top, payload)
-        phases["landing"] = vertical_jump.landing_floor(land, touchdown)[0]
+            phases["push-off"] = vertical_jump.torque_floor(
+                vertical_jump.push_stroke(params, path, payload), standing, path.height_m)[0]
+        phases["landing"] = vertical_jump.landing_floor(
+            vertical_jump.landing_stroke(params, path, payload),
+            path.touchdown_speed(params.gait))[0]
     except ParameterError as err:
         why.append(err.message)
     if why:

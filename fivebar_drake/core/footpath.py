@@ -621,6 +621,10 @@ class Landing(Maneuver):
                      low_open=True, why="the landing stops the body over this stroke: none "
                                         "would take an infinite force")
 
+    def touchdown_speed(self, gait: Gait) -> float:
+        """The planned touchdown speed (m/s, > 0) of the body."""
+        raise NotImplementedError
+
     def landing(self, gait: Gait, v_td: float) -> list[tuple]:
         """The segments from touchdown at speed v_td (m/s, > 0) to standing."""
         x, y_land = gait.x_center_m, gait.y_home_m - self.extension_m
@@ -670,6 +674,10 @@ class Jump(Landing):
     def takeoff_speed(self, gait: Gait) -> float:
         """Planned takeoff speed (m/s) of the body."""
         return math.sqrt(2.0 * gait.gravity_m_s2 * max(self.height_m - self.extension_m, 0.0))
+
+    def touchdown_speed(self, gait: Gait) -> float:
+        """The body lands at its takeoff height, at its takeoff speed (m/s)."""
+        return self.takeoff_speed(gait)
 
     def check(self, field: str) -> None:
         super().check(field)
@@ -733,11 +741,15 @@ class Drop(Landing):
     def lift_m(self, gait: Gait) -> float:
         return self.height_m
 
+    def touchdown_speed(self, gait: Gait) -> float:
+        """sqrt(2 g height_m) (m/s)."""
+        return math.sqrt(2.0 * gait.gravity_m_s2 * self.height_m)
+
     def segments(self, gait: Gait) -> list[tuple]:
         g = gait.gravity_m_s2
         foot = (gait.x_center_m, gait.y_home_m - self.extension_m)
         return ([hold(math.sqrt(2.0 * self.height_m / g), False, foot)]
-                + self.landing(gait, math.sqrt(2.0 * g * self.height_m)))
+                + self.landing(gait, self.touchdown_speed(gait)))
 
     def events(self, gait: Gait) -> Events:
         return Events(touchdown=math.sqrt(2.0 * self.height_m / gait.gravity_m_s2))

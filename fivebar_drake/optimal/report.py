@@ -21,8 +21,9 @@ from fivebar_drake.optimal.recording import RECORDING_FILE, write_recording
 from fivebar_drake.optimal.gait_floor import (KINDS, fastest_gait, fastest_joint, gait_floor,
                                               max_pitch_rad)
 from fivebar_drake.optimal.stand_up import stand_up_floor
-from fivebar_drake.optimal.vertical_jump import (Jump, highest_drop, landing_floor,
-                                                 point_mass_bound, push, reach, stroke,
+from fivebar_drake.optimal.vertical_jump import (Jump, body_apexes, highest_drop, landing_floor,
+                                                 landing_stroke, point_mass_bound, push,
+                                                 push_stroke, reach, stroke,
                                                  torque_floor)
 from fivebar_drake.robots.quadruped.config import with_path_defaults
 from fivebar_drake.robots.quadruped.params import Params
@@ -106,8 +107,8 @@ def jump_limits(params: Params, height_m: float | None = None,
     jumps = {"ceiling": ceiling}
     crouch, extension = plan.crouch_m, plan.extension_m
     try:
-        peak, jumps["floor"] = torque_floor(stroke(params, standing - crouch, standing + extension,
-                                         payload_kg), standing, height)
+        peak, jumps["floor"] = torque_floor(push_stroke(params, plan, payload_kg), standing,
+                                            height)
         result["floor"] = {"height_m": height, "crouch_m": crouch, "extension_m": extension,
                            "least_peak_torque_Nm": peak,
                            **_jump_figures(jumps["floor"], params.motor)}
@@ -164,13 +165,12 @@ def drop_limits(params: Params, payload_kg: float = 0.0) -> dict:
     that stops the body within its landing stroke from its height (braking), and the highest
     drop that stroke absorbs (m); the floor None with why where the legs give way."""
     plan, g = Drop(), params.robot.gravity_m_s2
-    top = -params.gait.y_home_m + plan.extension_m
-    s = stroke(params, top - plan.landing_stroke_m, top, payload_kg)
+    s = landing_stroke(params, plan, payload_kg)
     out = {"height_m": plan.height_m, "landing_stroke_m": plan.landing_stroke_m,
            "highest_drop_m": highest_drop(s) ** 2 / (2.0 * g), "least_peak_torque_Nm": None,
            "why_none": ""}
     try:
-        out["least_peak_torque_Nm"] = landing_floor(s, math.sqrt(2.0 * g * plan.height_m))[0]
+        out["least_peak_torque_Nm"] = landing_floor(s, plan.touchdown_speed(params.gait))[0]
     except ParameterError as err:
         out["why_none"] = err.message
     return out
@@ -350,7 +350,7 @@ def max_jump_plan(params: Params, ceiling: Jump, payload_kg: float = 0.0) -> Jum
     it)."""
     s, standing = ceiling.stroke, -params.gait.y_home_m
     n = ceiling.takeoff + 1
-    apex = s.u[:n] + (ceiling.w * (1.0 + s.com_u[:n])) ** 2 / (2.0 * s.g) - standing
+    apex = body_apexes(s, ceiling.w, standing)
     stops = s.u[:n] + ceiling.w * EXTENSION_STOP_S / 2.0 <= s.u[-1]
     k = int(np.argmax(np.where(stops, apex, -np.inf)))
     crouch, extension = round(standing - float(s.u[0]), 4), round(float(s.u[k]) - standing, 4)

@@ -40,6 +40,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from fivebar_drake.core.footpath import Jump as JumpPath, Landing
 from fivebar_drake.core.motor import Motor
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.mechanisms.fivebar import (KNEES_OUT, LINK_NAMES, held_force, limit_tests,
@@ -195,6 +196,14 @@ class Jump:
         return self.com_rise_from_crouch_m / (self.stance_s + self.to_apex_s)
 
 
+def body_apexes(s: Stroke, w: np.ndarray, standing_u: float) -> np.ndarray:
+    """The body's (the hip's) apex above standing (m) of a takeoff at each of the stroke's
+    first w.size nodes with the hip rising at w (m/s) there, the legs held at the takeoff pose
+    in flight: the whole rises with the centre of mass, at w (1 + com_u)."""
+    n = w.size
+    return s.u[:n] + (w * (1.0 + s.com_u[:n])) ** 2 / (2.0 * s.g) - standing_u
+
+
 def push(s: Stroke, standing_u: float, peak_Nm: float = math.inf) -> Jump | None:
     """The highest jump along the stroke (module docstring), torques within +-peak_Nm too;
     None if the motors cannot start it from rest at the crouch."""
@@ -226,7 +235,8 @@ def push(s: Stroke, standing_u: float, peak_Nm: float = math.inf) -> Jump | None
     com_stand = standing_u + float(np.interp(standing_u, s.u, s.com_m))
     return Jump(s, k, w[:k + 1], b[:k + 1], t, tau, tau + s.motor.friction(omega), omega,
                 float(v_com[k]), float(apex[k] - z_com[0]), float(apex[k] - com_stand),
-                float(apex[k] - s.com_m[k] - standing_u), float(t[-1]), float(v_com[k] / s.g))
+                float(body_apexes(s, w[:k + 1], standing_u)[k]), float(t[-1]),
+                float(v_com[k] / s.g))
 
 
 def point_mass_bound(params: Params, u0: float, u1: float, standing_u: float,
@@ -278,20 +288,32 @@ def torque_floor(s: Stroke, standing_u: float, rise_m: float) -> tuple[float, Ju
     return high, found
 
 
-def maneuver_push(params: Params, crouch_m: float, extension_m: float, height_m: float,
-                  payload_kg: float = 0.0) -> Jump:
-    """The optimal push of a jump maneuver (core.footpath.Jump's crouch_m, extension_m above and
-    below the standing line, height_m its apex above standing, m): the push of least peak
-    torque that reaches height_m (torque_floor), or the highest (push) where none does.
-    ParameterError if the motors cannot start it from the crouch."""
+def push_stroke(params: Params, path: JumpPath, payload_kg: float = 0.0) -> Stroke:
+    """The Stroke of a jump maneuver's push (core.footpath.Jump): from its crouch, crouch_m
+    above the standing line, to its takeoff, extension_m below it."""
     standing = -params.gait.y_home_m
-    s = stroke(params, standing - crouch_m, standing + extension_m, payload_kg)
+    return stroke(params, standing - path.crouch_m, standing + path.extension_m, payload_kg)
+
+
+def maneuver_push(params: Params, path: JumpPath, payload_kg: float = 0.0) -> Jump:
+    """The optimal push of a jump maneuver (core.footpath.Jump; its height_m the apex above
+    standing, m): the push of least peak torque that reaches height_m (torque_floor), or the
+    highest (push) where none does. ParameterError if the motors cannot start it from the
+    crouch."""
+    standing, s = -params.gait.y_home_m, push_stroke(params, path, payload_kg)
     highest = push(s, standing)
     if highest is None:
         raise ParameterError("the motors cannot lift the crouched robot", "crouch_m")
-    if highest.body_apex_above_standing_m < height_m:
+    if highest.body_apex_above_standing_m < path.height_m:
         return highest
-    return torque_floor(s, standing, height_m)[1]
+    return torque_floor(s, standing, path.height_m)[1]
+
+
+def landing_stroke(params: Params, path: Landing, payload_kg: float = 0.0) -> Stroke:
+    """The Stroke a maneuver's landing (core.footpath.Landing: a jump's or a drop's) stops the
+    body within: its landing_stroke_m up to its touchdown pose, extension_m below standing."""
+    top = -params.gait.y_home_m + path.extension_m
+    return stroke(params, top - path.landing_stroke_m, top, payload_kg)
 
 
 def box_floor_lp(s: Stroke, standing_u: float, rise_m: float) -> tuple[float, str]:

@@ -29,8 +29,9 @@ from fivebar_drake.core.variants import documented
 from fivebar_drake.mechanisms.fivebar import KNEES_OUT
 from fivebar_drake.optimal.gait_floor import KINDS, GaitFloor, gait_floor, whole_body
 from fivebar_drake.optimal.vertical_jump import (Catch, Jump, catch, landing_floor,
-                                                 maneuver_push, stroke)
-from fivebar_drake.robots.quadruped.control_law import plane_forces, split_wrench
+                                                 landing_stroke, maneuver_push)
+from fivebar_drake.robots.quadruped.control_law import (body_attitude, plane_forces,
+                                                        split_wrench)
 from fivebar_drake.robots.quadruped.legs import LEGS
 from fivebar_drake.robots.quadruped.sdf import body_height
 from fivebar_drake.simulation.systems import FootLeg, FootLegController, register_controller
@@ -95,10 +96,8 @@ class TrackingController(FootLegController):
         k, r_wb = self.constants, plan.r_wb
         w0 = k.state.nq + k.state.body_v
         r_bw = r_wb.T
-        omega_b = r_bw @ state[w0:w0 + 3]
+        roll, pitch, omega_b = body_attitude(k, state, r_wb)
         v_w = state[w0 + 3:w0 + 6]
-        roll = math.atan2(r_wb[2, 1], r_wb[2, 2])
-        pitch = -math.asin(min(max(r_wb[2, 0], -1.0), 1.0))
         z_ref, vz_ref, vx_ref, pitch_ref, rate_ref = body
         g = k.gains
         feedback_w = np.array([g.dx * (vx_ref - v_w[0]), 0.0,
@@ -244,11 +243,8 @@ class JumpTrackingController(FootLegController):
     def _level(self, plan, state) -> np.ndarray:
         """Leg-plane ground forces (legs, 2) N of no net force whose moment turns the body
         towards level (roll and pitch, the foot/leg controller's attitude gains)."""
-        k, r_wb = self.constants, plan.r_wb
-        w0 = k.state.nq + k.state.body_v
-        omega_b = r_wb.T @ state[w0:w0 + 3]
-        roll = math.atan2(r_wb[2, 1], r_wb[2, 2])
-        pitch = -math.asin(min(max(r_wb[2, 0], -1.0), 1.0))
+        k = self.constants
+        roll, pitch, omega_b = body_attitude(k, state, plan.r_wb)
         g = k.gains
         wrench = np.array([0.0, 0.0, -g.k_att[0] * roll - g.d_att[0] * omega_b[0],
                            -g.k_att[1] * pitch - g.d_att[1] * omega_b[1], 0.0])
@@ -305,14 +301,11 @@ class Tracking(FootLeg):
         start, events = path.start_s(scenario.stand_s), path.events(g)
         push, falling = None, start
         if isinstance(path, JumpPath):
-            jump = maneuver_push(params, path.crouch_m, path.extension_m, path.height_m, payload)
+            jump = maneuver_push(params, path, payload)
             onset = start + events.onset
             falling = onset + max(path.timing(g)[0], jump.stance_s) * (1.0 + PUSH_WINDOW_SLACK)
-            push, touchdown = JumpPlan(jump, onset, falling), path.takeoff_speed(g)
-        else:
-            touchdown = math.sqrt(2.0 * params.robot.gravity_m_s2 * path.height_m)
-        top = -g.y_home_m + path.extension_m
-        legs = stroke(params, top - path.landing_stroke_m, top, payload)
+            push = JumpPlan(jump, onset, falling)
+        legs, touchdown = landing_stroke(params, path, payload), path.touchdown_speed(g)
         try:
             landing = landing_floor(legs, touchdown)[1]
         except ParameterError:                         # the legs give way for any controller

@@ -252,6 +252,16 @@ def body_targets(k, guides, targets, velocities, accelerations, state, r_wb):
 
 
 @jit
+def body_attitude(k, state, r_wb):
+    """(roll, pitch rad: the body's tilt about its x and y axes; its angular velocity (3,) rad/s
+    in the body frame) from the plant state and the body's rotation r_wb (world from body)."""
+    w0 = k.state.nq + k.state.body_v
+    omega_b = np.ascontiguousarray(r_wb.T) @ state[w0:w0 + 3]
+    return (np.arctan2(r_wb[2, 1], r_wb[2, 2]), -np.arcsin(min(max(r_wb[2, 0], -1.0), 1.0)),
+            omega_b)
+
+
+@jit
 def ground_forces(k, body, weights, share, fx, fy, state, r_wb):
     """The virtual-model stance law (stance_laws.VirtualModel): ground forces on the feet
     (legs, 2) in N, leg-plane (x, y), from the body wrench in the body frame: F_x = m dx (v_x* - v_x), F_z = m (g + z*'') + kz (z* - z) + dz (z*' - z') (and
@@ -265,11 +275,9 @@ def ground_forces(k, body, weights, share, fx, fy, state, r_wb):
     w0 = k.state.nq + k.state.body_v
     z = state[k.state.body_q + 6]
     r_bw = np.ascontiguousarray(r_wb.T)
-    omega_b = r_bw @ state[w0:w0 + 3]
+    roll, pitch, omega_b = body_attitude(k, state, r_wb)
     v_w = state[w0 + 3:w0 + 6]
     v_b = r_bw @ v_w
-    roll = np.arctan2(r_wb[2, 1], r_wb[2, 2])
-    pitch = -np.arcsin(min(max(r_wb[2, 0], -1.0), 1.0))
     z_des, vz_des, az_des, vx_des = body
     force_w = np.array([k.mass_kg * k.support[0], k.mass_kg * k.support[1],
                         k.mass_kg * (k.support[2] + az_des) + k.gains.kz * (z_des - z)
