@@ -45,7 +45,6 @@ EXIT_CODES = """exit codes:
   130  interrupted by SIGINT (Ctrl-C), 143 by SIGTERM; simulate and envelope write what they have first"""
 
 EXIT_INTERNAL = 3
-MANEUVER_MARGIN_S = 0.1   # a simulated maneuver runs this past its span (its last sample in)
 DEFAULTS = Scenario()
 COMMON = {"help", "mechanism", "config", "duration", "out"}   # options every study takes
 
@@ -270,11 +269,10 @@ def _optimal(args, signals) -> int:
 
     matplotlib.use("Agg")
     from fivebar_drake.core.validation import MAX_MASS_KG, check_number
-    from fivebar_drake.optimal.report import (OPTIMAL_FILES, beyond, jump_limits,
-                                              max_jump_plan, write)
-    from fivebar_drake.pipeline import SIMULATION_FILES, run_simulation, write_simulation
+    from fivebar_drake.optimal.report import OPTIMAL_FILES, beyond, jump_limits, write
+    from fivebar_drake.pipeline import (SIMULATION_FILES, max_jump_scenario, run_simulation,
+                                        write_simulation)
     from fivebar_drake.robots.quadruped.config import load_params
-    from fivebar_drake.simulation.scenario import load_scenario
     from fivebar_drake.studies.fivebar_leg import with_sets
 
     params = with_sets(load_params(args.config), args.sets)
@@ -290,10 +288,8 @@ def _optimal(args, signals) -> int:
     result, jumps = jump_limits(params, args.height, args.payload or 0.0)
     files = []
     if args.simulate and jumps["ceiling"] is not None:
-        plan = max_jump_plan(params, jumps["ceiling"], args.payload or 0.0)
-        scenario = load_scenario(gait=plan, payload_kg=args.payload or 0.0,
-                                 duration_s=DEFAULTS.stand_s + plan.span_s(params.gait)
-                                 + MANEUVER_MARGIN_S, controller={"kind": "tracking"})
+        scenario = max_jump_scenario(params, jumps["ceiling"], args.payload or 0.0)
+        plan = scenario.gait
         folder = prepare_output_dir(out / "max_jump", "--out", SIMULATION_FILES)
         summary, files = write_simulation(run_simulation(scenario, params, progress=True,
                                                          stop=lambda: signals.name), folder)

@@ -31,12 +31,13 @@ from fivebar_drake.core.footpath import Jump as JumpPath, Landing, StandUp
 from fivebar_drake.core.summary_schema import AnyController, Summary
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.optimal import gait_floor, stand_up, vertical_jump
+from fivebar_drake.optimal.report import max_jump_plan
 from fivebar_drake.robots.quadruped.config import load_params, sampling_error
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.simulation.plots import CAPABILITY_FILE, SIM_PLOT_FILES, write_sim_plots
 from fivebar_drake.simulation.recording import RECORDING_FILE, write_recording
 from fivebar_drake.simulation.runner import SimulationRecord, simulate
-from fivebar_drake.simulation.scenario import Scenario
+from fivebar_drake.simulation.scenario import Scenario, load_scenario
 from fivebar_drake.simulation.signals import signals, step_signals
 from fivebar_drake.simulation.summary import apply_step_check, in_schema_order, summarize
 from fivebar_drake.simulation.summary_text import (SUMMARY_FILES, any_controller_text,
@@ -100,6 +101,21 @@ def run_simulation(scenario: Scenario, params: Params | None = None, progress: b
     scenario.validate()
     return simulate(scenario, scenario.load_params() if params is None else params,
                     progress=progress, log_actuation=log_actuation, stop=stop)
+
+
+MAX_JUMP_MARGIN_S = 0.1   # the max jump's run goes this past its span (its last sample in)
+
+
+def max_jump_scenario(params: Params, ceiling: vertical_jump.Jump,
+                      payload_kg: float = 0.0) -> Scenario:
+    """The scenario of the highest jump's simulation (`optimal --simulate`, the co-design's
+    max_jump): the jump maneuver planned at the ceiling (optimal.report.max_jump_plan) with
+    the tracking controller, from standing to MAX_JUMP_MARGIN_S past its span (the duration
+    rounded to 1 ms)."""
+    plan = max_jump_plan(params, ceiling, payload_kg)
+    return load_scenario(gait=plan, payload_kg=payload_kg, controller={"kind": "tracking"},
+                         duration_s=round(Scenario().stand_s + plan.span_s(params.gait)
+                                          + MAX_JUMP_MARGIN_S, 3))
 
 
 def run_step_check(record: SimulationRecord, progress: bool = True,

@@ -76,7 +76,7 @@ def _known(words: list[str], terms: frozenset[str]) -> list[str]:
     for w, c in zip(lower, covered):
         if c:
             continue
-        stems = {w, re.sub(r"'s$", "", w), re.sub(r"s$", "", w), w.replace("'s", "'s")}
+        stems = {w, re.sub(r"'s$", "", w), re.sub(r"s$", "", w)}
         if not stems & terms:
             unknown.append(w)
     return unknown

@@ -41,7 +41,7 @@ from fivebar_drake.optimal import gait_floor, vertical_jump
 from fivebar_drake.robots.quadruped.params import Params
 
 SCREENED = ("trot",)              # gait kinds level (a) predicts
-FLOORED = ("walk", "bound", "pronk")   # and the gait floors of level (b)
+FLOORED = tuple(k for k in gait_floor.KINDS if k not in SCREENED)   # and level (b)'s
 DUTY = "duty cycle"               # its row beside the maneuvers (no maneuver name has a space)
 CHECKS = ("torque", "speed", "thermal")
 MASS_MARGIN_CAP = 10.0            # the mass band's margin of a design at (or near) its reference

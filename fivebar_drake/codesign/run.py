@@ -47,16 +47,13 @@ from fivebar_drake.codesign.search import corrected, predictions, ranked, search
 from fivebar_drake.codesign.spec import ON_MANEUVER, CodesignSpec
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.optimal import gait_floor
-from fivebar_drake.optimal.report import max_jump_plan
-from fivebar_drake.pipeline import run_simulation, write_simulation
-from fivebar_drake.simulation.scenario import Scenario, load_scenario
+from fivebar_drake.pipeline import max_jump_scenario, run_simulation, write_simulation
 from fivebar_drake.envelope.run import run_envelope
 from fivebar_drake.sweep.engine import (check_output_folder, check_scheduler,
                                         check_workers, dask_client)
 
 FINALISTS_DIR = "finalists"
 MAX_JUMP_DIR = "max_jump"
-MAX_JUMP_MARGIN_S = 0.1     # the max jump's run goes this past its span (as optimal --simulate)
 
 
 def pareto(spec: CodesignSpec, entries: list[dict]) -> list[dict]:
@@ -201,9 +198,8 @@ def max_jump(params, folder: Path) -> dict:
     if jump is None:
         return {"ceiling_m": 0.0, "planned_m": 0.0, "height_m": 0.0, "share_of_plan": 0.0,
                 "verdict": "none", "landed": False, "not_landed": "no jump: no ceiling"}
-    plan = max_jump_plan(params, jump)
-    duration = round(Scenario().stand_s + plan.span_s(params.gait) + MAX_JUMP_MARGIN_S, 3)
-    scenario = load_scenario(gait=plan, duration_s=duration, controller={"kind": "tracking"})
+    scenario = max_jump_scenario(params, jump)
+    plan = scenario.gait
     record = run_simulation(scenario, params, progress=False)
     summary = write_simulation(record, folder)[0]
     height = summary["jump"]["height_m"] if summary["jump"] else 0.0
@@ -253,13 +249,14 @@ def run_codesign(spec: CodesignSpec, out: str | Path, workers: int | None = None
             if attr not in study.user_attrs:
                 if not opened:
                     opened.append(stack.enter_context(dask_client(workers, scheduler, client)))
-                run = run_envelope(design_envelope(spec.envelope, design),
-                                   out / FINALISTS_DIR / key, progress=False, client=opened[0])
+                envelope = design_envelope(spec.envelope, design)
+                run = run_envelope(envelope, out / FINALISTS_DIR / key, progress=False,
+                                   client=opened[0])
                 outcome = simulated(run.report, spec, {
                     name: r.summary for name, r in run.results.items()})
                 outcome["objectives"] = simulated_objectives(spec, design, run.results)
                 if spec.simulate_max_jump:
-                    jump = max_jump(design_envelope(spec.envelope, design).maneuvers[0].params,
+                    jump = max_jump(envelope.maneuvers[0].params,
                                     out / FINALISTS_DIR / key / MAX_JUMP_DIR)
                     outcome["max_jump"] = jump
                     outcome["objectives"]["max_jump_height_m"] = jump["height_m"]

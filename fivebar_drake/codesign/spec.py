@@ -48,6 +48,7 @@ from fivebar_drake.core.files import read_input_text
 from fivebar_drake.core.validation import MAX_MASS_KG, ParameterError, check_number, require
 from fivebar_drake.core.yaml_files import load_spec_file
 from fivebar_drake.envelope.spec import EnvelopeSpec, spec_from_dict as envelope_from_dict
+from fivebar_drake.optimal.gait_floor import KINDS
 from fivebar_drake.robots.quadruped.config import with_changes
 from fivebar_drake.sweep.spec import Varied
 
@@ -55,7 +56,7 @@ KEYS = ("variables", "requirements", "objectives", "budget", "compare")
 OBJECTIVES = {"actuator_mass_kg": "minimize", "max_jump_height_m": "maximize",
               "peak_electrical_power_W": "minimize", "cost_of_transport": "minimize"}
 ON_MANEUVER = ("peak_electrical_power_W", "cost_of_transport")  # NAME:MANEUVER (a gait's)
-GAITS = ("trot", "walk", "bound", "pronk")      # the gaits whose floors predict them
+GAITS = KINDS                                   # the gaits whose floors predict them
 ACCEPT = {"pass": ("pass",), "warn": ("pass", "warn")}
 FLAGS = ("step_check", "never_at_limit", "simulate_max_jump")
 MASS = "actuator mass"            # the mass band's row beside the maneuvers (predict.py)

@@ -278,9 +278,10 @@ def write_recording(path: Path, sig: Signals, record: SimulationRecord, summary:
                                            media_type=rr.MediaType.MARKDOWN), static=True)
         if len(sig.t):
             _log_scene(rec, sig, record)
-            _log_series(rec, sig, legs, record.params, summary)
+            names = force_names(sig, legs)
+            _log_series(rec, sig, legs, record.params, summary, names)
             _log_headline(rec, sig, legs, record.params, head)
-            _log_events(rec, sig, legs)
+            _log_events(rec, sig, legs, names)
     return path
 
 
@@ -361,13 +362,13 @@ def _log_scene(rec, sig: Signals, record: SimulationRecord):
                                                                radii=0.002), static=True)
 
 
-def _log_series(rec, sig: Signals, legs, params: Params, summary: Summary):
+def _log_series(rec, sig: Signals, legs, params: Params, summary: Summary, names):
     limit = params.motor.peak_torque_Nm
     ends = sig.t[[0, -1]]
     start, end = summary["window_s"]
     cycle_ends = start + summary["cycle_s"] * np.arange(1, summary["cycles_in_window"] + 1)
     force = sig.foot_force_plane
-    first = {i: name for i, (name, drawn) in enumerate(force_names(sig, legs)) if drawn}
+    first = {i: name for i, (name, drawn) in enumerate(names) if drawn}
     for i, leg in enumerate(legs):
         scalars(rec, f"loop_gap_um/{leg}", sig.t, sig.gap[:, i] * 1e6, leg, LEG_COLORS[i])
         for kind, axis in (("normal", 1), ("tangential", 0)):
@@ -415,12 +416,11 @@ def force_names(sig: Signals, legs) -> list[tuple[str, bool]]:
     return [(name[i], any(g[0] == i for g in groups)) for i in range(len(legs))]
 
 
-def _log_events(rec, sig: Signals, legs):
+def _log_events(rec, sig: Signals, legs, names):
     """The events as a text log and as markers: a flight's on the body height plot, a foot's on
     its normal force (named as its leg's curve: one legend entry per curve, the markers' shapes
     say lift-off or touchdown, the event log which)."""
     events = run_events(sig, legs)
-    names = force_names(sig, legs)
     if not events:
         return
     rec.send_columns("events", indexes=[rr.TimeColumn(TIMELINE, duration=[e.t_s for e in events])],

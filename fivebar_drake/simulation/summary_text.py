@@ -89,7 +89,7 @@ def answer(s: Summary, params: Params) -> str:
     static = m["static_trot_Nm"]
     over = f"over {s['cycles_in_window']} cycles" if s["periodic"] else "over the maneuver"
     limited = demand_unmet(c)
-    figure = m["p99_torque_Nm"] if limited else m["demand_p99_Nm"]
+    need_Nm = m["p99_torque_Nm"] if limited else m["demand_p99_Nm"]
     t = c["torque"]
     if limited:
         need = (f"the motors worked at their limits (worst motor {leg} {name}, at "
@@ -106,7 +106,7 @@ def answer(s: Summary, params: Params) -> str:
     return (f"{opening(s, leg, name, t, c)} {head} {need}. "
             f"Checks: {checks}. On the same poses with the same load schedule "
             f"(the robot's weight shared by the feet in stance) the static torque is "
-            f"{static:.2f} N·m: the dynamics add {figure / static - 1:+.0%}. {seed}").rstrip()
+            f"{static:.2f} N·m: the dynamics add {need_Nm / static - 1:+.0%}. {seed}").rstrip()
 
 
 def opening(s: Summary, leg: str, name: str, t: TorqueCheck, c) -> str:
