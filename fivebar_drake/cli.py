@@ -185,6 +185,7 @@ def _envelope(args, signals) -> int:
 
     matplotlib.use("Agg")
     from pathlib import Path
+    from fivebar_drake.envelope.report import floor_text
     from fivebar_drake.envelope.run import run_envelope
     from fivebar_drake.envelope.spec import DEFAULT_SPEC, load_envelope_spec
 
@@ -209,11 +210,7 @@ def _envelope(args, signals) -> int:
                 f"{s['deciding_check']} check, leg {s['leg']})")
     floor = report["sized_by_floor"]
     if floor:
-        say(f"for any controller: {floor['maneuver']} " + (
-            f"needs at least {floor['floor_Nm']:.2f} N·m (SF {floor['safety_factor']:.2f} on "
-            "the motors' peak)" if floor["floor_Nm"] is not None else
-            "is beyond these motors") + (f"; no floor yet for {', '.join(floor['without_floor'])}"
-                                         if floor["without_floor"] else ""))
+        say("for any controller: " + floor_text(floor).replace("**", ""))
     duty = report["duty_cycle"]
     say("duty cycle: " + (report["duty_cycle_why_none"] if duty is None else ", ".join(
         f"motor {m} peaks at {v['peak_C']:.1f} °C (leg {v['leg']})"

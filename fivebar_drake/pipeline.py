@@ -30,6 +30,7 @@ from fivebar_drake.core.files import prepare_output_dir
 from fivebar_drake.core.footpath import Jump as JumpPath, Landing, StandUp
 from fivebar_drake.core.summary_schema import AnyController, Summary
 from fivebar_drake.core.validation import ParameterError
+from fivebar_drake.core.verdicts import fails_for
 from fivebar_drake.optimal import gait_floor, stand_up, vertical_jump
 from fivebar_drake.optimal.report import max_jump_plan
 from fivebar_drake.robots.quadruped.config import load_params, sampling_error
@@ -132,47 +133,39 @@ def _signals(record: SimulationRecord) -> tuple:
 
 
 def any_controller(record: SimulationRecord, summary: Summary) -> AnyController | None:
-    """For a jump or a drop, what any controller would need (optimal/vertical_jump.py), on the
-    maneuver's own strokes and the run's payload: the push-off's floor (the planned height),
-    the landing's (stopping the planned touchdown speed within landing_stroke_m from
-    extension_m below standing), what the run's controller asked in each phase, and whom a
-    failing verdict blames: any controller where no torque the motors have does a phase, or
-    where the torque check decided and even the floor's safety factor (the driving peak over
-    the floor) is below checks.sf_warn; else this controller. A stand-up's and a gait's:
+    """For a jump or a drop, what any controller would need (optimal/vertical_jump.py: jump_need,
+    landing_need), on the maneuver's own strokes (or the leg's whole reach beyond them) and the
+    run's payload: each phase's need in the quadrant it acts (the push-off driving, the landing
+    braking) beside what the run's controller asked in it, the optima and the bound, and whom
+    a failing verdict blames (verdict_split). A stand-up's and a gait's:
     stand_up_any_controller, stance_any_controller (None for a gait without a floor)."""
     path, params = record.scenario.gait, record.params
     if isinstance(path, StandUp):
         return stand_up_any_controller(record, summary)
     if not isinstance(path, Landing):
         return stance_any_controller(record, summary)
-    g, payload = params.robot.gravity_m_s2, record.scenario.payload_kg
-    standing = -params.gait.y_home_m
-    phases, why, ceiling = {}, [], None
+    payload, motor = record.scenario.payload_kg, params.motor
+    needs = {}
+    if isinstance(path, JumpPath):
+        needs["push-off"] = (vertical_jump.jump_need(params, path, payload),
+                             motor.peak_torque_Nm)
+    needs["landing"] = (vertical_jump.landing_need(params, path, payload),
+                        motor.braking_peak_torque_Nm)
     asked = {name: figures["demand_peak_Nm"] for name, figures in
              (summary["phases"] or {}).items()}
-    if isinstance(path, JumpPath):
-        push = vertical_jump.push_stroke(params, path, payload)
-        highest = vertical_jump.push(push, standing)
-        ceiling = None if highest is None else highest.body_apex_above_standing_m
-        try:
-            phases["push-off"] = vertical_jump.torque_floor(push, standing, path.height_m)[0]
-        except ParameterError as err:
-            phases["push-off"] = None
-            why.append(err.message)
-    land = vertical_jump.landing_stroke(params, path, payload)
-    if not isinstance(path, JumpPath):
-        ceiling = vertical_jump.highest_drop(land) ** 2 / (2.0 * g)
-    try:
-        phases["landing"] = vertical_jump.landing_floor(land,
-                                                        path.touchdown_speed(params.gait))[0]
-    except ParameterError as err:
-        phases["landing"] = None
-        why.append(err.message)
-    if record.scenario.slope_deg:
-        why.append("the floors are computed on flat ground")
-    return verdict_split(path.kind, path.height_m,
-                         {p: (f, asked.get(p)) for p, f in phases.items()}, ceiling, why,
-                         summary, params)
+    first = next(iter(needs.values()))[0]
+    phases = {name: _phase(need.status, need.floor_Nm, limit, asked.get(name))
+              for name, (need, limit) in needs.items()}
+    why = [need.why for need, _ in needs.values() if need.why]
+    reached = (summary["jump"] or {}).get("height_m")
+    return verdict_split(record, path.kind, path.height_m, phases, why, summary,
+                         ceiling_m=first.stroke_optimum_m, reach_ceiling_m=first.reach_optimum_m,
+                         bound_m=first.bound_m, reached_m=reached)
+
+
+def _phase(status: str, floor: float | None, limit: float, asked: float | None) -> dict:
+    """A phase's need (summary_schema.PhaseFloor)."""
+    return {"status": status, "floor_Nm": floor, "limit_Nm": limit, "asked_Nm": asked}
 
 
 def _most_asked(summary: Summary) -> float | None:
@@ -182,73 +175,80 @@ def _most_asked(summary: Summary) -> float | None:
 
 
 def stand_up_any_controller(record: SimulationRecord, summary: Summary) -> AnyController:
-    """For a stand-up, what any controller would need (optimal/stand_up.py): its floor beside
-    the largest demand peak of the run's motors, and whom a failing verdict blames (as
-    stance_any_controller); a stand-up no loaded path does fails for any controller."""
+    """For a stand-up, what any controller would need (optimal/stand_up.py): its floor (driving)
+    beside the largest demand peak of the run's motors, and whom a failing verdict blames
+    (verdict_split); a stand-up no balanced loaded path does is undecided."""
     params, path = record.params, record.scenario.gait
-    why = ["quasi-static, all legs alike (the body's pitch and the feet's loading order are "
-           "not modelled)"]
+    why = ["quasi-static, a level lift balanced about the pitch axis (front and rear feet "
+           "placed apart; the nose resting on the ground is not modelled)"]
     try:
         found = stand_up.stand_up_floor(params, path, record.scenario.payload_kg)
-        floor = found.floor_Nm
+        status, floor = "floor", found.floor_Nm
         why.append(f"the dynamics add at most {found.dynamic_share:.0%} of the weight in "
                    f"{path.rise_s:g} s")
     except ParameterError as err:
-        floor = None
+        status, floor = "undecided", None
         why.append(err.message)
-    if record.scenario.slope_deg:
-        why.append("the floor is computed on flat ground")
-    return verdict_split(path.kind, 0.0, {"stand-up": (floor, _most_asked(summary))}, None,
-                         why, summary, params)
+    phases = {"stand-up": _phase(status, floor, params.motor.peak_torque_Nm,
+                                 _most_asked(summary))}
+    return verdict_split(record, path.kind, 0.0, phases, why, summary)
 
 
 def stance_any_controller(record: SimulationRecord, summary: Summary) -> AnyController | None:
     """For a trot, walk, bound or pronk, what any controller would need (optimal/gait_floor.py):
-    the gait's floor at its own mean height beside the largest demand peak of the run's motors.
-    Whom a failing verdict blames: any controller where the torque check decided and even the
-    floor's safety factor is below checks.sf_warn; else this controller. None for another
-    gait."""
+    the gait's floor at its own mean height (driving) beside the largest demand peak of the
+    run's motors, and whom a failing verdict blames (verdict_split). A path asking a joint
+    beyond the no-load speed is this path's (and so this controller's) failing, not every
+    path's. None for another gait."""
     params, path = record.params, record.scenario.gait
     floor = gait_floor.gait_floor(params, path, record.scenario.payload_kg)
     if floor is None:
         return None
-    asked = _most_asked(summary)
     why = ["stance legs only (the swing legs' torques are not in the floor)",
            "the least a local search found (a lower one may exist)"]
-    if record.scenario.slope_deg:
-        why.append("the floor is computed on flat ground")
     joint = gait_floor.fastest_joint(params, path)
-    too_fast = joint > params.motor.no_load_speed_rad_s
-    if too_fast:
-        why.append(f"the path asks a joint for {joint:.2f} rad/s, beyond the motors' no-load "
-                   f"speed {params.motor.no_load_speed_rad_s:.2f} rad/s")
-    return verdict_split(path.kind, 0.0, {"stance": (floor.floor_Nm, asked)}, None, why,
-                         summary, params, too_fast)
+    if joint > params.motor.no_load_speed_rad_s:
+        why.append(f"this path asks a joint for {joint:.2f} rad/s, beyond the motors' no-load "
+                   f"speed {params.motor.no_load_speed_rad_s:.2f} rad/s (another path of the "
+                   "gait may ask less)")
+    phases = {"stance": _phase("floor", floor.floor_Nm, params.motor.peak_torque_Nm,
+                               _most_asked(summary))}
+    return verdict_split(record, path.kind, 0.0, phases, why, summary)
 
 
-def verdict_split(maneuver: str, height_m: float, phases: dict, ceiling_m: float | None,
-                  why: list[str], summary: Summary, params: Params,
-                  too_fast: bool = False) -> AnyController:
-    """The summary's any_controller from each phase's (floor N*m or None, asked N*m or None):
-    the maneuver's floor (the largest; None if a phase has none), its safety factor (the
-    driving peak over it), what the controller asked at most and its cost, and whom a failing
-    verdict blames: any controller where a phase is beyond the motors, the path itself is
-    too_fast for them (a joint beyond their no-load speed), or the torque check decided and even
-    the floor's safety factor is below checks.sf_warn; else this controller."""
-    floors = [f for f, _ in phases.values()]
+def verdict_split(record: SimulationRecord, maneuver: str, height_m: float, phases: dict,
+                  why: list[str], summary: Summary, ceiling_m: float | None = None,
+                  reach_ceiling_m: float | None = None, bound_m: float | None = None,
+                  reached_m: float | None = None) -> AnyController:
+    """The summary's any_controller from each phase's need (_phase): on a slope every phase has
+    none (the floors model flat ground: unknown); the maneuver's floor (the largest; None if a
+    phase has none), its safety factor (the least of each phase's limit over its floor), what
+    the controller asked at most and its cost, and whom a failing verdict blames
+    (core.verdicts.fails_for, the one rule)."""
+    params = record.params
+    if record.scenario.slope_deg:
+        phases = {name: {**p, "status": "unknown", "floor_Nm": None}
+                  for name, p in phases.items()}
+        why = why + [f"no floor on a {record.scenario.slope_deg:g} deg slope (the floors model "
+                     "flat ground)"]
+    floors = [p["floor_Nm"] for p in phases.values()]
     floor = None if None in floors else max(floors)
-    most = max((a for _, a in phases.values() if a is not None), default=None)
-    floor_sf = params.motor.peak_torque_Nm / floor if floor else None
-    short = too_fast or floor is None or (summary["deciding_check"] == "torque"
-                                          and floor_sf < params.checks.sf_warn)
-    return {"maneuver": maneuver, "height_m": height_m,
-            "phases": {p: {"floor_Nm": f, "asked_Nm": a} for p, (f, a) in phases.items()},
-            "floor_Nm": floor, "floor_safety_factor": floor_sf, "ceiling_m": ceiling_m,
+    most = max((p["asked_Nm"] for p in phases.values() if p["asked_Nm"] is not None),
+               default=None)
+    floor_sf = (None if floor is None else
+                min(p["limit_Nm"] / p["floor_Nm"] for p in phases.values()))
+    blamed = fails_for(summary["verdict"], phases, params.checks.floor_margin)
+    if blamed == "this controller" and any(
+            p["status"] == "floor" and p["floor_Nm"] * (1.0 - params.checks.floor_margin)
+            > p["limit_Nm"] for p in phases.values()):
+        why.append("the run did its motion, so its floor's claim is set aside")
+    return {"maneuver": maneuver, "height_m": height_m, "phases": phases,
+            "floor_Nm": floor, "floor_safety_factor": floor_sf,
+            "floor_margin": params.checks.floor_margin, "ceiling_m": ceiling_m,
+            "reach_ceiling_m": reach_ceiling_m, "bound_m": bound_m, "reached_m": reached_m,
             "asked_Nm": most,
             "controller_cost": most / floor if most is not None and floor else None,
-            "fails_for": (None if summary["verdict"] not in ("fail", "not_achieved") else
-                          "any controller" if short else "this controller"),
-            "why": "; ".join(why)}
+            "fails_for": blamed, "why": "; ".join(why)}
 
 
 def _review(record: SimulationRecord, half: SimulationRecord | None = None):
@@ -260,7 +260,7 @@ def _review(record: SimulationRecord, half: SimulationRecord | None = None):
     summary = summarize(sig, record, reference, steps)
     floor = any_controller(record, summary)
     if floor is not None:
-        summary["answer"] += " " + any_controller_text(floor)
+        summary["answer"] += " " + any_controller_text(floor, record.params.checks.sf_warn)
     summary = in_schema_order({**summary, "any_controller": floor})
     if half is not None and half.interrupted:    # a step check cut short is none, and says so
         summary["step_check_interrupted"] = (

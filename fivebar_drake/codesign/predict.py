@@ -80,25 +80,29 @@ def _severity(verdict: str) -> int:
 
 
 def floors(maneuver: Maneuver, params: Params, accept) -> dict:
-    """Level (b) of a jump or a drop: its push-off's and landing's floors (N*m), the motors'
-    safety factor on the larger, the torque margin; a phase no torque the motors have does is
-    a margin of 0 with why (as pipeline.any_controller computes them from a run)."""
+    """Level (b) of a jump or a drop: its push-off's and landing's needs (vertical_jump.jump_need,
+    landing_need: the floors, N*m), the motors' safety factor on them (each phase's limit in its
+    quadrant, driving or braking, over its floor: the least), the torque margin. A phase beyond
+    the bound by another method is a margin of 0 with why; a phase between the model's optimum
+    and its bound has no prediction (undecided: margin None, left to the simulation), as
+    pipeline.any_controller splits a run."""
     path = maneuver.scenario.gait
-    payload, standing = maneuver.scenario.payload_kg, -params.gait.y_home_m
-    phases, why = {}, []
-    try:
-        if isinstance(path, Jump):
-            phases["push-off"] = vertical_jump.torque_floor(
-                vertical_jump.push_stroke(params, path, payload), standing, path.height_m)[0]
-        phases["landing"] = vertical_jump.landing_floor(
-            vertical_jump.landing_stroke(params, path, payload),
-            path.touchdown_speed(params.gait))[0]
-    except ParameterError as err:
-        why.append(err.message)
-    if why:
+    payload, motor = maneuver.scenario.payload_kg, params.motor
+    needs_ = {}
+    if isinstance(path, Jump):
+        needs_["push-off"] = (vertical_jump.jump_need(params, path, payload), motor.peak_torque_Nm)
+    needs_["landing"] = (vertical_jump.landing_need(params, path, payload),
+                         motor.braking_peak_torque_Nm)
+    phases = {name: need.floor_Nm for name, (need, _) in needs_.items()}
+    why = "; ".join(need.why for need, _ in needs_.values() if need.why)
+    statuses = {need.status for need, _ in needs_.values()}
+    if "beyond bound" in statuses:
         return {"level": "floor", "phases": phases, "safety_factor": 0.0, "verdict": "fail",
-                "why": "; ".join(why), "margins": {"torque": 0.0}}
-    sf = params.motor.peak_torque_Nm / max(phases.values())
+                "why": why, "margins": {"torque": 0.0}}
+    if "undecided" in statuses:
+        return {"level": "floor", "phases": phases, "safety_factor": None,
+                "verdict": "undecided", "why": why, "margins": {}}
+    sf = min(limit / need.floor_Nm for need, limit in needs_.values())
     return {"level": "floor", "phases": phases, "safety_factor": sf,
             "margins": {"torque": sf / needs(params, accept)["torque"]}}
 

@@ -38,7 +38,9 @@ class Checks:
     the gait's, tilt <= achieved_max_tilt_deg, no motor at its torque limit more than
     achieved_max_limit_fraction of the time; a maneuver ends standing within
     achieved_height_tolerance_m (m) of the standing height; a jump's apex rises at least
-    achieved_height_fraction of its planned height."""
+    achieved_height_fraction of its planned height. Claims for any controller (verdicts.fails_for):
+    a floor (an optimum of a reduced model) is beyond the motors only when floor (1 -
+    floor_margin) is."""
 
     sf_pass: float
     sf_warn: float
@@ -50,6 +52,7 @@ class Checks:
     achieved_max_limit_fraction: float = 0.05
     achieved_height_tolerance_m: float = 0.01
     achieved_height_fraction: float = 0.85
+    floor_margin: float = 0.05
 
     def __post_init__(self):
         for name in ("sf_pass", "sf_warn", "speed_margin_warn", "thermal_margin_warn"):
@@ -58,7 +61,8 @@ class Checks:
         require(self.sf_warn <= self.sf_pass, "checks.sf_warn", self.sf_warn,
                 f"must be <= checks.sf_pass = {self.sf_pass}")
         for name in ("speed_outside_fail", "achieved_speed_fraction",
-                     "achieved_max_limit_fraction", "achieved_height_fraction"):
+                     "achieved_max_limit_fraction", "achieved_height_fraction",
+                     "floor_margin"):
             check_number(f"checks.{name}", getattr(self, name), 0.0, 1.0)
         check_number("checks.achieved_max_tilt_deg", self.achieved_max_tilt_deg, 0.0,
                      MAX_TILT_DEG, low_open=True)

@@ -322,29 +322,41 @@ class Timing(TypedDict):
 
 
 class PhaseFloor(TypedDict):
-    """One phase's floor (the least peak motor torque any controller needs for it; None: the
-    motors cannot, AnyController.why says so) and what this run's controller asked in it."""
+    """One phase's need for any controller (core.verdicts.fails_for): status (verdicts.NEEDS:
+    "floor", "undecided" between the model's optimum and its bound, "beyond bound",
+    "unknown": no floor for this task), the floor (the least peak motor torque any controller
+    needs for it, N*m; None without one), the motors' limit in the quadrant the phase acts
+    (driving peak, or braking for a landing, N*m) and what this run's controller asked in it."""
 
+    status: str
     floor_Nm: float | None
+    limit_Nm: float
     asked_Nm: float | None
 
 
 class AnyController(TypedDict):
     """What any controller would need for this maneuver (optimal/; pipeline.any_controller):
-    per phase (a jump's push-off and landing, a drop's landing, a gait's stance) the least peak motor torque on
-    the maneuver's own stroke and what this run's controller asked; the maneuver's floor (the
-    largest; None: beyond the motors) with its safety factor; the ceiling (the highest jump on
-    the push's stroke, or the highest drop the landing's stroke absorbs, m); what the
-    controller asked at most in those phases and its ratio to the floor; and whom a failing
-    verdict blames ("any controller": the motors cannot; "this controller": a better one would
-    pass; None: nothing failed)."""
+    per phase (a jump's push-off and landing, a drop's landing, a gait's stance, a stand-up) its
+    need and what this run's controller asked; the maneuver's floor (the largest; None: a phase
+    has none) with its safety factor (each phase's limit in its quadrant over its floor, the
+    least) and the model margin a claim needs (checks.floor_margin); a jump's optima (the
+    highest jump on the push's stroke and over the leg's whole reach, or the highest drop the
+    landing's stroke absorbs, m), the bound by another method (m) and what this run reached
+    (m); what the controller asked at most in those phases and its ratio to the floor; and
+    whom a failing verdict blames (verdicts.fails_for: "any controller": no controller could;
+    "this controller": the need within the motors, the demand not; "undecided": between the
+    model's optimum and its bound; "unknown": no floor; None: nothing failed)."""
 
     maneuver: str
     height_m: float
     phases: dict[str, PhaseFloor]
     floor_Nm: float | None
     floor_safety_factor: float | None
+    floor_margin: float
     ceiling_m: float | None
+    reach_ceiling_m: float | None
+    bound_m: float | None
+    reached_m: float | None
     asked_Nm: float | None
     controller_cost: float | None
     fails_for: str | None

@@ -182,6 +182,34 @@ def step_check(summary: Summary, half: Summary, checks: Checks) -> StepCheck:
                     f"for {split or 'nobody'}" if blamed else "")}
 
 
+NEEDS = ("floor", "undecided", "beyond bound", "unknown")   # a phase's need (PhaseFloor.status)
+
+
+def fails_for(verdict: str, phases: dict, margin: float) -> str | None:
+    """Whom a failing verdict blames: the one rule every output reads. phases: per phase its
+    need (summary_schema.PhaseFloor: status in NEEDS, floor_Nm, limit_Nm: the motors' limit in
+    the quadrant the phase acts, driving or braking); margin: the floors' model margin
+    (checks.floor_margin). None where nothing failed (verdict neither fail nor not_achieved);
+    "any controller" where the run did not achieve its motion and a phase's need is beyond the
+    motors: beyond a bound by another method, or its floor less the margin, floor (1 - margin),
+    beyond its limit (a run that achieved its motion is never called impossible); else
+    "undecided" where a phase lies between its model's optimum and its bound, "unknown" where
+    a phase has no floor; else "this controller" (the need within the motors, the demand not)."""
+    if verdict not in ("fail", "not_achieved"):
+        return None
+    statuses = {p["status"] for p in phases.values()}
+    beyond = "beyond bound" in statuses or any(
+        p["status"] == "floor" and p["floor_Nm"] * (1.0 - margin) > p["limit_Nm"]
+        for p in phases.values())
+    if beyond and verdict == "not_achieved":
+        return "any controller"
+    if "undecided" in statuses:
+        return "undecided"
+    if "unknown" in statuses:
+        return "unknown"
+    return "this controller"
+
+
 def step_checked_verdict(current: str, check: StepCheck) -> str:
     """The run's verdict (current) after its step check: "marginal" where the check is
     marginal, unless the run has no verdict or did not do its motion (NO_STEP_CHECK_VERDICTS)."""

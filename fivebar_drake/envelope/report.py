@@ -123,22 +123,49 @@ def sizing(maneuvers: dict) -> dict:
     return out
 
 
-def sized_by_floor(maneuvers: dict, peak_torque_Nm: float) -> dict | None:
-    """The maneuver whose floor (its any_controller: the least peak motor torque any controller
-    needs; a jump's, a drop's, a trot's) is the largest, with that floor, the motors' safety
-    factor on it (driving peak over the floor) and the maneuvers that have no floor; None when
-    no maneuver has one. Where a maneuver is beyond the motors for any controller, it sizes
-    them (floor None, safety factor 0)."""
-    floors = {name: e["any_controller"] for name, e in maneuvers.items()
-              if e.get("any_controller")}
-    if not floors:
+def sized_by_floor(maneuvers: dict) -> dict | None:
+    """The maneuver whose need (its any_controller: the least peak motor torque any controller
+    needs, against the motors' limit in the quadrant each phase acts) leaves the least safety
+    factor, with its floor and that safety factor; a maneuver beyond a bound by another method
+    sizes the motors first (floor None, safety factor 0: no motion does it); the maneuvers
+    undecided (beyond their model's optimum, within its bound) and those without a floor are
+    listed apart, never given a safety factor. None when no maneuver has a need."""
+    needs = {name: e["any_controller"] for name, e in maneuvers.items()
+             if e.get("any_controller")}
+    if not needs:
         return None
-    name = max(floors, key=lambda n: math.inf if floors[n]["floor_Nm"] is None
-               else floors[n]["floor_Nm"])
-    floor = floors[name]["floor_Nm"]
-    return {"maneuver": name, "floor_Nm": floor,
-            "safety_factor": 0.0 if floor is None else peak_torque_Nm / floor,
-            "without_floor": [n for n in maneuvers if n not in floors]}
+    status = {name: {p["status"] for p in a["phases"].values()} for name, a in needs.items()}
+    beyond = [n for n in needs if "beyond bound" in status[n]]
+    floored = [n for n in needs if needs[n]["floor_Nm"] is not None]
+    out = {"undecided": [n for n in needs if "undecided" in status[n] and n not in beyond],
+           "without_floor": [n for n in maneuvers if n not in needs
+                             or "unknown" in status.get(n, ())]}
+    if beyond:
+        return {"maneuver": beyond[0], "floor_Nm": None, "safety_factor": 0.0, **out}
+    if not floored:
+        return {"maneuver": None, "floor_Nm": None, "safety_factor": None, **out}
+    name = min(floored, key=lambda n: needs[n]["floor_safety_factor"])
+    return {"maneuver": name, "floor_Nm": needs[name]["floor_Nm"],
+            "safety_factor": needs[name]["floor_safety_factor"], **out}
+
+
+def floor_text(f: dict) -> str:
+    """The envelope's need for any controller in a sentence (sized_by_floor's dictionary)."""
+    if f["floor_Nm"] is None and f["safety_factor"] == 0.0:
+        text = (f"**{f['maneuver']}** is beyond these motors for any controller (beyond a bound "
+                "by another method)")
+    elif f["floor_Nm"] is None:
+        text = "No maneuver has a floor"
+    else:
+        text = (f"Sized by its need: **{f['maneuver']}** needs at least {f['floor_Nm']:.2f} N·m "
+                f"at the peak whatever the controller: the motors' safety factor on it, in the "
+                f"quadrant it acts, is {f['safety_factor']:.2f}")
+    if f["undecided"]:
+        text += (f". Undecided for any controller (beyond the model's optimum, within its "
+                 f"bound): {', '.join(f['undecided'])}")
+    if f["without_floor"]:
+        text += f". No floor for {', '.join(f['without_floor'])}"
+    return text + "."
 
 
 def _reason(motor: str, maneuver: str, row: dict) -> str:
@@ -194,7 +221,7 @@ def envelope_report(spec, results: dict, duty: dict | None, duty_why: str,
                   "no_load_speed_rad_s": motor.no_load_speed_rad_s,
                   "continuous_torque_Nm": motor.continuous_torque_Nm},
         "sized_by": sized,
-        "sized_by_floor": sized_by_floor(maneuvers, motor.peak_torque_Nm),
+        "sized_by_floor": sized_by_floor(maneuvers),
         "maneuvers": maneuvers,
         "duty_cycle": None if duty is None else {
             "steps": [{"maneuver": s.maneuver, "duration_s": s.duration_s}
@@ -270,19 +297,12 @@ def markdown(report: dict) -> str:
                   f"thermal {s['worst_per_check']['thermal']}."), ""]
     f = report["sized_by_floor"]
     if f is not None:
-        lines += ["## For any controller", "",
-                  ("Sized by its floor: " + (
-                      f"**{f['maneuver']}** needs at least {f['floor_Nm']:.2f} N·m at the peak "
-                      f"whatever the controller: the motors' safety factor on it is "
-                      f"{f['safety_factor']:.2f}" if f["floor_Nm"] is not None else
-                      f"**{f['maneuver']}** is beyond these motors for any controller"))
-                  + (f". No floor is computed yet for {', '.join(f['without_floor'])}."
-                     if f["without_floor"] else "."), ""]
+        lines += ["## For any controller", "", floor_text(f), ""]
     lines += ["## Maneuvers", "", "Floor: the least peak motor torque any controller needs for "
-              "the maneuver, against what this controller asked (a jump's push-off; the other "
-              "maneuvers' floors are not computed yet: —); fails for: whom a failing verdict "
-              "blames (any controller: the motors cannot; this controller: a better one would "
-              "pass).", "",
+              "the maneuver, against what this controller asked (— : no floor for it); fails "
+              "for: whom a failing verdict blames (any controller: the motors cannot; this "
+              "controller: the motors can, this controller did not; undecided: beyond the "
+              "model's optimum, within its bound; unknown: no floor).", "",
               "| maneuver | gait | changes | status | verdict | floor / asked N·m | fails for | "
               "simulated s | step ms | real-time factor | folder |",
               "|---|---|---|---|---|---|---|---|---|---|---|"]

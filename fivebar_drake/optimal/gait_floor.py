@@ -105,9 +105,16 @@ class GaitFloor:
 
 def whole_body(params: Params, payload_kg: float = 0.0) -> tuple[float, float, float]:
     """(mass kg, centre of mass height above the body origin m, pitch inertia about the centre of
-    mass kg*m^2) of the robot standing on its gait's home pose: the body (box and motors,
-    sdf.body_mass_properties), the legs' links as point masses at their centres of mass, the
-    payload as a point mass at the body origin."""
+    mass kg*m^2) of the robot standing on its gait's home pose (mass_centre)."""
+    mass, _, z_c, pitch = mass_centre(params, payload_kg)
+    return mass, z_c, pitch
+
+
+def mass_centre(params: Params, payload_kg: float = 0.0) -> tuple[float, float, float, float]:
+    """(mass kg, centre of mass x (forward) and height above the body origin m, pitch inertia
+    about the centre of mass kg*m^2) of the robot standing on its gait's home pose: the body
+    (box and motors, sdf.body_mass_properties), the legs' links as point masses at their
+    centres of mass, the payload as a point mass at the body origin."""
     body_kg, com, inertia = body_mass_properties(params)
     leg = params.fivebar_leg
     pose = leg.inverse(np.array([params.gait.x_center_m, params.gait.y_home_m]), KNEES_OUT)
@@ -125,7 +132,7 @@ def whole_body(params: Params, payload_kg: float = 0.0) -> tuple[float, float, f
     pitch = (inertia[1, 1] + body_kg * ((com[0] - x_c) ** 2 + (com[2] - z_c) ** 2)
              + masses @ ((points[:, 0] - x_c) ** 2 + (points[:, 1] - z_c) ** 2)
              + payload_kg * (x_c ** 2 + z_c ** 2))
-    return float(mass), float(z_c), float(pitch)
+    return float(mass), float(x_c), float(z_c), float(pitch)
 
 
 class Schedule:

@@ -21,10 +21,8 @@ from fivebar_drake.optimal.recording import RECORDING_FILE, write_recording
 from fivebar_drake.optimal.gait_floor import (KINDS, fastest_gait, fastest_joint, gait_floor,
                                               max_pitch_rad)
 from fivebar_drake.optimal.stand_up import stand_up_floor
-from fivebar_drake.optimal.vertical_jump import (Jump, body_apexes, highest_drop, landing_floor,
-                                                 landing_stroke, point_mass_bound, push,
-                                                 push_stroke, reach, stroke,
-                                                 torque_floor)
+from fivebar_drake.optimal.vertical_jump import (Jump, body_apexes, jump_need, landing_need,
+                                                 point_mass_bound, push, reach, stroke)
 from fivebar_drake.robots.quadruped.config import with_path_defaults
 from fivebar_drake.robots.quadruped.params import Params
 
@@ -105,15 +103,18 @@ def jump_limits(params: Params, height_m: float | None = None,
                             "J_F^T, energy over the same stroke"},
         "floor": None, "floor_why_none": ""}
     jumps = {"ceiling": ceiling}
-    crouch, extension = plan.crouch_m, plan.extension_m
-    try:
-        peak, jumps["floor"] = torque_floor(push_stroke(params, plan, payload_kg), standing,
-                                            height)
-        result["floor"] = {"height_m": height, "crouch_m": crouch, "extension_m": extension,
-                           "least_peak_torque_Nm": peak,
+    need = jump_need(params, dataclasses.replace(plan, height_m=height), payload_kg)
+    result["floor_status"] = need.status
+    if need.status == "floor":
+        jumps["floor"] = need.found
+        u = need.found.stroke.u
+        result["floor"] = {"height_m": height, "crouch_m": standing - float(u[0]),
+                           "extension_m": float(u[-1]) - standing,
+                           "least_peak_torque_Nm": need.floor_Nm, "on": need.why or
+                           "the jump maneuver's own stroke",
                            **_jump_figures(jumps["floor"], params.motor)}
-    except ParameterError as err:
-        result["floor_why_none"] = err.message
+    else:
+        result["floor_why_none"] = need.why
     result["drop"] = drop_limits(params, payload_kg)
     result["stand_up"] = stand_up_limits(params, payload_kg)
     result["gaits"] = {kind: gait_limits(params, kind, payload_kg) for kind in KINDS}
@@ -143,7 +144,7 @@ def gait_limits(params: Params, kind: str, payload_kg: float = 0.0) -> dict:
     return {"floor_Nm": at_gait.floor_Nm,
             "speed_margin": float(min(np.nanmin(np.where(stance, margins, np.inf)),
                                       motor.no_load_speed_rad_s / fastest_joint(params, kind))),
-            "beyond_motors": at_gait.floor_Nm > params.motor.peak_torque_Nm,
+            "beyond_motors": beyond_motor(params, at_gait.floor_Nm),
             "level_floor_Nm": at_gait.level_Nm,
             "height_swing_m": float(np.ptp(at_gait.z_m)),
             "surge_swing_m": float(np.ptp(at_gait.x_m)),
@@ -161,19 +162,17 @@ def gait_limits(params: Params, kind: str, payload_kg: float = 0.0) -> dict:
 
 
 def drop_limits(params: Params, payload_kg: float = 0.0) -> dict:
-    """The packaged drop maneuver's landing for any controller: the least peak motor torque
-    that stops the body within its landing stroke from its height (braking), and the highest
-    drop that stroke absorbs (m); the floor None with why where the legs give way."""
-    plan, g = Drop(), params.robot.gravity_m_s2
-    s = landing_stroke(params, plan, payload_kg)
-    out = {"height_m": plan.height_m, "landing_stroke_m": plan.landing_stroke_m,
-           "highest_drop_m": highest_drop(s) ** 2 / (2.0 * g), "least_peak_torque_Nm": None,
-           "why_none": ""}
-    try:
-        out["least_peak_torque_Nm"] = landing_floor(s, plan.touchdown_speed(params.gait))[0]
-    except ParameterError as err:
-        out["why_none"] = err.message
-    return out
+    """The packaged drop maneuver's landing for any controller (vertical_jump.landing_need): the
+    least peak motor torque that stops the body from its height (braking) within its landing
+    stroke, or over the leg's whole reach where that stroke gives way, and the highest drop the
+    stroke absorbs (m); the floor None with why where the legs give way even over the whole
+    reach (undecided)."""
+    plan = Drop()
+    need = landing_need(params, plan, payload_kg)
+    return {"height_m": plan.height_m, "landing_stroke_m": plan.landing_stroke_m,
+            "highest_drop_m": need.stroke_optimum_m, "least_peak_torque_Nm": need.floor_Nm,
+            "limit_Nm": params.motor.braking_peak_torque_Nm, "status": need.status,
+            "why_none": "" if need.status == "floor" else need.why, "on": need.why}
 
 
 def stand_up_limits(params: Params, payload_kg: float = 0.0) -> dict:
@@ -181,17 +180,18 @@ def stand_up_limits(params: Params, payload_kg: float = 0.0) -> dict:
     motor torque, where the feet take the load, the maneuver's straight path's own peak, the
     dynamics' bound; the floor None with why where no loaded path reaches standing."""
     plan = StandUp()
-    out = {"rise_s": plan.rise_s, "least_peak_torque_Nm": None, "lift_x_m": None,
-           "straight_path_peak_Nm": None, "dynamic_share": None, "beyond_motors": False,
-           "why_none": ""}
+    out = {"rise_s": plan.rise_s, "least_peak_torque_Nm": None, "lift_front_x_m": None,
+           "lift_rear_x_m": None, "straight_path_peak_Nm": None, "straight_path_why": "",
+           "dynamic_share": None, "beyond_motors": False, "why_none": ""}
     try:
         found = stand_up_floor(params, plan, payload_kg)
     except ParameterError as err:
         out["why_none"] = err.message
         return out
-    out.update(least_peak_torque_Nm=found.floor_Nm, lift_x_m=found.lift_x_m,
-               straight_path_peak_Nm=found.straight_Nm, dynamic_share=found.dynamic_share,
-               beyond_motors=found.floor_Nm > params.motor.peak_torque_Nm)
+    out.update(least_peak_torque_Nm=found.floor_Nm, lift_front_x_m=found.lift_front_x_m,
+               lift_rear_x_m=found.lift_rear_x_m, straight_path_peak_Nm=found.straight_Nm,
+               straight_path_why=found.straight_why, dynamic_share=found.dynamic_share,
+               beyond_motors=beyond_motor(params, found.floor_Nm))
     return out
 
 
@@ -199,17 +199,18 @@ def answer(r: dict, params: Params) -> str:
     """The result in two sentences: how high the legs can jump, what the packaged jump needs."""
     c = r["ceiling"]
     first = ("The motors cannot lift the crouched robot: no jump." if c is None else
-             f"The legs and motors allow a vertical jump of "
+             f"The highest vertical jump of the one-leg model is "
              f"{c['body_apex_above_standing_m'] * 1e3:.0f} mm above standing (the body's apex; "
              f"the centre of mass rises {c['com_rise_from_crouch_m'] * 1e3:.0f} mm from the crouch, "
              f"takeoff at {c['takeoff_speed_m_s']:.2f} m/s, agility "
-             f"{c['agility_m_s']:.2f} m/s), for any controller; a point mass on massless legs "
-             f"with the same motors would reach {r['bound']['hip_apex_above_standing_m'] * 1e3:.0f}"
-             f" mm.")
+             f"{c['agility_m_s']:.2f} m/s); no controller exceeds the bound of "
+             f"{r['bound']['hip_apex_above_standing_m'] * 1e3:.0f} mm (a point mass on massless "
+             f"legs with the same motors), and between the two a controller's run decides.")
     f = r["floor"]
+    whole = "" if f is None or "whole reach" not in f["on"] else " on the leg's whole reach"
     second = (f" The jump maneuver: {r['floor_why_none']}." if f is None else
               f" The jump maneuver to {f['height_m'] * 1e3:.0f} mm needs at least "
-              f"{f['least_peak_torque_Nm']:.2f} N·m at its peak (motor A "
+              f"{f['least_peak_torque_Nm']:.2f} N·m at its peak{whole} (motor A "
               f"{f['motors']['A']['peak_torque_Nm']:.2f}, B {f['motors']['B']['peak_torque_Nm']:.2f}"
               f" N·m) whatever the controller; the motors give "
               f"{params.motor.peak_torque_Nm:.2f} N·m.")
@@ -223,9 +224,12 @@ def answer(r: dict, params: Params) -> str:
     u = r["stand_up"]
     third += (f" Standing up from lying: {u['why_none']}." if u["least_peak_torque_Nm"] is None
               else f" Standing up from lying needs at least {u['least_peak_torque_Nm']:.2f} N·m "
-                   f"(quasi-static; the feet taking the load "
-                   f"{u['lift_x_m'] * 1e3:.0f} mm from the hips; the maneuver's straight path "
-                   + ("leaves the reach" if u["straight_path_peak_Nm"] is None else
+                   f"(quasi-static, a level lift balanced about the pitch axis; the front feet "
+                   f"taking the load {u['lift_front_x_m'] * 1e3:.0f} mm and the rear "
+                   f"{u['lift_rear_x_m'] * 1e3:.0f} mm behind their hips; the maneuver's "
+                   f"straight path "
+                   + (u["straight_path_why"].removeprefix("the straight path ")
+                      if u["straight_path_peak_Nm"] is None else
                       f"asks {u['straight_path_peak_Nm']:.2f} N·m")
                    + f"; its dynamics add at most {u['dynamic_share']:.0%} in "
                      f"{u['rise_s']:g} s).")
@@ -363,10 +367,20 @@ def max_jump_plan(params: Params, ceiling: Jump, payload_kg: float = 0.0) -> Jum
                                                           PUSH_SHARES[1]), 4))
 
 
+def beyond_motor(params: Params, floor_Nm: float) -> bool:
+    """Whether a driving floor is beyond the motors for any controller: its floor less the
+    model margin (checks.floor_margin) beyond their peak (core.verdicts.fails_for's rule)."""
+    return floor_Nm * (1.0 - params.checks.floor_margin) > params.motor.peak_torque_Nm
+
+
 def beyond(result: dict) -> str:
-    """What the design cannot do for any controller, in a line ("" where it can do all)."""
-    why = [result["ceiling_why_none"], result["floor_why_none"], result["drop"]["why_none"],
-           result["stand_up"]["why_none"]]
+    """What the design cannot do for any controller, in a line ("" where it can do all): the
+    crouched robot it cannot lift, a jump beyond the bound by another method, a gait's or the
+    stand-up's floor beyond the motors by more than the model margin. An undecided jump (beyond
+    the model's optimum, within the bound) or a landing without a floor is not among them."""
+    why = [result["ceiling_why_none"]]
+    if result["floor_status"] == "beyond bound":
+        why.append(result["floor_why_none"])
     why += [f"the {kind} needs at least {t['floor_Nm']:.2f} N·m in stance"
             for kind, t in result["gaits"].items() if t["beyond_motors"]]
     u = result["stand_up"]

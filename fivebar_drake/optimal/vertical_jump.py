@@ -434,3 +434,92 @@ def highest_drop(s: Stroke, tolerance_m_s: float = 1e-3) -> float:
         mid = 0.5 * (low + high)
         low, high = (mid, high) if catch(s, mid).stop is not None else (low, mid)
     return low
+
+
+@dataclass(frozen=True)
+class Need:
+    """What any controller needs for one phase of a maneuver (jump_need, landing_need): status
+    "floor" (floor_Nm the least peak motor torque of the one-leg model, on the maneuver's
+    stroke or, beyond what that stroke allows, on the leg's whole reach: why says which),
+    "undecided" (beyond the model's optimum over the whole reach, within the bound by another
+    method or where there is none: a controller's run decides) or "beyond bound" (beyond
+    point_mass_bound: no motion does it); the stroke's and the whole reach's optimum (m: a
+    jump's body apex above standing, a landing's highest drop) and the bound (m, None: none);
+    found: the floor's motion (a Jump or a Catch; None without a floor)."""
+
+    status: str
+    floor_Nm: float | None
+    why: str
+    stroke_optimum_m: float | None
+    reach_optimum_m: float | None = None
+    bound_m: float | None = None
+    found: object = None
+
+
+def _apex(jump: Jump | None) -> float | None:
+    return None if jump is None else jump.body_apex_above_standing_m
+
+
+def jump_need(params: Params, path: JumpPath, payload_kg: float = 0.0) -> Need:
+    """The push-off's need for the jump maneuver path (its height_m above standing): the floor
+    on its own stroke (push_stroke); beyond that stroke's highest jump, the floor on the leg's
+    whole reach (a deeper crouch, a fuller extension); beyond that, undecided up to the point-mass
+    bound over the whole reach and beyond bound above it."""
+    standing, height = -params.gait.y_home_m, path.height_m
+    own = push_stroke(params, path, payload_kg)
+    stroke_top = _apex(push(own, standing))
+    try:
+        floor, found = torque_floor(own, standing, height)
+        return Need("floor", floor, "", stroke_top, found=found)
+    except ParameterError:
+        pass
+    u0, u1 = reach(params)
+    whole = stroke(params, u0, u1, payload_kg)
+    reach_top = _apex(push(whole, standing))
+    bound = point_mass_bound(params, u0, u1, standing, payload_kg)[1]
+    figures = dict(stroke_optimum_m=stroke_top, reach_optimum_m=reach_top, bound_m=bound)
+    mm = height * 1e3
+    own_text = ("its stroke cannot start it" if stroke_top is None else
+                f"its stroke's highest is {stroke_top * 1e3:.1f} mm")
+    try:
+        floor, found = torque_floor(whole, standing, height)
+        return Need("floor", floor, f"{mm:.1f} mm: {own_text}; the floor is on the leg's whole "
+                    f"reach (a deeper crouch and a fuller extension)", **figures, found=found)
+    except ParameterError:
+        pass
+    if height > bound:
+        return Need("beyond bound", None, f"{mm:.1f} mm is beyond the bound of "
+                    f"{bound * 1e3:.1f} mm (a point mass on massless legs pushed by the motors' "
+                    f"envelope over the leg's whole reach): no motion of the legs does it",
+                    **figures)
+    top = "no jump" if reach_top is None else f"{reach_top * 1e3:.1f} mm"
+    return Need("undecided", None, f"{mm:.1f} mm lies between the one-leg model's highest "
+                f"jump over the leg's whole reach ({top}) and the bound of {bound * 1e3:.1f} mm "
+                "(a point mass on massless legs): undecided, a controller's run decides "
+                "(controller: {kind: tracking})", **figures)
+
+
+def landing_need(params: Params, path: Landing, payload_kg: float = 0.0) -> Need:
+    """The landing's need for the maneuver path (a jump's or a drop's): the floor stopping its
+    touchdown speed within its landing stroke (landing_stroke, braking); where the legs give way
+    there, the floor over the leg's whole reach below the touchdown pose; where they give way
+    even there, undecided (no bound by another method for a landing)."""
+    speed, g = path.touchdown_speed(params.gait), params.robot.gravity_m_s2
+    own = landing_stroke(params, path, payload_kg)
+    drop = highest_drop(own) ** 2 / (2.0 * g)
+    try:
+        floor, found = landing_floor(own, speed)
+        return Need("floor", floor, "", drop, found=found)
+    except ParameterError as err:
+        given_way = err.message
+    whole = stroke(params, reach(params)[0], float(own.u[-1]), payload_kg)
+    whole_drop = highest_drop(whole) ** 2 / (2.0 * g)
+    try:
+        floor, found = landing_floor(whole, speed)
+        return Need("floor", floor, f"{given_way}; the floor is over the leg's whole reach "
+                    f"({(whole.u[-1] - whole.u[0]) * 1e3:.0f} mm)", drop, whole_drop,
+                    found=found)
+    except ParameterError as err:
+        return Need("undecided", None, f"{err.message}, even over the leg's whole reach (the "
+                    f"one-leg model's highest drop {whole_drop * 1e3:.0f} mm): undecided, no "
+                    "bound by another method", drop, whole_drop)

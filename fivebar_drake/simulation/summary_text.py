@@ -182,7 +182,7 @@ def markdown(s: Summary, params: Params) -> str:
                   f"gait's {figure(s['gait_speed_m_s'], '{:.3f}')} m/s; swing feet clear of the "
                   f"ground {figure(clear * 100, '{:.0f}')} % of scheduled swing{dragged}; {motion}")
     lines += [
-        "", f"- {motion}", *maneuver_lines(s),
+        "", f"- {motion}", *maneuver_lines(s, params.checks.sf_warn),
         f"- {limits_text(s['limits'])}",
         *([f"- vertical ground force (every plant step, {s['log_period_s'] * 1e3:g} ms means) "
            f"between {s['vertical_support']['least_share']:.2f} (t = "
@@ -243,34 +243,53 @@ def ran_text(ran: Ran) -> str:
            if events else "") + ".")
 
 
-def any_controller_text(a: AnyController) -> str:
-    """What any controller would need for the maneuver, in a sentence (pipeline.any_controller)."""
-    reach = {"jump": "jump on its stroke", "drop": "drop its landing stroke absorbs"}.get(
-        a["maneuver"])
-    if a["floor_Nm"] is None:
-        text = f"No controller could do this {a['maneuver']}: {a['why']}"
-    else:
-        per = ", ".join(f"{p} {v['floor_Nm']:.2f}" + ("" if v["asked_Nm"] is None else
-                                                      f" (asked {v['asked_Nm']:.2f})")
-                        for p, v in a["phases"].items())
-        cost = ("" if a["controller_cost"] is None else
-                f"; this controller asked {a['controller_cost']:.2f}x the floor")
-        what = (f"{a['height_m'] * 1e3:.0f} mm {a['maneuver']}" if a["height_m"]
-                else a["maneuver"])
-        ceiling = ("" if a["ceiling_m"] is None else
-                   f"; the highest {reach}: {a['ceiling_m'] * 1e3:.0f} mm")
-        text = (f"Any controller needs at least {a['floor_Nm']:.2f} N·m at the peak for this "
-                f"{what} ({per} N·m{ceiling}){cost}")
-        if a["why"]:
-            text += f" ({a['why']})"
-    blame = {"any controller": " The verdict fails for any controller: the motors are too "
-                               "small for it.",
-             "this controller": " The verdict fails for this controller: the motors could do "
-                                "it, a better controller would pass.", None: ""}
-    return text + "." + blame[a["fails_for"]]
+BLAME = {
+    "any controller": " No controller could do it: its need is beyond the motors (a floor less "
+                      "its {margin:.0%} model margin beyond the motors' limit, or a bound by "
+                      "another method).",
+    "this controller": " The motors could do the motion; this controller failed it{sf}.",
+    "undecided": " Whether any controller could do it is undecided: it lies beyond the reduced "
+                 "model's optimum and within the bound; the tracking controller's run decides.",
+    "unknown": " Whether a better controller would pass is unknown: no floor for this task.",
+    None: ""}
 
 
-def maneuver_lines(s: Summary) -> list[str]:
+def any_controller_text(a: AnyController, sf_warn: float | None = None) -> str:
+    """What any controller would need for the maneuver, in a sentence (pipeline.any_controller;
+    whom a failing verdict blames: core.verdicts.fails_for); sf_warn: the warn threshold a need's
+    safety factor is set against."""
+    parts = []
+    for p, v in a["phases"].items():
+        asked = "" if v["asked_Nm"] is None else f", asked {v['asked_Nm']:.2f}"
+        parts.append(f"{p} {v['floor_Nm']:.2f} of {v['limit_Nm']:.2f}{asked}"
+                     if v["floor_Nm"] is not None else f"{p} {v['status']}{asked}")
+    what = (f"{a['height_m'] * 1e3:.0f} mm {a['maneuver']}" if a["height_m"] else a["maneuver"])
+    text = (f"Any controller needs at least {a['floor_Nm']:.2f} N·m at the peak for this {what}"
+            if a["floor_Nm"] is not None else f"No floor for this {what}")
+    text += f" ({'; '.join(parts)} N·m)"
+    if a["maneuver"] == "jump":
+        optima = [f"{label} {a[key] * 1e3:.1f} mm" for key, label in (
+            ("reached_m", "this run reached"), ("ceiling_m", "its stroke's optimum"),
+            ("reach_ceiling_m", "the whole reach's optimum"), ("bound_m", "the bound"))
+            if a.get(key) is not None]
+        text += "; " + ", ".join(optima) if optima else ""
+    elif a.get("ceiling_m") is not None:
+        text += f"; the highest drop its stroke absorbs: {a['ceiling_m'] * 1e3:.0f} mm"
+    if a["controller_cost"] is not None:
+        text += f"; this controller asked {a['controller_cost']:.2f}x the floor"
+    if a["why"]:
+        text += f" ({a['why']})"
+    sf = ""
+    if (a["fails_for"] == "this controller" and sf_warn is not None
+            and a["floor_safety_factor"] is not None and a["floor_safety_factor"] < sf_warn):
+        sf = (f", though no controller would pass its safety-factor check (the need's SF "
+              f"{a['floor_safety_factor']:.2f} < {sf_warn:g})")
+    elif a["fails_for"] == "this controller":
+        sf = ": a better controller would pass"
+    return text + "." + BLAME[a["fails_for"]].format(margin=a["floor_margin"], sf=sf)
+
+
+def maneuver_lines(s: Summary, sf_warn: float) -> list[str]:
     """A maneuver's measured figures beside their plan (each group's `planned`): the jump and
     the landing, a line each where it happened."""
     lines = []
@@ -288,7 +307,8 @@ def maneuver_lines(s: Summary) -> list[str]:
                      f"N·m, body drop {ld['compression_m'] * 1e3:.1f} mm over "
                      f"{ld['duration_s'] * 1e3:.0f} ms")
     if s.get("any_controller"):
-        lines.append(f"- for any controller: {any_controller_text(s['any_controller'])}")
+        lines.append(f"- for any controller: "
+                     f"{any_controller_text(s['any_controller'], sf_warn)}")
     return lines
 
 

@@ -1,24 +1,43 @@
-"""The envelope's sizing for any controller (envelope/report.sized_by_floor): the maneuver with
-the largest floor, a maneuver beyond the motors first, the maneuvers without a floor named."""
+"""The envelope's sizing for any controller (envelope/report.sized_by_floor): the maneuver whose
+need leaves the least safety factor in the quadrant it acts, a maneuver beyond a bound first,
+undecided maneuvers and those without a floor named apart and never given a safety factor."""
 
-from fivebar_drake.envelope.report import sized_by_floor
-
-
-def entry(floor):
-    return {"any_controller": None if floor == "none" else {"floor_Nm": floor}}
+from fivebar_drake.envelope.report import floor_text, sized_by_floor
 
 
-def test_the_largest_floor_sizes_the_motors():
-    maneuvers = {"trot": entry(2.46), "drop": entry(3.24), "bound": entry("none")}
-    s = sized_by_floor(maneuvers, 5.0)
-    assert s["maneuver"] == "drop" and s["floor_Nm"] == 3.24
-    assert abs(s["safety_factor"] - 5.0 / 3.24) < 1e-12 and s["without_floor"] == ["bound"]
+def entry(*phases):
+    """A maneuver's any_controller from (status, floor, limit) per phase."""
+    if phases == ("none",):
+        return {"any_controller": None}
+    table = {f"p{i}": {"status": st, "floor_Nm": f, "limit_Nm": lim, "asked_Nm": None}
+             for i, (st, f, lim) in enumerate(phases)}
+    floors = [p["floor_Nm"] for p in table.values()]
+    return {"any_controller": {
+        "phases": table, "floor_Nm": None if None in floors else max(floors),
+        "floor_safety_factor": None if None in floors else
+        min(p["limit_Nm"] / p["floor_Nm"] for p in table.values())}}
 
 
-def test_a_maneuver_beyond_the_motors_sizes_them_for_any_controller():
-    s = sized_by_floor({"trot": entry(2.46), "jump": entry(None)}, 5.0)
+def test_the_least_safety_factor_in_its_quadrant_sizes_the_motors():
+    """A landing's 3.24 N·m against the 6.17 N·m braking limit leaves more than a 2.9 N·m stance
+    against the 5 N·m driving limit: the stance sizes the motors, not the larger floor."""
+    maneuvers = {"trot": entry(("floor", 2.9, 5.0)), "drop": entry(("floor", 3.24, 6.17)),
+                 "bound": entry("none")}
+    s = sized_by_floor(maneuvers)
+    assert s["maneuver"] == "trot" and s["floor_Nm"] == 2.9
+    assert abs(s["safety_factor"] - 5.0 / 2.9) < 1e-12 and s["without_floor"] == ["bound"]
+
+
+def test_a_maneuver_beyond_a_bound_sizes_them_and_an_undecided_one_does_not():
+    s = sized_by_floor({"trot": entry(("floor", 2.46, 5.0)),
+                        "jump": entry(("beyond bound", None, 5.0), ("floor", 2.0, 6.17))})
     assert s["maneuver"] == "jump" and s["floor_Nm"] is None and s["safety_factor"] == 0.0
+    s = sized_by_floor({"trot": entry(("floor", 2.46, 5.0)),
+                        "jump": entry(("undecided", None, 5.0), ("floor", 2.0, 6.17))})
+    assert s["maneuver"] == "trot" and s["undecided"] == ["jump"]
+    assert "Undecided for any controller" in floor_text(s)
+    assert "beyond these motors" not in floor_text(s)
 
 
 def test_without_any_floor_there_is_no_sizing():
-    assert sized_by_floor({"walk": entry("none")}, 5.0) is None
+    assert sized_by_floor({"walk": entry("none")}) is None

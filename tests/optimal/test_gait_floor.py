@@ -12,7 +12,7 @@ from pydrake.multibody.plant import MultibodyPlant
 from fivebar_drake.core.footpath import evaluate, foot_path
 from fivebar_drake.mechanisms.fivebar import sample_gait
 from fivebar_drake.optimal.gait_floor import (KNOTS, fastest_gait, gait_floor, max_pitch_rad,
-                                              whole_body, within_envelope)
+                                              whole_body, within_envelope, mass_centre)
 from fivebar_drake.pipeline import run_simulation, summarize_run
 from fivebar_drake.robots.quadruped.config import (load_params, with_changes, with_gait,
                                                    with_path_defaults)
@@ -31,7 +31,8 @@ def test_the_mass_properties_are_drakes(params):
     """Mass, centre-of-mass height and pitch inertia of the standing robot (body, motors, links
     as point masses) against Drake's plant of the generated SDF in its standing pose (the
     links' own rotational inertia, left out, is under 1 %)."""
-    mass, com_z, inertia = whole_body(params)
+    mass, com_x, com_z, inertia = mass_centre(params)
+    assert (mass, com_z, inertia) == whole_body(params)
     plant = MultibodyPlant(0.0)
     instance, legs = add_model(plant, params, "quadruped", None)
     plant.Finalize()
@@ -45,6 +46,7 @@ def test_the_mass_properties_are_drakes(params):
     about_com = spatial.Shift(com).CalcRotationalInertia().CopyToFullMatrix3()
     assert mass == pytest.approx(spatial.get_mass(), rel=1e-9)
     assert com_z == pytest.approx(com[2] - origin[2], abs=2e-4)
+    assert com_x == pytest.approx(com[0] - origin[0], abs=2e-4)
     assert inertia == pytest.approx(about_com[1, 1], rel=1e-2)
 
 

@@ -1,5 +1,6 @@
-"""The stand-up's floor (optimal/stand_up.py): its bounds by other methods, its static torques by
-virtual work, and the simulated stand-up asking at least it."""
+"""The stand-up's floor (optimal/stand_up.py): its bounds by other methods, its balance against
+Drake's centre of mass, its static torques by virtual work, and the simulated stand-up asking at
+least it."""
 
 import math
 
@@ -8,31 +9,79 @@ import pytest
 
 from fivebar_drake.core.footpath import StandUp
 from fivebar_drake.mechanisms.fivebar import KNEES_OUT, link_coms
-from fivebar_drake.optimal.stand_up import GRID_M, stand_up_floor, static_torques
+from pydrake.multibody.plant import MultibodyPlant
+
+from fivebar_drake.optimal.stand_up import GRID_M, balanced_loads, stand_up_floor, static_torques
 from fivebar_drake.optimal.vertical_jump import quarter_mass_kg
+from fivebar_drake.robots.quadruped.plant import add_model, set_standing_pose
 from fivebar_drake.pipeline import run_simulation, summarize_run
 from fivebar_drake.simulation.scenario import load_scenario
 
 
-def test_the_floor_lies_between_what_every_path_must_pass_and_one_path(params):
-    """Every loaded path ends at home and starts on the lying line: the floor is at least the
-    static torque at home and at least the least on the line (sampled finely here, not on the
-    floor's grid). The maneuver's straight path is one such path: the floor is at most its
-    peak (the grid's resolution: one grid step's change of torque). A payload raises it."""
+def _balanced_peak(params, front_x, rear_x, u, payload_kg=0.0):
+    """The largest motor torque of a level pose at hip height u with the front and rear feet at
+    front_x, rear_x behind their hips, the loads from this test's own moment balance about the
+    centre of mass of Drake's plant (mass_properties); inf where the robot tips."""
+    mass, com_x = drake_mass_centre(params)
+    mass += payload_kg
+    com_x *= (mass - payload_kg) / mass
+    front = params.body.hip_x_m - np.asarray(front_x, float)
+    rear = -params.body.hip_x_m - np.asarray(rear_x, float)
+    w = mass * params.robot.gravity_m_s2
+    with np.errstate(divide="ignore", invalid="ignore"):
+        front_N = w * (com_x - rear) / (front - rear) / 2
+    rear_N = w - 2 * front_N
+    tips = (com_x > front) | (com_x < rear)
+    f = static_torques(params, np.stack(np.broadcast_arrays(front_x, -u), -1), front_N)
+    r = static_torques(params, np.stack(np.broadcast_arrays(rear_x, -u), -1), rear_N / 2)
+    peak = np.maximum(np.abs(f).max(-1), np.abs(r).max(-1))
+    return np.where(tips | ~np.isfinite(peak), np.inf, peak)
+
+
+def drake_mass_centre(params):
+    """(mass kg, centre of mass x forward of the body origin m) of Drake's plant of the generated
+    SDF in its standing pose."""
+    plant = MultibodyPlant(0.0)
+    instance, legs = add_model(plant, params, "quadruped", None)
+    plant.Finalize()
+    context = plant.CreateDefaultContext()
+    set_standing_pose(plant, context, instance, legs, params)
+    origin = plant.GetBodyByName("body", instance).EvalPoseInWorld(context).translation()
+    com = plant.CalcCenterOfMassPositionInWorld(context, [instance])
+    return plant.CalcTotalMass(context, [instance]), com[0] - origin[0]
+
+
+def test_the_floor_balances_the_body_and_lies_between_every_path_and_one(params):
+    """Every balanced loaded path ends at home and starts on the lying line: the floor is at
+    least the statics at home and at least the least balanced pose on the line (front and rear
+    feet sampled apart, finely, here, with loads from Drake's centre of mass: a second method).
+    The maneuver's straight path is one such path: the floor is at most its peak (plus the
+    grid's resolution). At the floor's lift point the centre of mass lies between the front and
+    rear feet (the robot does not tip), and its torques there are within the floor. A payload
+    raises it."""
     plan = StandUp()
     found = stand_up_floor(params, plan)
-    home = np.array([params.gait.x_center_m, params.gait.y_home_m])
-    at_home = np.abs(static_torques(params, home)).max()
-    line = np.stack([np.linspace(-0.3, 0.3, 6001), np.full(6001, plan.fold_y_m)], -1)
-    on_line = np.nanmin(np.abs(static_torques(params, line)).max(-1))
-    assert found.floor_Nm >= max(at_home, on_line) - 1e-3
-    straight = np.linspace([plan.fold_x_m, plan.fold_y_m], home, 2000)
-    peak = np.abs(static_torques(params, straight)).max()
-    step = np.abs(np.diff(static_torques(params, straight), axis=0)).max() / (
-        np.linalg.norm(straight[1] - straight[0]) / GRID_M)
-    assert found.floor_Nm <= peak + 2 * step + 1e-3
-    assert found.straight_Nm == pytest.approx(peak, rel=1e-3)
+    u_home, u_lie = -params.gait.y_home_m, -plan.fold_y_m
+    at_home = _balanced_peak(params, params.gait.x_center_m, params.gait.x_center_m, u_home)
+    xs = np.linspace(-0.3, 0.3, 601)
+    on_line = np.min(_balanced_peak(params, xs[:, None], xs[None, :], u_lie))
+    assert found.floor_Nm >= max(at_home, on_line) - 2e-3
+    lift = _balanced_peak(params, found.lift_front_x_m, found.lift_rear_x_m, u_lie)
+    assert np.isfinite(lift) and lift <= found.floor_Nm + 2e-3
+    line = np.linspace([plan.fold_x_m, plan.fold_y_m],
+                       [params.gait.x_center_m, params.gait.y_home_m], 400)
+    straight = max(_balanced_peak(params, x, x, -y) for x, y in line)
+    assert found.straight_Nm == pytest.approx(straight, rel=2e-3)
+    step = 0.05 * GRID_M / 1e-3          # N*m per grid step: the torques' slope, generously
+    assert found.floor_Nm <= straight + step
     assert stand_up_floor(params, plan, payload_kg=1.0).floor_Nm > found.floor_Nm
+
+
+def test_a_lift_with_every_foot_behind_the_centre_of_mass_is_not_a_pose(params):
+    """The old floor's lift point (all four feet 188 mm behind their hips, the centre of mass
+    ahead of every foot) tips the robot: no balanced load holds it."""
+    front_N, rear_N = balanced_loads(params, 0.188, 0.188)
+    assert np.isnan(front_N) and np.isnan(rear_N)
 
 
 def test_the_static_torques_are_the_virtual_works(params):
@@ -51,7 +100,8 @@ def test_the_static_torques_are_the_virtual_works(params):
             ends = [leg.forward(pose.q + s * dq, pose.e_branch) for s in (1, -1)]
             energy = [g * masses @ link_coms(leg.geometry, params.links, e)[..., 1] for e in ends]
             tau[m] = (energy[0] - energy[1]) / (2 * h) - (ends[0].f - ends[1].f) / (2 * h) @ load
-        np.testing.assert_allclose(static_torques(params, np.array(foot)), tau, atol=2e-5)
+        np.testing.assert_allclose(static_torques(params, np.array(foot), load[1]), tau,
+                                   atol=2e-5)
 
 
 @pytest.mark.slow
