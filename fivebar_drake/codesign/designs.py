@@ -4,9 +4,10 @@ dotted path, as the parameters the rest of the toolkit runs with, and as a param
 A design is a plain mapping {"motor": NAME, "gearbox": TYPE, "motor.gear_ratio": N, PATH:
 value, ...}. Its parameters are the base's with the catalogue actuator (core/actuators.py:
 k_t, resistance, bus, currents, rotor and gears' inertia, efficiency) in place of the base's
-motor, the base's friction and thermal model kept (the catalogue has neither: ASSUMPTION, the
-same winding-to-ambient lump for every motor), and the robot's motor mass robot.motors_kg set
-to the legs' actuators' mass (so a heavier actuator loads every maneuver).
+motor with its own thermal model (core/actuators.bldc_motor: the entry's winding limit and time
+constant or the catalogue's stated assumptions, its continuous current at that limit) at the
+base's ambient, the base's friction kept (the catalogue has none), and the robot's motor mass
+robot.motors_kg set to the legs' actuators' mass (so a heavier actuator loads every maneuver).
 """
 
 from __future__ import annotations
@@ -18,7 +19,6 @@ from pathlib import Path
 from fivebar_drake.core.actuators import (BUILT_IN, actuator_mass_kg, bldc_motor, catalog,
                                           gearboxes)
 from fivebar_drake.core.files import write_atomic
-from fivebar_drake.core.motor import THERMAL_FIELDS
 from fivebar_drake.core.parameter_files import packaged, read_toml
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.envelope.spec import EnvelopeSpec
@@ -75,8 +75,9 @@ def design_params(base: Params, design: dict) -> Params:
     motor = bldc_motor(design[MOTOR], None if built_in else design[RATIO], design[GEARBOX],
                        bus_voltage_V=design.get(BUS),
                        coulomb_friction_Nm=base.motor.coulomb_friction_Nm,
-                       viscous_friction_Nm_s=base.motor.viscous_friction_Nm_s)
-    motor = dataclasses.replace(motor, **{f: getattr(base.motor, f) for f in THERMAL_FIELDS})
+                       viscous_friction_Nm_s=base.motor.viscous_friction_Nm_s,
+                       **({"ambient_C": base.motor.ambient_C}
+                          if getattr(base.motor, "ambient_C", None) is not None else {}))
     count = base.robot.legs * len(MOTORS)
     return with_changes(dataclasses.replace(base, motor=motor),
                         {**others, "robot.motors_kg": count * actuator_mass(design)})

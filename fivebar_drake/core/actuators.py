@@ -28,8 +28,9 @@ from types import MappingProxyType
 from typing import Mapping
 
 from fivebar_drake.core.files import read_input_text
-from fivebar_drake.core.motor import (MAX_BUS_VOLTAGE_V, MAX_CURRENT_A,
-                                      MAX_RESISTANCE_OHM, MAX_TORQUE_CONSTANT_NM_A,
+from fivebar_drake.core.motor import (DQ_POWER, MAX_BUS_VOLTAGE_V, MAX_CURRENT_A,
+                                      MAX_RESISTANCE_OHM, MAX_THERMAL_TIME_CONSTANT_S,
+                                      MAX_TORQUE_CONSTANT_NM_A, MAX_WINDING_LIMIT_C,
                                       MIN_RESISTANCE_OHM, PHASE_VOLTAGE_OF_BUS, BldcMotor)
 from fivebar_drake.core.parameter_files import check_keys, packaged
 from fivebar_drake.core.validation import (MAX_GEAR_RATIO, MAX_MASS_KG, MAX_ROTOR_INERTIA_KG_M2,
@@ -57,7 +58,17 @@ MOTOR_FIGURES = {   # name -> (low, high, low_open): check_number's bounds of th
     "rotor_inertia_kg_m2": (0.0, MAX_ROTOR_INERTIA_KG_M2, True),
     "mass_kg": (0.0, MAX_MASS_KG, True),
 }
-OPTIONAL_MOTOR_FIGURES = {"kv_rpm_per_V": (0.0, MAX_KV_RPM_PER_V, True)}
+OPTIONAL_MOTOR_FIGURES = {"kv_rpm_per_V": (0.0, MAX_KV_RPM_PER_V, True),
+                          "winding_limit_C": (0.0, MAX_WINDING_LIMIT_C, True),
+                          "thermal_time_constant_s": (0.0, MAX_THERMAL_TIME_CONSTANT_S, True)}
+# The thermal model of an entry that publishes none (bldc_motor), stated assumptions: the winding
+# limit of the package's default motor (data/default.toml: below class F insulation with margin
+# for hot spots), the continuous current rated at that limit in a RATED_AMBIENT_C room, and a
+# time constant under a third of the default's 400 s (small outrunners without a heat sink heat
+# in minutes: a shorter one is the conservative side for a duty cycle's peak)
+ASSUMED_WINDING_LIMIT_C = 120.0
+RATED_AMBIENT_C = 25.0
+ASSUMED_TIME_CONSTANT_S = 120.0
 OUTPUT_FIGURES = {   # published_output: the maker's figures after the gearbox
     "peak_torque_Nm": (0.0, MAX_TORQUE_NM, True),
     "continuous_torque_Nm": (0.0, MAX_TORQUE_NM, True),
@@ -114,6 +125,8 @@ class CatalogMotor:
     rotor_inertia_kg_m2: Figure
     mass_kg: Figure
     kv_rpm_per_V: Figure | None = None
+    winding_limit_C: Figure | None = None
+    thermal_time_constant_s: Figure | None = None
     built_in_gearbox: BuiltInGearbox | None = None
     published_output: Mapping[str, Figure] = dataclasses.field(
         default_factory=lambda: MappingProxyType({}))
@@ -330,18 +343,26 @@ def _gearing(motor: CatalogMotor, gear_ratio, gearbox) -> tuple[float, float, Ge
 
 
 def bldc_motor(motor, gear_ratio=None, gearbox=None, *, bus_voltage_V=None,
-               coulomb_friction_Nm: float = 0.0, viscous_friction_Nm_s: float = 0.0) -> BldcMotor:
+               coulomb_friction_Nm: float = 0.0, viscous_friction_Nm_s: float = 0.0,
+               ambient_C: float = RATED_AMBIENT_C) -> BldcMotor:
     """The package's BldcMotor of a catalogue motor (a CatalogMotor or its name) behind a
     gearbox: a gearboxes.yaml type (its name or Gearbox) at gear_ratio within its range, or
     BUILT_IN (or None) for an actuator's own gearbox (gear_ratio None or its own). k_t, the
     phase resistance, the peak and continuous current are the catalogue's; the bus is the
     entry's rated one unless bus_voltage_V is given; the efficiency is the gearbox's; the rotor
     inertia includes the gearbox's moving parts (J_rotor (1 + input_inertia_fraction)), so the
-    reflected inertia at the output is N^2 of that. The catalogue gives no friction (the joint's
-    and the gearbox's belong to the robot): pass the robot's. ParameterError naming the field."""
+    reflected inertia at the output is N^2 of that. The thermal model is the entry's own: its
+    winding limit and time constant (ASSUMED_WINDING_LIMIT_C, ASSUMED_TIME_CONSTANT_S where it
+    publishes none) and the thermal resistance at which its continuous current holds the winding
+    at that limit in a RATED_AMBIENT_C room, run at ambient_C. The catalogue gives no friction
+    (the joint's and the gearbox's belong to the robot): pass the robot's. ParameterError
+    naming the field."""
     entry = _entry(motor)
     ratio, efficiency, kind, _ = _gearing(entry, gear_ratio, gearbox)
     bus = entry.bus_voltage_V.value if bus_voltage_V is None else bus_voltage_V
+    limit = (entry.winding_limit_C or Figure(ASSUMED_WINDING_LIMIT_C, "")).value
+    tau = (entry.thermal_time_constant_s or Figure(ASSUMED_TIME_CONSTANT_S, "")).value
+    loss = DQ_POWER * entry.phase_resistance_ohm.value * entry.continuous_current_A.value ** 2
     return BldcMotor(
         torque_constant_Nm_per_A=entry.torque_constant_Nm_per_A.value,
         winding_resistance_ohm=entry.phase_resistance_ohm.value,
@@ -350,7 +371,9 @@ def bldc_motor(motor, gear_ratio=None, gearbox=None, *, bus_voltage_V=None,
         gear_ratio=ratio, gear_efficiency=efficiency,
         rotor_inertia_kg_m2=entry.rotor_inertia_kg_m2.value
         * (1.0 + kind.input_inertia_fraction.value),
-        coulomb_friction_Nm=coulomb_friction_Nm, viscous_friction_Nm_s=viscous_friction_Nm_s)
+        coulomb_friction_Nm=coulomb_friction_Nm, viscous_friction_Nm_s=viscous_friction_Nm_s,
+        thermal_resistance_K_W=(limit - RATED_AMBIENT_C) / loss, thermal_time_constant_s=tau,
+        winding_limit_C=limit, ambient_C=ambient_C)
 
 
 def actuator_mass_kg(motor, gear_ratio=None, gearbox=None) -> float:

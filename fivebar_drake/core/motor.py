@@ -532,10 +532,14 @@ class BldcMotor(Motor):
 
     @property
     def rated_continuous_current_A(self) -> float | None:
-        """continuous_current_A if given, else the thermal model's (None without either)."""
-        if self.continuous_current_A is not None:
-            return self.continuous_current_A
-        return self.thermal_continuous_current_A if self.has_thermal_model else None
+        """The one continuous rating: continuous_current_A if given, else the thermal model's;
+        never above the thermal model's (a winding held beyond its limit is never rated
+        continuous); None without either."""
+        thermal = self.thermal_continuous_current_A if self.has_thermal_model else None
+        if self.continuous_current_A is None:
+            return thermal
+        return self.continuous_current_A if thermal is None else min(self.continuous_current_A,
+                                                                     thermal)
 
     @property
     def continuous_torque_Nm(self) -> float | None:

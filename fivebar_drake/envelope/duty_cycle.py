@@ -76,8 +76,9 @@ def duty_verdict(motor: BldcMotor, checks: Checks, duty: DutyTemperature, legs,
     """Per motor (A, B), the hottest winding of the duty cycle: its peak temperature (deg C),
     leg, time (s), and the thermal check (core/checks.thermal_check) of the constant current
     that would hold the winding at that peak for ever (equivalent_current_A) against the
-    thermal model's continuous current: margin = sqrt(allowed rise / peak rise), fail below 1
-    (beyond the winding's limit), warn below checks.thermal_margin_warn. The worst verdict of
+    motor's one continuous rating (Motor.rated_continuous_current_A, never above the thermal
+    model's: a winding above its limit always fails): margin = sqrt(allowed rise / peak rise), fail below 1 (beyond the
+    winding's limit), warn below checks.thermal_margin_warn. The worst verdict of
     the two motors with the motor that decides it."""
     out = {}
     for j, name in enumerate(motors):

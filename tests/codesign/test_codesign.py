@@ -242,7 +242,11 @@ def test_a_design_carries_its_actuators_mass_and_motor(tmp_path):
         8 * actuator_mass_kg("odrive_d5065_270kv", 10.0, "two_stage_timing_belt"))
     assert params.leg.ce_m == 0.15 and params.motor.gear_ratio == 10.0
     assert params.motor.gear_efficiency == pytest.approx(0.95**2)
-    assert params.motor.thermal_resistance_K_W == base.motor.thermal_resistance_K_W
+    # its own winding (issue 39), not the base's: its continuous current at its limit
+    assert params.motor.thermal_resistance_K_W != base.motor.thermal_resistance_K_W
+    assert params.motor.thermal_continuous_current_A == pytest.approx(
+        catalog()["odrive_d5065_270kv"].continuous_current_A.value, rel=1e-12)
+    assert params.motor.ambient_C == base.motor.ambient_C
     assert math.isclose(params.motor.peak_current_A,
                         catalog()["odrive_d5065_270kv"].peak_current_A.value)
 

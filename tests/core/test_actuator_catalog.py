@@ -14,6 +14,7 @@ import yaml
 from fivebar_drake.core.actuators import (BUILT_IN, actuator_mass_kg, bldc_motor, catalog,
                                           gearboxes, load_catalog, load_gearboxes)
 from fivebar_drake.core.validation import ParameterError
+from fivebar_drake.robots.quadruped.config import load_params
 
 MOTOR_FIGURES = ("torque_constant_Nm_per_A", "phase_resistance_ohm", "bus_voltage_V",
                  "peak_current_A", "continuous_current_A", "rotor_inertia_kg_m2", "mass_kg")
@@ -239,3 +240,40 @@ def _gearbox_table(key):
     for name, figure in gearbox.figures().items():
         table[name] = {k: v for k, v in vars(figure).items() if v is not None}
     return table
+
+
+def test_one_torque_constant_convention_over_every_entry():
+    """Every entry's k_t is per A of q-axis current (8.2699 / KV): within 12 % of its KV where it
+    gives one (a KV on a product label is nominal) and its no-load speed within 5 % of the
+    maker's where published. A line-to-line 1/Kv taken as k_t (0.0955 for KV 100) is 15 % off
+    and fails."""
+    for key, entry in catalog().items():
+        kt = entry.torque_constant_Nm_per_A.value
+        if entry.kv_rpm_per_V is not None:
+            assert kt * entry.kv_rpm_per_V.value / 8.2699 == pytest.approx(1.0, abs=0.12), key
+        published = entry.published_output.get("no_load_speed_rad_s")
+        if published is not None:
+            ratio, gearbox = as_built(entry)
+            assert bldc_motor(entry, ratio, gearbox).no_load_speed_rad_s == pytest.approx(
+                published.value, rel=0.05), key
+    assert 60.0 / (2.0 * math.pi * 100.0) / 8.2699 * 100.0 > 1.12
+
+
+def test_every_entry_has_its_own_thermal_model():
+    """A catalogue motor never borrows another motor's winding: its thermal model holds its own
+    continuous current at its own winding limit (the entry's where it gives one), so its steady
+    winding at that current is at the limit."""
+    for key, entry in catalog().items():
+        ratio, gearbox = as_built(entry)
+        motor = bldc_motor(entry, ratio, gearbox)
+        assert motor.has_thermal_model, key
+        assert motor.thermal_continuous_current_A == pytest.approx(
+            entry.continuous_current_A.value, rel=1e-12), key
+        assert motor.steady_winding_C(entry.continuous_current_A.value) == pytest.approx(
+            motor.winding_limit_C, rel=1e-12), key
+        if entry.winding_limit_C is not None:
+            assert motor.winding_limit_C == entry.winding_limit_C.value, key
+    default = bldc_motor("default_assumed", 8.0, "single_stage_planetary")
+    params = load_params()
+    for name in ("thermal_resistance_K_W", "thermal_time_constant_s", "winding_limit_C"):
+        assert getattr(default, name) == pytest.approx(getattr(params.motor, name), rel=1e-12)

@@ -1,6 +1,7 @@
 """One continuous rating everywhere (issue 33's sixth class): the duty cycle's thermal check
 holds the winding's equivalent current to the same continuous current as every maneuver's
-thermal check (the datasheet's continuous_current_A when given, else the thermal model's)."""
+thermal check (the datasheet's continuous_current_A when given, else the thermal model's, never
+above the thermal model's: a duty cycle never passes a winding above its limit, issue 39)."""
 
 import math
 
@@ -11,14 +12,14 @@ from fivebar_drake.envelope.duty_cycle import DutyTemperature, duty_verdict
 from fivebar_drake.robots.quadruped.config import load_params, with_changes
 
 
-@pytest.mark.parametrize("share", [None, 0.5])
+@pytest.mark.parametrize("share", [None, 0.5, 1.4])
 def test_the_duty_cycle_uses_the_motors_one_continuous_rating(share):
     params = load_params(None)
     thermal = params.motor.thermal_continuous_current_A
     if share is not None:
         params = with_changes(params, {"motor.continuous_current_A": share * thermal})
     motor = params.motor
-    held = 0.8 * thermal                                   # the current the winding saw
+    held = (1.1 if share == 1.4 else 0.8) * thermal   # the current the winding saw
     rise = motor.copper_loss_W(held) * motor.thermal_resistance_K_W
     temperature = np.full((2, 4, 2), motor.ambient_C)
     temperature[1] += rise
@@ -26,7 +27,7 @@ def test_the_duty_cycle_uses_the_motors_one_continuous_rating(share):
                                                               np.array([0.0, 1e4])),
                         ("FL", "FR", "RL", "RR"), ("A", "B"))
     rating = motor.rated_continuous_current_A
-    assert rating == (thermal if share is None else share * thermal)
+    assert rating == (thermal if share is None else min(share, 1.0) * thermal)
     a = duty["motors"]["A"]
     assert a["equivalent_current_A"] == pytest.approx(held, rel=1e-9)
     assert a["margin"] == pytest.approx(rating / held, rel=1e-9)
@@ -34,3 +35,6 @@ def test_the_duty_cycle_uses_the_motors_one_continuous_rating(share):
                                "warn" if rating / held < params.checks.thermal_margin_warn
                                else "pass")
     assert not math.isnan(a["margin"])
+    if a["peak_C"] > motor.winding_limit_C:                # a winding above its limit
+        assert duty["verdict"] == "fail"
+    assert (a["peak_C"] > motor.winding_limit_C) == (share == 1.4)
