@@ -80,15 +80,20 @@ def total_torque(an: Analysis) -> plt.Figure:
                             label=f"{name}: dynamic")
             ax.plot(an.samples.t, tb.static[:, j], MODEL_STYLE[name], lw=0.8,
                     color=line.get_color(), alpha=0.6, label=f"{name}: static")
+        braking = p.motor.braking_peak_torque_Nm
         for sign in (1, -1):
             ax.axhline(sign * limit, color="r", lw=1.5,
-                       label=f"motor limit ±{limit:.2f} N·m" if sign > 0 else None)
+                       label=f"driving limit ±{limit:.2f} N·m" if sign > 0 else None)
+            if braking > limit:
+                ax.axhline(sign * braking, color="r", ls="-.", lw=1.0,
+                           label=f"braking limit ±{braking:.2f} N·m (torque against the "
+                                 "motion)" if sign > 0 else None)
             ax.axhline(sign * limit / p.checks.sf_pass, color="orange", ls="--", lw=1,
-                       label=f"SF = {p.checks.sf_pass:g}" if sign > 0 else None)
+                       label=f"SF = {p.checks.sf_pass:g} (driving)" if sign > 0 else None)
         ax.set(title=f"motor {motor}", xlabel="time (s)", ylabel="torque (N·m)")
         ax.grid(alpha=0.3)
     axes[1].legend(fontsize=7, loc="center left", bbox_to_anchor=(1.0, 0.5))
-    fig.suptitle("Total motor torque with the motor limit")
+    fig.suptitle("Total motor torque with the motor's limits in each quadrant")
     fig.tight_layout()
     return fig
 

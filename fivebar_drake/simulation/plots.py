@@ -133,10 +133,10 @@ def _span(sig: Signals) -> tuple[float, float]:
 def torque_figure(sig: Signals, legs, params: Params, window) -> plt.Figure:
     """Per leg, both motors' demand, applied torque and static estimates over time, the motor
     limit and the statistics window (shaded)."""
-    limit = params.motor.peak_torque_Nm
+    limit, braking = params.motor.peak_torque_Nm, params.motor.braking_peak_torque_Nm
+    top = 1.1 * max(limit, braking)
     fig = plt.figure(figsize=(12, 1.9 * len(legs) + 0.9))
-    chart = StripChart(fig, _span(sig), [Band(f"{leg} torque (N·m)", -1.1 * limit,
-                                              1.1 * limit) for leg in legs])
+    chart = StripChart(fig, _span(sig), [Band(f"{leg} torque (N·m)", -top, top) for leg in legs])
     chart.ax.axvspan(*window, color="0.94", zorder=0)
     for i, leg in enumerate(legs):
         for j, motor in enumerate(MOTORS):
@@ -147,9 +147,11 @@ def torque_figure(sig: Signals, legs, params: Params, window) -> plt.Figure:
                 chart.plot(i, sig.t, getattr(sig, name)[:, i, j], color=color, **style)
         for sign in (1, -1):
             chart.hline(i, sign * limit, color="r", lw=1.0)
+            chart.hline(i, sign * braking, color="r", ls="-.", lw=0.8)
     chart.finish()
     fig.text(0.07, 1 - 0.06 / fig.get_figheight(),
-             f"motor A blue, motor B orange; red: the motor's limit ±{limit:.2f} N·m; "
+             f"motor A blue, motor B orange; red: the driving limit ±{limit:.2f} N·m (torque "
+             f"along the motion), dash-dot: the braking limit ±{braking:.2f} N·m (against it); "
              "shaded: the statistics window\n" + "; ".join(
                  f"{what}: {label}" for what, (_, label, _) in zip(
                      ("light", "bold", "dotted, dark", "dashed, dark"), TORQUE_LINES)),

@@ -363,7 +363,7 @@ def _log_scene(rec, sig: Signals, record: SimulationRecord):
 
 
 def _log_series(rec, sig: Signals, legs, params: Params, summary: Summary, names):
-    limit = params.motor.peak_torque_Nm
+    limit, braking = params.motor.peak_torque_Nm, params.motor.braking_peak_torque_Nm
     ends = sig.t[[0, -1]]
     start, end = summary["window_s"]
     cycle_ends = start + summary["cycle_s"] * np.arange(1, summary["cycles_in_window"] + 1)
@@ -377,6 +377,8 @@ def _log_series(rec, sig: Signals, legs, params: Params, summary: Summary, names
         for sign, side in ((1, "pos"), (-1, "neg")):
             scalars(rec, f"torque/{leg}/limit_{side}", ends, [sign * limit] * 2,
                     f"driving limit ±{limit:.2f} N·m", LIMIT_COLOR, 1.0)
+            scalars(rec, f"torque/{leg}/braking_limit_{side}", ends, [sign * braking] * 2,
+                    f"braking limit ±{braking:.2f} N·m", LIMIT_COLOR, 0.5)
         for j, m in enumerate(MOTORS):
             scalars(rec, f"joints/angle/{leg}/{m}", sig.t, sig.q[:, i, j], f"{leg} {m}",
                     LEG_COLORS[i], MOTOR_WIDTHS[m])

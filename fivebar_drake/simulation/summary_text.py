@@ -99,8 +99,13 @@ def answer(s: Summary, params: Params) -> str:
                 "without it (the demand's "
                 f"{PERCENTILE:g}th percentile: {m['demand_p99_Nm']:.2f} N·m)")
     else:
-        reached = ("it never reached a limit" if not m["saturated_fraction"] else
-                   f"it sat at {limit_shares_text(m['limit_shares'])}")
+        others = [f"{lg} {nm} sat at {limit_shares_text(o['limit_shares'])}"
+                  for lg, ms in s["legs"].items() for nm, o in ms.items()
+                  if o["saturated_fraction"] and (lg, nm) != (leg, name)]
+        reached = (f"it sat at {limit_shares_text(m['limit_shares'])}"
+                   if m["saturated_fraction"] else
+                   "it never reached a limit, but " + "; ".join(others) if others else
+                   "no motor reached a limit")
         need = (f"the motors need {m['demand_p99_Nm']:.2f} N·m ({PERCENTILE:g}th percentile "
                 f"of the demand {over}, worst motor {leg} {name}; {reached})")
     return (f"{opening(s, leg, name, t, c)} {head} {need}. "

@@ -88,3 +88,27 @@ def test_force_capability_names_every_leg_once_and_fits(simulated):
         drawn = np.concatenate([line.get_ydata() for line in ax.get_lines()])
         assert ax.get_ylim()[1] <= 1.1 * np.nanmax(drawn) + 1e-9     # scaled to its data
     matplotlib.pyplot.close(fig)
+
+
+def test_the_torque_plots_draw_each_quadrants_limit(simulated, params):
+    """sim_torques.png and the analysis' total_torque.png draw the driving limit and the braking
+    limit (a landing's braking peak above the driving limit is no violation), each at the
+    motor's own value."""
+    from fivebar_drake.analysis.plots import total_torque
+    from fivebar_drake.analysis.torques import analyze
+    from fivebar_drake.pipeline import _review
+    from fivebar_drake.simulation.plots import torque_figure
+
+    record = simulated(gait="trot", duration_s=2.5)
+    sig, _, summary = _review(record)
+    motor = record.params.motor
+    fig = torque_figure(sig, record.layout.legs, record.params, summary["window_s"])
+    text = fig.texts[0].get_text()
+    assert f"±{motor.peak_torque_Nm:.2f}" in text and f"±{motor.braking_peak_torque_Nm:.2f}" in text
+    matplotlib.pyplot.close(fig)
+    fig = total_torque(analyze(params))
+    levels = {round(abs(line.get_ydata()[0]), 6) for ax in fig.axes for line in ax.lines
+              if len(set(line.get_ydata())) == 1}
+    assert {round(params.motor.peak_torque_Nm, 6),
+            round(params.motor.braking_peak_torque_Nm, 6)} <= levels
+    matplotlib.pyplot.close(fig)

@@ -88,3 +88,29 @@ def test_the_default_run_reaches_no_limit():
     assert ref["extension"].max() < lim.extension_max_m - LIMIT_REACHED["m"]
     assert ref["knee"].min() > lim.knee_min_deg + LIMIT_REACHED["deg"]
     assert "limits: none reached (8 set in [limits])" in markdown(summary, record.params)
+
+
+def test_never_reached_a_limit_covers_every_motor(simulated):
+    """The answer's "never reached a limit" speaks for every motor: where the worst motor sat at
+    no limit but another did, the answer names that one (the highest jump said "it never
+    reached a limit" while its front B motors sat at their voltage limit)."""
+    import copy
+
+    from fivebar_drake.simulation.summary_text import answer
+
+    record = simulated(duration_s=4.5, closure="ball")
+    s = copy.deepcopy(summarize_run(record))
+    if s["verdict"] in ("not_achieved", "insufficient"):
+        pytest.skip("the shared run has no torque answer")
+    for ms in s["legs"].values():
+        for m in ms.values():
+            m["saturated_fraction"], m["limit_shares"] = 0.0, {}
+    assert "no motor reached a limit" in answer(s, record.params)
+    worst = s["worst_motor"].split()
+    other = next((leg, name) for leg, ms in s["legs"].items() for name in ms
+                 if [leg, name] != worst)
+    m = s["legs"][other[0]][other[1]]
+    m["saturated_fraction"] = 0.029
+    m["limit_shares"] = {"driving_voltage": 0.029}
+    text = answer(s, record.params)
+    assert "it never reached a limit, but" in text and f"{other[0]} {other[1]} sat at" in text
