@@ -201,11 +201,16 @@ def stance_any_controller(record: SimulationRecord, summary: Summary) -> AnyCont
     beyond the no-load speed is this path's (and so this controller's) failing, not every
     path's. None for another gait."""
     params, path = record.params, record.scenario.gait
-    floor = gait_floor.gait_floor(params, path, record.scenario.payload_kg)
-    if floor is None:
-        return None
     why = ["stance legs only (the swing legs' torques are not in the floor)",
            "the least a local search found (a lower one may exist)"]
+    try:
+        floor = gait_floor.gait_floor(params, path, record.scenario.payload_kg)
+    except ParameterError as err:           # the local search found no motion: no floor
+        phases = {"stance": _phase("unknown", None, params.motor.peak_torque_Nm,
+                                   _most_asked(summary))}
+        return verdict_split(record, path.kind, 0.0, phases, why[:1] + [err.message], summary)
+    if floor is None:
+        return None
     joint = gait_floor.fastest_joint(params, path)
     if joint > params.motor.no_load_speed_rad_s:
         why.append(f"this path asks a joint for {joint:.2f} rad/s, beyond the motors' no-load "

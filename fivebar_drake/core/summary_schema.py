@@ -309,6 +309,8 @@ class StepCheck(TypedDict):
     events: dict[str, dict[str, EventStepCheck]]   # "jump", "landing" -> figure ->
     verdict_at_half_step: str
     fails_for_at_half_step: str | None       # any_controller's at half the step
+    achieved: bool                           # the motion done (verdict neither not_achieved
+    achieved_at_half_step: bool              # nor insufficient) at the step, at half of it
     marginal: bool
     why: str
 

@@ -154,6 +154,7 @@ def step_check(summary: Summary, half: Summary, checks: Checks) -> StepCheck:
                                      for m in ms.values()))
     moved = converged is not None and converged != torque_now
     changed = half["verdict"] != summary["verdict"]
+    achieved, achieved_half = (s["verdict"] not in NO_STEP_CHECK_VERDICTS for s in (summary, half))
     split, split_half = (((s.get("any_controller") or {}).get("fails_for"))
                          for s in (summary, half))
     blamed = split != split_half
@@ -172,8 +173,12 @@ def step_check(summary: Summary, half: Summary, checks: Checks) -> StepCheck:
             "converged_sf_error": worst[2] if worst else None,
             "torque_verdict_converged": converged, "events": _step_events(summary, half),
             "verdict_at_half_step": half["verdict"], "fails_for_at_half_step": split_half,
+            "achieved": achieved, "achieved_at_half_step": achieved_half,
             "marginal": bool(near or changed or moved or blamed),
-            "why": (f"the converged worst safety factor {worst[1]:.3f} ± {worst[2]:.3f} "
+            "why": (f"the motion is {'' if achieved else 'not '}achieved at the plant step and "
+                    f"{'' if achieved_half else 'not '}at half of it"
+                    if achieved != achieved_half else
+                    f"the converged worst safety factor {worst[1]:.3f} ± {worst[2]:.3f} "
                     f"({worst[0]}) reaches {near[0]:g}" if near else
                     f"the converged worst safety factor {worst[1]:.3f} ({worst[0]}) gives "
                     f"{converged}, the run {torque_now}" if moved else
@@ -212,5 +217,10 @@ def fails_for(verdict: str, phases: dict, margin: float) -> str | None:
 
 def step_checked_verdict(current: str, check: StepCheck) -> str:
     """The run's verdict (current) after its step check: "marginal" where the check is
-    marginal, unless the run has no verdict or did not do its motion (NO_STEP_CHECK_VERDICTS)."""
+    marginal, unless the run has no verdict or did not do its motion (NO_STEP_CHECK_VERDICTS)
+    at both steps: a motion achieved at one step and not at the other is marginal, never a clean
+    pass or a clean not achieved."""
+    flips = check["achieved"] != check["achieved_at_half_step"]
+    if flips and current != "insufficient":
+        return "marginal"
     return "marginal" if check["marginal"] and current not in NO_STEP_CHECK_VERDICTS else current

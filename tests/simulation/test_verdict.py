@@ -140,6 +140,24 @@ def test_the_step_check_holds_whom_a_verdict_blames(params, monkeypatch):
         assert ("any controller" in check["why"]) == marginal
 
 
+def test_a_motion_achieved_at_one_step_and_not_the_other_is_marginal(params, monkeypatch):
+    """The step check re-judges achievement: not achieved at the plant step and passing at half
+    of it (the pronk of issue 39's light designs), or the other way round, is marginal, never a
+    clean not achieved or pass; not achieved at both stays not achieved."""
+    import fivebar_drake.simulation.summary as summary_module
+    monkeypatch.setattr(summary_module, "answer", lambda s, p: "")
+    for now, at_half, verdict in (("not_achieved", "pass", "marginal"),
+                                  ("pass", "not_achieved", "marginal"),
+                                  ("not_achieved", "not_achieved", "not_achieved")):
+        run = _summary([3.0, 3.0], now)
+        check = apply_step_check(run, {**_summary([3.0, 3.0], at_half), "time_step_s": 5e-4},
+                                 params)
+        assert run["verdict"] == verdict
+        assert (check["achieved"], check["achieved_at_half_step"]) == (
+            now != "not_achieved", at_half != "not_achieved")
+        assert ("achieved at the plant step" in check["why"]) == (now != at_half)
+
+
 @pytest.fixture(scope="module")
 def geared(params):
     """The design study's fix: the same motor behind 11.5:1, a short trot and its step check."""
