@@ -396,7 +396,13 @@ def parser() -> argparse.ArgumentParser:
     s.add_argument("--step-check", action="store_const", const=True,
                    help="run again at half the plant step and report the change of each "
                         "motor's demand p99, RMS and safety factor (verdict marginal where it "
-                        "reaches a threshold); quadruped only")
+                        "reaches a threshold, or the motion is achieved at one step only); "
+                        "quadruped only")
+    s.add_argument("--contact-check", action="store_const", const=True,
+                   help="run again with the foot contact softer and stiffer (stiffness x0.5 "
+                        "and x2, its dissipation with it) and report the band of the worst "
+                        "safety factor and of every event figure (verdict marginal where the "
+                        "contact decides it); about 2x a plain run's time more; quadruped only")
     s.add_argument("--out", metavar="DIR",
                    help="output folder; a previous run's files in it are removed before the "
                         "run starts (default: out/simulation for the quadruped, "

@@ -33,14 +33,15 @@ from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.core.verdicts import fails_for
 from fivebar_drake.optimal import gait_floor, stand_up, vertical_jump
 from fivebar_drake.optimal.report import max_jump_plan
-from fivebar_drake.robots.quadruped.config import load_params, sampling_error
+from fivebar_drake.robots.quadruped.config import load_params, sampling_error, with_changes
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.simulation.plots import CAPABILITY_FILE, SIM_PLOT_FILES, write_sim_plots
 from fivebar_drake.simulation.recording import RECORDING_FILE, write_recording
 from fivebar_drake.simulation.runner import SimulationRecord, simulate
 from fivebar_drake.simulation.scenario import Scenario, load_scenario
 from fivebar_drake.simulation.signals import signals, step_signals
-from fivebar_drake.simulation.summary import apply_step_check, in_schema_order, summarize
+from fivebar_drake.simulation.summary import (apply_contact_check, apply_step_check,
+                                              in_schema_order, summarize)
 from fivebar_drake.simulation.summary_text import (SUMMARY_FILES, any_controller_text,
                                                    write_summary)
 
@@ -125,6 +126,26 @@ def run_step_check(record: SimulationRecord, progress: bool = True,
     write_simulation take it as `half`)."""
     scenario = dataclasses.replace(record.scenario, time_step_s=record.design.time_step_s / 2)
     return run_simulation(scenario, record.params, progress=progress, stop=stop)
+
+
+CONTACT_FACTORS = {"softer": 0.5, "stiffer": 2.0}   # the contact check's foot stiffness factors
+
+
+def run_contact_check(record: SimulationRecord, progress: bool = True,
+                      stop: Callable[[], str] | None = None) -> dict[str, SimulationRecord]:
+    """The run's scenario again with the foot contact softer and stiffer (the contact check:
+    summarize_run and write_simulation take it as `contacts`): the foot's point-contact
+    stiffness times each of CONTACT_FACTORS, its relaxation time kept (SAP's dissipation, the
+    relaxation time times the stiffness, scales with it). A run stopped by `stop` ends the check
+    there (the variants run so far)."""
+    k = record.params.body.foot_stiffness_N_m
+    out = {}
+    for label, factor in CONTACT_FACTORS.items():
+        if stop is not None and stop():
+            break
+        params = with_changes(record.params, {"body.foot_stiffness_N_m": factor * k})
+        out[label] = run_simulation(record.scenario, params, progress=progress, stop=stop)
+    return out
 
 
 def _signals(record: SimulationRecord) -> tuple:
@@ -256,13 +277,15 @@ def verdict_split(record: SimulationRecord, maneuver: str, height_m: float, phas
             "fails_for": blamed, "why": "; ".join(why)}
 
 
-def _review(record: SimulationRecord, half: SimulationRecord | None = None):
-    """(Signals, StepSignals or None, Summary) of a run; with `half`
-    (run_step_check) its step check (any_controller's split recomputed at half the step);
-    its any_controller."""
+def _review(record: SimulationRecord, half: SimulationRecord | None = None,
+            contacts: dict[str, SimulationRecord] | None = None):
+    """(Signals, StepSignals or None, Summary) of a run; with `half` (run_step_check) its step
+    check (any_controller's split recomputed at half the step); with `contacts`
+    (run_contact_check) its contact check; its any_controller."""
     sig, steps = _signals(record)
     reference = seed_results(record.params)
     summary = summarize(sig, record, reference, steps)
+    verdict = summary["verdict"]
     floor = any_controller(record, summary)
     if floor is not None:
         summary["answer"] += " " + any_controller_text(floor, record.params.checks.sf_warn)
@@ -274,41 +297,53 @@ def _review(record: SimulationRecord, half: SimulationRecord | None = None):
         summary["answer"] += (f" No step check: {summary['step_check_interrupted']} "
                               "(the verdict above is the plant step's alone).")
     elif half is not None:
-        half_sig, half_steps = _signals(half)
-        at_half = summarize(half_sig, half, reference, half_steps)
-        at_half["any_controller"] = any_controller(half, at_half)
-        apply_step_check(summary, at_half, record.params)
+        apply_step_check(summary, _variant(half, reference), record.params)
+    if contacts and not any(r.interrupted for r in contacts.values()):
+        apply_contact_check(summary, verdict, {label: _variant(r, reference)
+                                               for label, r in contacts.items()}, record.params)
     return sig, steps, summary
 
 
-def summarize_run(record: SimulationRecord, half: SimulationRecord | None = None) -> Summary:
+def _variant(record: SimulationRecord, reference: dict) -> Summary:
+    """The summary of a check's run (at half the step, another contact) with its any_controller."""
+    sig, steps = _signals(record)
+    summary = summarize(sig, record, reference, steps)
+    summary["any_controller"] = any_controller(record, summary)
+    return summary
+
+
+def summarize_run(record: SimulationRecord, half: SimulationRecord | None = None,
+                  contacts: dict[str, SimulationRecord] | None = None) -> Summary:
     """The run's summary (summary.json's dictionary, SI units): whole-cycle statistics per leg
     and motor against the static estimates, the checks, the verdict and the answer in one
     sentence; with `half`, the same run at half the plant step (run_step_check), the step
     check (summary["step_check"], verdict "marginal" where the step error reaches a
-    threshold)."""
-    return _review(record, half)[2]
+    threshold); with `contacts` (run_contact_check), the contact check
+    (summary["contact_check"], verdict "marginal" where the contact decides it)."""
+    return _review(record, half, contacts)[2]
 
 
 def write_simulation(record: SimulationRecord, out_dir: str | Path,
-                     half: SimulationRecord | None = None,
-                     name: str = "") -> tuple[Summary, list[Path]]:
+                     half: SimulationRecord | None = None, name: str = "",
+                     contacts: dict[str, SimulationRecord] | None = None
+                     ) -> tuple[Summary, list[Path]]:
     """Write SIMULATION_FILES into out_dir (made if needed), each atomically: first remove a
     previous run's files, then the plots, the Rerun recording, summary.md and summary.json
     last, so a summary.json always describes complete files. Returns (the summary as written,
     the paths in the order written). half: the step check's run (summarize_run); name: the
-    run's name in its recording's id.
-    summary["timing"]: simulate_s, the wall time of the stepping (s; with the step check, of
-    both runs), outputs_s, the wall time of this function up to the summary files (the review,
+    run's name in its recording's id; contacts: the contact check's runs (run_contact_check).
+    summary["timing"]: simulate_s, the wall time of the stepping (s; with the step and contact
+    checks, of every run), outputs_s, the wall time of this function up to the summary files (the review,
     plots and recording; the summary files take milliseconds), and outputs_share, outputs_s
     over their sum."""
     start = time.perf_counter()
     out = prepare_output_dir(out_dir, "out_dir", SIMULATION_FILES)
-    sig, steps, summary = _review(record, half)
+    sig, steps, summary = _review(record, half, contacts)
     written = write_sim_plots(sig, record.layout.legs, record.params, summary, out, steps)
     written.append(write_recording(out / RECORDING_FILE, sig, record, summary, name))
     outputs = time.perf_counter() - start
-    simulated = record.wall_s + (half.wall_s if half is not None else 0.0)
+    simulated = record.wall_s + sum(r.wall_s for r in [half, *(contacts or {}).values()]
+                                    if r is not None)
     summary["timing"] = {"simulate_s": simulated, "outputs_s": outputs,
                          "outputs_share": outputs / (simulated + outputs)}
     written += write_summary(summary, record.params, out)

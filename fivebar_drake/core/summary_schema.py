@@ -315,6 +315,20 @@ class StepCheck(TypedDict):
     why: str
 
 
+class ContactCheck(TypedDict):
+    """verdicts.contact_check: the run against itself with the foot contact softer and stiffer
+    (pipeline.run_contact_check)."""
+
+    variants: dict[str, dict[str, float]]     # label -> its contact (stiffness N/m, relaxation s)
+    verdicts: dict[str, str]                  # "nominal" and each variant -> its verdict
+    achieved: dict[str, bool]
+    worst_sf: dict[str, float]
+    worst_sf_band: list[float] | None         # [least, largest]
+    events: dict[str, dict[str, list[float]]]    # "jump", "landing" -> figure -> [least, largest]
+    marginal: bool
+    why: str
+
+
 class Timing(TypedDict):
     """pipeline.write_simulation's wall times."""
 
@@ -413,6 +427,8 @@ class Summary(TypedDict):
     motor: MotorRating
     step_check: StepCheck | None
     step_check_interrupted: str                # why the step check has no result ("": it ran)
+    contact: dict[str, float]                  # the foot contact: stiffness_N_m, relaxation_time_s
+    contact_check: ContactCheck | None
     limits: LimitReport
     legs: dict[str, dict[str, MotorSummary]]   # leg -> motor ("A", "B") ->
     any_controller: AnyController | None       # a jump's floor (pipeline.any_controller)

@@ -11,8 +11,8 @@ import math
 
 from fivebar_drake.core.checks import (CHECK_ORDER, SEVERITY, Checks, limit_shares_text,
                                        verdict)
-from fivebar_drake.core.summary_schema import (AchievedCheck, MotorSummary, StepCheck,
-                                               StepCheckMotor, Summary)
+from fivebar_drake.core.summary_schema import (AchievedCheck, ContactCheck, MotorSummary,
+                                               StepCheck, StepCheckMotor, Summary)
 
 STEP_ORDER = 1   # the discrete plant's time stepping is first order in the step: a figure's
 #                  error at step h is about (f(h) - f(h/2)) / (2^p - 1) (measured on the default
@@ -185,6 +185,58 @@ def step_check(summary: Summary, half: Summary, checks: Checks) -> StepCheck:
                     f"the verdict at half the step is {half['verdict']}" if changed else
                     f"at half the step the verdict fails for {split_half or 'nobody'}, not "
                     f"for {split or 'nobody'}" if blamed else "")}
+
+
+def _worst_sf(summary: Summary) -> float:
+    """The least finite safety factor of a run's motors (nan: none)."""
+    return min((m["safety_factor"] for ms in summary["legs"].values() for m in ms.values()
+                if math.isfinite(m["safety_factor"])), default=math.nan)
+
+
+def contact_check(summary: Summary, verdict: str, runs: dict[str, Summary],
+                  checks: Checks) -> ContactCheck:
+    """The run (its summary, its verdict before any check: verdict) against itself with the
+    foot contact varied (runs: label -> the same run's summary with another contact): the band
+    (least, largest over the run and the variants) of the worst motor's safety factor and of
+    every event figure (a jump's and a landing's floats), each run's verdict and whether it did
+    its motion. Marginal where a verdict differs (achievement included), or where the torque
+    check decides and the safety factor's band reaches a threshold (checks.sf_pass, sf_warn)."""
+    every = {"nominal": summary, **runs}
+    verdicts = {label: (verdict if label == "nominal" else s["verdict"])
+                for label, s in every.items()}
+    worst = {label: _worst_sf(s) for label, s in every.items()}
+    finite = [v for v in worst.values() if math.isfinite(v)]
+    band = [min(finite), max(finite)] if finite else None
+    events = {}
+    for group in ("jump", "landing"):
+        if all(s.get(group) for s in every.values()):
+            events[group] = {key: [min(s[group][key] for s in every.values()),
+                                   max(s[group][key] for s in every.values())]
+                             for key, value in summary[group].items()
+                             if isinstance(value, float)}
+    achieved = {label: v not in NO_STEP_CHECK_VERDICTS for label, v in verdicts.items()}
+    near = ([t for t in (checks.sf_pass, checks.sf_warn) if band[0] < t <= band[1]]
+            if band and summary.get("deciding_check") == "torque" else [])
+    changed = len(set(verdicts.values())) > 1
+    why = ("the motion is achieved with " + ", ".join(k for k, a in achieved.items() if a)
+           + " contact and not with " + ", ".join(k for k, a in achieved.items() if not a)
+           if len(set(achieved.values())) > 1 else
+           "the verdict is " + ", ".join(f"{v} with the {k} contact" for k, v in verdicts.items())
+           if changed else
+           f"the worst safety factor's band {band[0]:.2f}–{band[1]:.2f} reaches {near[0]:g}"
+           if near else "")
+    return {"variants": {label: s["contact"] for label, s in runs.items()},
+            "verdicts": verdicts, "achieved": achieved, "worst_sf": worst,
+            "worst_sf_band": band, "events": events, "marginal": bool(changed or near),
+            "why": why}
+
+
+def contact_checked_verdict(current: str, check: ContactCheck) -> str:
+    """The run's verdict (current) after its contact check: "marginal" where the check is
+    marginal, unless the run has no verdict or did not do its motion with every contact."""
+    if len(set(check["achieved"].values())) > 1 and current != "insufficient":
+        return "marginal"
+    return "marginal" if check["marginal"] and current not in NO_STEP_CHECK_VERDICTS else current
 
 
 NEEDS = ("floor", "undecided", "beyond bound", "unknown")   # a phase's need (PhaseFloor.status)

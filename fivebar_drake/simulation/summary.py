@@ -21,9 +21,9 @@ import math
 import numpy as np
 
 from fivebar_drake.core.footpath import Outcome
-from fivebar_drake.core.summary_schema import StepCheck, Summary
-from fivebar_drake.core.verdicts import (achievement, judge, run_verdict, step_check,
-                                         step_checked_verdict)
+from fivebar_drake.core.summary_schema import ContactCheck, StepCheck, Summary
+from fivebar_drake.core.verdicts import (achievement, contact_check, contact_checked_verdict,
+                                         judge, run_verdict, step_check, step_checked_verdict)
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.plant import standing_height
@@ -67,6 +67,9 @@ def summarize(sig: Signals, record: SimulationRecord, seed_analysis: dict,
         "seed_peak_torque_Nm": max(seed_analysis[m]["peak_torque_Nm"] for m in MOTORS),
         "seed_load_model": seed_analysis_load(params), "step_check": None,
         "step_check_interrupted": "",
+        "contact": {"stiffness_N_m": params.body.foot_stiffness_N_m,
+                    "relaxation_time_s": params.body.foot_relaxation_time_s},
+        "contact_check": None,
         "limits": limit_report(sig, params, record.layout.legs), "legs": legs})
     summary["answer"] = answer(summary, params)
     return summary
@@ -150,6 +153,20 @@ def in_schema_order(parts: dict) -> Summary:
     if unknown:
         raise KeyError(f"not in core/summary_schema.Summary: {unknown}")
     return dict(sorted(parts.items(), key=lambda item: order[item[0]]))
+
+
+def apply_contact_check(summary: Summary, verdict: str, runs: dict[str, Summary],
+                        params: Params) -> ContactCheck:
+    """Put the contact check (verdicts.contact_check) into the summary (summary["contact_check"])
+    from the summaries of the same run with the foot contact varied (verdict: the run's own
+    before any check): the verdict becomes "marginal" where it says so
+    (verdicts.contact_checked_verdict), and the answer says so."""
+    check = contact_check(summary, verdict, runs, params.checks)
+    summary["contact_check"] = check
+    if summary["verdict"] != "marginal":
+        summary["verdict"] = contact_checked_verdict(summary["verdict"], check)
+    summary["answer"] = answer(summary, params)
+    return check
 
 
 def apply_step_check(summary: Summary, half: Summary, params: Params) -> StepCheck:

@@ -15,7 +15,7 @@ from pathlib import Path
 from fivebar_drake.core.checks import CHECK_ORDER, demand_unmet, limit_shares_text, thresholds_text
 from fivebar_drake.core.files import json_ready, write_atomic
 from fivebar_drake.core.text import figure, verdict_word
-from fivebar_drake.core.summary_schema import (AnyController, JumpFigures, LandingFigures, LimitReport,
+from fivebar_drake.core.summary_schema import (AnyController, ContactCheck, JumpFigures, LandingFigures, LimitReport,
                                                MotorSummary, Ran, SpeedCheck, Summary,
                                                ThermalCheck, TorqueCheck)
 from fivebar_drake.robots.quadruped.params import Params
@@ -122,8 +122,7 @@ def opening(s: Summary, leg: str, name: str, t: TorqueCheck, c) -> str:
     its torque figure as a share of the limit of its quadrant (each sample's own: driving or
     braking; no torque in N·m: the demand's p99 in N·m, quadrants mixed, follows it)."""
     verdict = (f"{verdict_word(s['verdict'])}, decided by the {s['deciding_check']} check"
-               if s["verdict"] != "marginal" else
-               f"MARGINAL ({s['step_check']['why']}; step check at half the plant step)")
+               if s["verdict"] != "marginal" else f"MARGINAL ({marginal_why(s)})")
     check, d = s.get("deciding_check"), c.get(s.get("deciding_check")) or {}
     deciding = ""
     if check == "speed":
@@ -158,6 +157,32 @@ def check_text(name: str, c: TorqueCheck | SpeedCheck | ThermalCheck) -> str:
     return (f"thermal: continuous / RMS current {c['margin']:.2f}, {c['verdict']}")
 
 
+def marginal_why(s: Summary) -> str:
+    """Why a run is marginal: its step check's reason, else its contact check's."""
+    step, contact = s.get("step_check"), s.get("contact_check")
+    if step and (step["marginal"] or step["achieved"] != step["achieved_at_half_step"]):
+        return f"{step['why']}; step check at half the plant step"
+    return f"{contact['why']}; contact check, foot stiffness x0.5 and x2" if contact else ""
+
+
+def contact_text(c: ContactCheck) -> str:
+    """The contact check in a line: each contact's verdict, the worst safety factor's band and
+    each event figure's."""
+    band = c["worst_sf_band"]
+    shown = {"height_m": ("apex", 1e3, "mm"), "peak_force_N": ("peak force", 1.0, "N"),
+             "impulse_N_s": ("impulse", 1.0, "N·s"), "peak_torque_Nm": ("peak torque", 1.0, "N·m")}
+    events = "; ".join(
+        f"{group} {shown[key][0]} {lo * shown[key][1]:.3g}–{hi * shown[key][1]:.3g} {shown[key][2]}"
+        for group, figures in c["events"].items() for key, (lo, hi) in figures.items()
+        if key in shown)
+    return ("contact check (foot stiffness " + ", ".join(
+        f"{label} {v['stiffness_N_m']:.3g} N/m" for label, v in c["variants"].items()) + "): "
+        + ", ".join(f"{k} {verdict_word(v)}" for k, v in c["verdicts"].items())
+        + ("" if band is None else f"; worst SF {band[0]:.2f}–{band[1]:.2f}")
+        + (f"; {events}" if events else "")
+        + (f"; MARGINAL: {c['why']}" if c["marginal"] else ""))
+
+
 def markdown(s: Summary, params: Params) -> str:
     """summary.md of the summary s: the answer, what ran, the motion (and a maneuver's figures
     beside their plan: maneuver_lines), the limits, the torque table and the torque split."""
@@ -188,6 +213,7 @@ def markdown(s: Summary, params: Params) -> str:
                   f"ground {figure(clear * 100, '{:.0f}')} % of scheduled swing{dragged}; {motion}")
     lines += [
         "", f"- {motion}", *maneuver_lines(s, params.checks.sf_warn),
+        *([f"- {contact_text(s['contact_check'])}"] if s.get("contact_check") else []),
         f"- {limits_text(s['limits'])}",
         *([f"- vertical ground force (every plant step, {s['log_period_s'] * 1e3:g} ms means) "
            f"between {s['vertical_support']['least_share']:.2f} (t = "
@@ -306,10 +332,14 @@ def maneuver_lines(s: Summary, sf_warn: float) -> list[str]:
                      f"the push-off's onset (agility {j['agility_m_s']:.2f} m/s)")
     if s["landing"]:
         ld = s["landing"]
+        converged = (((s.get("step_check") or {}).get("events") or {}).get("landing") or {})
+        peak = converged.get("peak_torque_Nm")
+        band = ("" if peak is None else
+                f" (converged {peak['converged']:.2f} ± {peak['error']:.2f} by the step check)")
         lines.append(f"- landing: touchdown at t = {_beside(ld, 'touchdown_s', 1.0, 's', '.3f')} "
                      f"at {ld['touchdown_speed_m_s']:.2f} m/s, peak ground force "
                      f"{ld['peak_force_N']:.0f} N, peak motor torque {ld['peak_torque_Nm']:.2f} "
-                     f"N·m, body drop {ld['compression_m'] * 1e3:.1f} mm over "
+                     f"N·m{band}, body drop {ld['compression_m'] * 1e3:.1f} mm over "
                      f"{ld['duration_s'] * 1e3:.0f} ms")
     if s.get("any_controller"):
         lines.append(f"- for any controller: "

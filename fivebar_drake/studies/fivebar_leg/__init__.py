@@ -12,7 +12,7 @@ from fivebar_drake import pipeline
 from fivebar_drake.core.files import say
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.core.yaml_files import load_yaml
-from fivebar_drake.robots.quadruped.config import load_params
+from fivebar_drake.robots.quadruped.config import load_params, with_changes
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.simulation.builder import check_run
 from fivebar_drake.simulation.runner import SimulationRecord, load_run
@@ -21,14 +21,17 @@ from fivebar_drake.studies.fivebar_leg import report
 
 ANALYSIS_FILES = pipeline.ANALYSIS_FILES
 SIMULATION_FILES = pipeline.SIMULATION_FILES
-OPTIONS = frozenset({"--gait", "--set", "--scenario", "--closure", "--step-check"})
+OPTIONS = frozenset({"--gait", "--set", "--scenario", "--closure", "--step-check",
+                     "--contact-check"})
 
 
 class Simulated(NamedTuple):
-    """A simulation's record and, with --step-check, the same run at half the plant step."""
+    """A simulation's record and, with --step-check, the same run at half the plant step, with
+    --contact-check the same run with the foot contact softer and stiffer (by label)."""
 
     record: SimulationRecord
     half: SimulationRecord | None
+    contacts: dict[str, SimulationRecord] | None = None
 
 
 def with_sets(params: Params, sets: list[str] | None) -> Params:
@@ -37,7 +40,7 @@ def with_sets(params: Params, sets: list[str] | None) -> Params:
     (ParameterError naming the command line)."""
     if not sets:
         return params
-    from fivebar_drake.robots.quadruped.config import check_gait_reachable, with_changes
+    from fivebar_drake.robots.quadruped.config import check_gait_reachable
 
     changes = {}
     for item in sets:
@@ -84,10 +87,10 @@ def write_analysis(record: pipeline.AnalysisRecord, out: Path) -> Written:
 def load_simulation(config: str | Path | None, duration_s: float | None,
                     scenario: str | None = None, gait: str | None = None,
                     closure: str | None = None, sets: list[str] | None = None,
-                    step_check: bool | None = None) -> Plan:
+                    step_check: bool | None = None, contact_check: bool | None = None) -> Plan:
     """The scenario (its file, or the built-in one) with the command line's overrides, its
     parameters (--config overrides the scenario's params_file) with their --set edits, every
-    check before a run; and whether to run the step check."""
+    check before a run; and whether to run the step check and the contact check."""
     scenario_, params = load_run(scenario, duration_s=duration_s, closure=closure, gait=gait,
                                  params_file=config)
     params = with_sets(params, sets)
@@ -102,27 +105,45 @@ def load_simulation(config: str | Path | None, duration_s: float | None,
             raise ParameterError(f"--step-check runs again at half the plant step "
                                  f"({half.time_step_s:g} s), which fails its checks: "
                                  f"{err.message}", err.field, err.source) from None
-    return Plan((scenario_, params, bool(step_check)))
+    if contact_check:                        # and the contact check's contacts
+        for factor in pipeline.CONTACT_FACTORS.values():
+            try:
+                check_run(scenario_, with_changes(params, {
+                    "body.foot_stiffness_N_m": factor * params.body.foot_stiffness_N_m}))
+            except ParameterError as err:
+                raise ParameterError(f"--contact-check runs again with the foot stiffness x"
+                                     f"{factor:g}, which fails its checks: {err.message}",
+                                     err.field, err.source) from None
+    return Plan((scenario_, params, bool(step_check), bool(contact_check)))
 
 
 def simulate(inputs, progress: bool, stop: Callable[[], str]) -> Simulated:
-    """The run, and with the step check (unless the run failed or was stopped) the same run at
-    half the plant step."""
-    scenario, params, step_check = inputs
+    """The run, and (unless the run failed or was stopped) with the step check the same run at
+    half the plant step, with the contact check the same run with the foot contact softer and
+    stiffer."""
+    scenario, params, step_check, contact_check = inputs
     record = pipeline.run_simulation(scenario, params, progress=progress, stop=stop)
-    if not step_check or record.error or record.interrupted or stop():
-        return Simulated(record, None)
-    if progress:
-        say(f"step check: the same run at half the plant step "
-            f"({record.design.time_step_s / 2:g} s)")
-    half = pipeline.run_step_check(record, progress=progress, stop=stop)
-    return Simulated(record, half)           # interrupted: the summary says there is no check
+    if record.error or record.interrupted or stop():
+        return Simulated(record, None, None)
+    half = contacts = None
+    if step_check:
+        if progress:
+            say(f"step check: the same run at half the plant step "
+                f"({record.design.time_step_s / 2:g} s)")
+        half = pipeline.run_step_check(record, progress=progress, stop=stop)
+    if contact_check and not stop():
+        if progress:
+            say("contact check: the same run with the foot contact softer and stiffer (x"
+                + ", x".join(f"{f:g}" for f in pipeline.CONTACT_FACTORS.values()) + ")")
+        contacts = pipeline.run_contact_check(record, progress=progress, stop=stop)
+    return Simulated(record, half, contacts)  # interrupted: the summary says there is no check
 
 
 def write_simulation(run: Simulated, out: Path) -> Written:
     """The plots, recording and summary (summary.json last); exit 1 for a run that stopped
     early, has no verdict or did not achieve its motion."""
-    summary, files = pipeline.write_simulation(run.record, out, run.half)
+    summary, files = pipeline.write_simulation(run.record, out, run.half,
+                                               contacts=run.contacts)
     return Written(files, report.simulation_lines(summary),
                    closing=[report.recording_line(out / pipeline.RECORDING_FILE)],
                    warnings=report.simulation_warnings(run.record.params),

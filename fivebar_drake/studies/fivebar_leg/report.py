@@ -12,7 +12,7 @@ from fivebar_drake.pipeline import AnalysisRecord
 from fivebar_drake.robots.quadruped.config import sampling_error
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.simulation.runner import SimulationRecord
-from fivebar_drake.simulation.summary_text import limits_text
+from fivebar_drake.simulation.summary_text import contact_text, limits_text
 
 
 def analysis_lines(record: AnalysisRecord) -> list[str]:
@@ -62,6 +62,8 @@ def simulation_lines(summary: Summary) -> list[str]:
                      f"{sc['converged_sf']:.3f} ± {sc['converged_sf_error']:.3f} "
                      f"({sc['converged_worst_motor']})" + (f"; MARGINAL: {sc['why']}"
                                                            if sc["marginal"] else ""))
+    if s["contact_check"]:
+        lines.append(contact_text(s["contact_check"]))
     return lines + [s["answer"]]
 
 
