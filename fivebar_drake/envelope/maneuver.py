@@ -15,7 +15,8 @@ import numpy as np
 from fivebar_drake.core.summary_schema import Summary
 from fivebar_drake.envelope.spec import Maneuver
 from fivebar_drake.mechanisms.fivebar import MOTORS
-from fivebar_drake.pipeline import run_simulation, run_step_check, write_simulation
+from fivebar_drake.pipeline import (run_contact_check, run_simulation, run_step_check,
+                                    write_simulation)
 from fivebar_drake.simulation.signals import per_motor
 from fivebar_drake.simulation.run_statistics import window_rows
 
@@ -56,12 +57,16 @@ def run_maneuver(maneuver: Maneuver, points: int = OPERATING_POINTS) -> Maneuver
     """Simulate the maneuver (pipeline.run_simulation), write its `simulate` outputs in a
     temporary folder (pipeline.write_simulation, the recording named for the maneuver) and
     return them with the operating points and currents (ManeuverResult); with its step check,
-    judged against its run at half the plant step (pipeline.run_step_check)."""
+    judged against its run at half the plant step (pipeline.run_step_check), with its contact
+    check against its runs with the foot contact softer and stiffer (run_contact_check)."""
     record = run_simulation(maneuver.scenario, maneuver.params, progress=False)
-    half = (run_step_check(record, progress=False)
-            if maneuver.step_check and not record.error and not record.interrupted else None)
+    ran = not record.error and not record.interrupted
+    half = run_step_check(record, progress=False) if maneuver.step_check and ran else None
+    contacts = (run_contact_check(record, progress=False) if maneuver.contact_check and ran
+                else None)
     with tempfile.TemporaryDirectory(prefix="fivebar-envelope-") as tmp:
-        summary, written = write_simulation(record, tmp, half=half, name=maneuver.name)
+        summary, written = write_simulation(record, tmp, half=half, name=maneuver.name,
+                                            contacts=contacts)
         files = tuple((p.name, Path(p).read_bytes()) for p in written)
     t = record.table["t"]
     rows = window_rows(t, summary["window_s"])

@@ -43,13 +43,16 @@ MAX_DUTY_CYCLE_S = 86_400.0  # a day of operation: 200 of the default winding's 
 class Maneuver:
     """A maneuver: its name, the scenario fields the spec gives it (over the base scenario),
     the checked scenario and parameters it runs with, and whether its run is step-checked (run
-    again at half the plant step, as `simulate --step-check`; set by the co-design)."""
+    again at half the plant step, as `simulate --step-check`; set by the co-design) and
+    contact-checked (run again with the foot contact softer and stiffer, as `simulate
+    --contact-check`: the maneuver's `contact_check: true`)."""
 
     name: str
     changes: dict
     scenario: Scenario
     params: Params
     step_check: bool = False
+    contact_check: bool = False
 
 
 @dataclass(frozen=True)
@@ -143,7 +146,10 @@ def _maneuver(i: int, item, base: tuple[str | None, dict], duration, config,
     require(NAME.fullmatch(name) is not None, f"{where}.name", name,
             "must be 1 to 64 letters, digits, '_' or '-', starting with a letter or a digit "
             "(it names the maneuver's output folder)")
-    changes = {k: v for k, v in item.items() if k != "name"}
+    changes = {k: v for k, v in item.items() if k not in ("name", "contact_check")}
+    contact = item.get("contact_check", False)
+    require(isinstance(contact, bool), f"{where}.contact_check", contact,
+            "must be true or false (run again with the foot contact softer and stiffer)")
     names = field_names()
     for key in changes:
         require(key in names, f"{where}.{key}", changes[key],
@@ -172,7 +178,7 @@ def _maneuver(i: int, item, base: tuple[str | None, dict], duration, config,
         message = (field_ + err.message[len(err.field):] if inner and
                    err.message.startswith(err.field) else f"{where}: {err.message}")
         raise ParameterError(f"{message} (maneuver {name!r})", field_) from None
-    return Maneuver(name, changes, scenario, params)
+    return Maneuver(name, changes, scenario, params, contact_check=contact)
 
 
 def _duty_cycle(steps, maneuvers: list[Maneuver]) -> tuple[DutyStep, ...]:

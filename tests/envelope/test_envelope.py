@@ -380,3 +380,17 @@ def test_a_maneuver_that_raises_in_its_worker_is_a_bug_report(local, tmp_path, m
     report = envelope(out)
     assert report["maneuvers"]["trot_fast"]["status"] == "failed"
     assert "File too large" in report["maneuvers"]["trot_fast"]["error"]
+
+
+def test_a_maneuver_asks_for_its_contact_check(tmp_path):
+    """`contact_check: true` on a maneuver runs it again with the foot contact varied (the
+    packaged envelopes' jump and drop); anything but a boolean is refused naming the field."""
+    from fivebar_drake.core.validation import ParameterError
+    from fivebar_drake.envelope.spec import load_envelope_spec
+
+    packaged = {m.name: m.contact_check for m in load_envelope_spec().maneuvers}
+    assert packaged["jump"] and packaged["drop_10cm"] and not packaged["trot_1hz"]
+    spec = tmp_path / "spec.yaml"
+    spec.write_text("maneuvers:\n  - {name: jump, gait: jump, contact_check: yes please}\n")
+    with pytest.raises(ParameterError, match=r"maneuvers\[0\]\.contact_check"):
+        load_envelope_spec(spec)
