@@ -118,6 +118,7 @@ class FootPath(Variant):
     point: ClassVar = None
     title: ClassVar[str] = ""          # the path in a few words, e.g. "trot foot path"
     periodic: ClassVar[bool] = True    # False: a one-shot maneuver (Maneuver)
+    early_touchdown: ClassVar[bool] = True   # the controller's touchdown detection applies
     gait_defaults: ClassVar[dict] = {}  # gait fields (m, Hz) this path takes unless the scenario
     #                                     sets them (scenario.gait_*)
 
@@ -370,6 +371,10 @@ class Pronk(Trot):
 
     kind: ClassVar[str] = "pronk"
     title: ClassVar[str] = "pronk (all four legs together)"
+    # all four land together: a pair down before its schedule is the body's pitch, not an
+    # early step, and freezing it made the gait flip between two patterns with the plant step
+    # (issue 39: the heavy-rotor designs' pronk not achieved at 1 ms, achieved at 0.5 ms)
+    early_touchdown: ClassVar[bool] = False
     gait_defaults: ClassVar[dict] = {"frequency_hz": 3.0, "a_m": 0.03, "b_m": 0.015}
     duty_factor: Optional[float] = 0.7
     dip_m: float = 0.0364

@@ -199,7 +199,7 @@ def answer(r: dict, params: Params) -> str:
     """The result in two sentences: how high the legs can jump, what the packaged jump needs."""
     c = r["ceiling"]
     first = ("The motors cannot lift the crouched robot: no jump." if c is None else
-             f"The highest vertical jump of the one-leg model is "
+             f"In the one-leg model the legs and motors allow a vertical jump of "
              f"{c['body_apex_above_standing_m'] * 1e3:.0f} mm above standing (the body's apex; "
              f"the centre of mass rises {c['com_rise_from_crouch_m'] * 1e3:.0f} mm from the crouch, "
              f"takeoff at {c['takeoff_speed_m_s']:.2f} m/s, agility "

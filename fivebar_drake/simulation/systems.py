@@ -131,7 +131,7 @@ class FootLegController(LeafSystem):
     - The links' weight is compensated on every leg."""
 
     def __init__(self, params: Params, layout: RobotLayout, gains: ControlGains, knobs: FootLeg,
-                 transfer_s: float):
+                 transfer_s: float, early_touchdown: bool = True):
         super().__init__()
         self._mechanism, self._layout = params.fivebar_leg, layout
         self.constants = LawConstants(
@@ -146,7 +146,7 @@ class FootLegController(LeafSystem):
             foot_radius_m=params.body.foot_radius_m,
             stand_offset_m=float(body_height(params, 0.0)), mu=params.body.foot_friction,
             catch_gain=float(knobs.catch_gain), catch_rate_s=float(knobs.catch_rate_s),
-            catch_limit_m=params.gait.b_m, touchdown=bool(knobs.touchdown_detection),
+            catch_limit_m=params.gait.b_m, touchdown=bool(knobs.touchdown_detection and early_touchdown),
             support=-np.asarray(layout.gravity_m_s2, dtype=float),
             contact_N=float(CONTACT_LOAD_SHARE * layout.mass_kg
                             * np.linalg.norm(layout.gravity_m_s2) / len(layout.legs)),
@@ -247,7 +247,8 @@ class FootLeg(Controller):
                                            "this x the hip's sinking speed further down")
     touchdown_detection: bool = documented(True, "a swing foot in the air that is measured on "
                                                  "the ground early (on its way down) joins the "
-                                                 "support")
+                                                 "support (not for a path that declines it: "
+                                                 "the pronk, whose feet land together)")
     stance_law: str = documented("virtual_model", "the stance feet's ground-force law, a "
                                                   "registered kind (robots/quadruped/"
                                                   "stance_laws.py)")
@@ -288,4 +289,5 @@ class FootLeg(Controller):
     def add_to(self, builder, params: Params, layout: RobotLayout,
                scenario) -> FootLegController:
         return builder.AddNamedSystem("leg_controller", FootLegController(
-            params, layout, self.gains(params, layout), self, scenario.load_transfer_s))
+            params, layout, self.gains(params, layout), self, scenario.load_transfer_s,
+            scenario.gait.early_touchdown))
