@@ -15,9 +15,11 @@ STUDIES = {name: f"fivebar_drake.studies.{name}"    # mechanism -> the module of
            for name in (FIVEBAR, "ballscrew_leg", "scara", "parallel4")}
 
 
-def register_study(name: str, module: str) -> None:
+def register_study(name: str, module: str, replaces: bool = False) -> None:
     """Make `--mechanism name` run the study in `module` (a module path keeping the Study
-    contract, imported when asked for)."""
+    contract, imported when asked for); a name another study has is refused unless replaces
+    (plugins.claim)."""
+    plugins.claim("mechanism", name, STUDIES.get(name), module, replaces)
     STUDIES[name] = module
 
 

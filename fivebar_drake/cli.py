@@ -348,6 +348,9 @@ def parser() -> argparse.ArgumentParser:
                                   formatter_class=argparse.RawDescriptionHelpFormatter)
     top.add_argument("--version", action="version", version=f"%(prog)s "
                      f"{version('fivebar_drake')} (drake {version('drake')})")
+    top.add_argument("--no-plugins", action="store_true",
+                     help=f"load no plugin (entry points of {plugins.GROUP}); the environment "
+                          f"variable {plugins.DISABLE_ENV}=1 does the same")
     sub = top.add_subparsers(dest="command", required=True, metavar="COMMAND")
     config = dict(metavar="FILE", help="parameter file (TOML, the layout of "
                   "fivebar_drake/data/default.toml); default: the packaged parameters")
@@ -477,7 +480,9 @@ def _commands() -> dict[str, argparse.ArgumentParser]:
 
 
 def options_markdown() -> str:
-    """The README's table of every subcommand's options, from the parser."""
+    """The README's table of every subcommand's options, from the parser: this package's own
+    choices (a plugin's kinds left out, so the table holds with plugins installed)."""
+    extra = plugins.plugin_names()
     rows = ["| command | option | default | meaning |", "|---|---|---|---|"]
     for name, command in _commands().items():
         for action in command._actions:
@@ -485,7 +490,7 @@ def options_markdown() -> str:
                 continue
             option = ", ".join(action.option_strings) or action.metavar
             if action.choices:
-                option += " {" + ",".join(action.choices) + "}"
+                option += " {" + ",".join(c for c in action.choices if c not in extra) + "}"
             elif action.option_strings and action.metavar:
                 option += f" {action.metavar}"
             default = "" if action.default is None else f"`{action.default}`"
@@ -509,6 +514,8 @@ def _internal_error(err: BaseException, argv) -> int:
 def main(argv=None) -> int:
     """Run the command line; returns the exit code (see EXIT_CODES)."""
     argv = sys.argv[1:] if argv is None else list(argv)
+    if "--no-plugins" in argv:                  # before the parser: its choices load plugins
+        plugins.disable()
     try:
         args = parser().parse_args(argv)
     except SystemExit as exit_:             # --help, --version, or a usage error (code 2)

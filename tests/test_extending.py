@@ -140,3 +140,84 @@ def test_a_swapped_stance_law_keeps_the_compiled_laws_cached(plugin_path, tmp_pa
         assert done.returncode == 0, done.stderr
     seconds, finite = done.stdout.split()
     assert finite == "True" and float(seconds) < 0.5
+
+
+def _package(root: Path, name: str, modules: dict[str, str]) -> Path:
+    """A plugin package `name` in root: its modules (module name -> code) and a dist-info whose
+    entry points name each module."""
+    package = root / name
+    package.mkdir(parents=True)
+    (package / "__init__.py").write_text("")
+    for module, code in modules.items():
+        (package / f"{module}.py").write_text(textwrap.dedent(code))
+    info = root / f"{name}-0.3.dist-info"
+    info.mkdir()
+    (info / "METADATA").write_text(f"Metadata-Version: 2.1\nName: {name}\nVersion: 0.3\n")
+    (info / "top_level.txt").write_text(f"{name}\n")      # as pip's RECORD tells it
+    (info / "entry_points.txt").write_text("[fivebar_drake.plugins]\n" + "".join(
+        f"{module} = {name}.{module}\n" for module in modules))
+    return root
+
+
+HIJACK = """
+    from typing import ClassVar
+    from dataclasses import dataclass
+    from fivebar_drake.core.footpath import Trot, register_path
+
+    @register_path
+    @dataclass(frozen=True)
+    class StillTrot(Trot):
+        kind: ClassVar[str] = "trot"
+        REPLACES
+"""
+
+
+def test_a_plugin_cannot_hijack_a_kind_unless_it_says_so(tmp_path):
+    """A plugin registering the built-in trot is refused at load, exit 2 naming both classes
+    and its entry point; one that says it replaces the trot runs, and summary.json records
+    where the trot came from (module, distribution and version, entry point, what it replaced).
+    Without plugins (--no-plugins, or FIVEBAR_DRAKE_NO_PLUGINS=1) the built-in runs."""
+    hijack = _package(tmp_path / "a", "hijack", {"trot": HIJACK.replace("REPLACES", "")})
+    done = run(hijack, "-m", "fivebar_drake", "simulate", "--duration", "0.3", "--out", "x",
+               cwd=tmp_path)
+    assert done.returncode == 2, done.stderr
+    assert ("registered twice" in done.stderr and "fivebar_drake.core.footpath.Trot" in done.stderr
+            and "hijack.trot.StillTrot" in done.stderr and "entry point trot" in done.stderr)
+    assert not (tmp_path / "x").exists()
+    for flag, env in ((["--no-plugins"], {}), ([], {"FIVEBAR_DRAKE_NO_PLUGINS": "1"})):
+        done = subprocess.run([sys.executable, "-m", "fivebar_drake", *flag, "simulate",
+                               "--duration", "0.3", "--out", "plain"], capture_output=True,
+                              text=True, cwd=tmp_path, timeout=600,
+                              env={**os.environ, **env, "PYTHONPATH": str(hijack)})
+        assert done.returncode in (0, 1), done.stderr          # 0.3 s: no verdict (exit 1)
+        ran = json.loads((tmp_path / "plain" / "summary.json").read_text())["ran"]
+        assert ran["origins"]["gait"]["module"] == "fivebar_drake.core.footpath.Trot"
+        assert ran["origins"]["gait"]["distribution"].startswith("fivebar_drake ")
+    asked = _package(tmp_path / "b", "hijack", {"trot": HIJACK.replace(
+        "REPLACES", "replaces: ClassVar[bool] = True")})
+    done = run(asked, "-m", "fivebar_drake", "simulate", "--gait", "trot", "--duration", "0.3",
+               "--out", "y", cwd=tmp_path)
+    assert done.returncode in (0, 1), done.stderr
+    gait = json.loads((tmp_path / "y" / "summary.json").read_text())["ran"]["origins"]["gait"]
+    assert gait == {"module": "hijack.trot.StillTrot", "distribution": "hijack 0.3",
+                    "entry_point": "trot = hijack.trot",
+                    "replaces": "fivebar_drake.core.footpath.Trot"}
+
+
+def test_a_plugin_that_exits_at_import_is_refused_naming_it(tmp_path):
+    root = _package(tmp_path, "quitter", {"bye": "raise SystemExit(0)\n"})
+    done = run(root, "-m", "fivebar_drake", "analyze", "--out", "z", cwd=tmp_path)
+    assert done.returncode == 2
+    assert "entry point bye = quitter.bye" in done.stderr and "exits at import" in done.stderr
+
+
+def test_the_docs_options_table_holds_with_a_plugin_installed(plugin_path):
+    """The package's own tests pass with a plugin installed: the options table leaves a
+    plugin's kinds out, so the README's is current in a process that loaded the templates."""
+    done = run(plugin_path, "-c", "from fivebar_drake.cli import parser, options_markdown; "
+               "parser(); print(options_markdown())")
+    assert done.returncode == 0, done.stderr
+    block = re.search(r"<!-- options-table:[^>]*-->\n(.*?)\n<!-- /options-table -->",
+                      README.read_text(), re.S)
+    assert done.stdout.rstrip("\n") == block.group(1)
+    assert "stand_still" in run(plugin_path, "-m", "fivebar_drake", "simulate", "--help").stdout

@@ -37,8 +37,8 @@ import numpy as np
 from fivebar_drake.core.checks import Checks
 from fivebar_drake.core.compiled import jit, jit_uncached
 from fivebar_drake.core.validation import (MAX_GAIT_FREQUENCY_HZ, MAX_GRAVITY_M_S2,
-                                           MAX_LENGTH_M, MAX_SAMPLES,
-                                           check_lengths, check_number)
+                                           MAX_LENGTH_M, MAX_SAMPLES, UNIT_SUFFIXES,
+                                           check_lengths, check_number, unit_of)
 from fivebar_drake.core.variants import Variant, by_kind, registrar
 
 
@@ -53,7 +53,7 @@ EXTENSION_STOP_S = 0.02  # after takeoff a jump's legs stop extending within thi
 #                          a light leg stops that fast, and it keeps the leg inside its reach)
 MIN_CRAWL_DUTY = 0.75   # a crawl's duty factor: one leg in swing at a time, three feet down
 PATHS: dict[str, type["FootPath"]] = {}   # the foot paths by kind, in registration order
-register_path = registrar(PATHS)
+register_path = registrar(PATHS, "gait")
 
 
 def foot_path(path: "FootPath | str") -> "FootPath":
@@ -589,11 +589,15 @@ class Maneuver(FootPath):
         return 0.0
 
     def check(self, field: str) -> None:
+        """Every field with a unit suffix within its unit's bounds (validation.unit_of: a speed
+        "_m_s" as a speed, never as a time; a time at most MAX_MANEUVER_S); a field without one
+        (a share, a count) is its class's to check."""
         for f in dataclasses.fields(self):
-            time = f.name.endswith("_s")
-            if time or f.name.endswith("_m"):       # another kind of field: its class's check
-                check_number(f"{field}.{f.name}", getattr(self, f.name), 0.0,
-                             MAX_MANEUVER_S if time else MAX_LENGTH_M, low_open=time)
+            unit = unit_of(f.name)
+            if unit is not None:
+                low, high, low_open = UNIT_SUFFIXES[unit]
+                check_number(f"{field}.{f.name}", getattr(self, f.name), low,
+                             MAX_MANEUVER_S if unit == "_s" else high, low_open=low_open)
 
 
 def hold(duration_s: float, stance: bool, foot) -> tuple:

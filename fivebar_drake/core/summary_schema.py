@@ -156,6 +156,7 @@ class Ran(TypedDict):
     gait: dict[str, Scalar]
     controller: dict[str, Scalar]
     closure: dict[str, Scalar]
+    origins: dict[str, dict[str, str]]   # what -> core.plugins.origin (module, distribution, ...)
     planned_events_s: dict[str, float]
 
 

@@ -26,6 +26,18 @@ MAX_RELAXATION_TIME_S = 1.0     # a foot pad still dissipating a second after to
 MIN_PLANT_STEP_S = 1e-6        # no mechanism here needs a finer plant step
 MAX_PLANT_STEPS = 20_000_000   # a run of more steps takes hours (~0.1-0.3 ms each)
 MAX_SAFETY_FACTOR = 100.0       # a verdict threshold beyond this can never pass
+MAX_SPEED_M_S = 100.0           # any linear speed: a legged robot this size runs a few m/s
+MAX_FORCE_N = 1e5               # any force: ten tonnes on a 7 kg robot's foot
+# a field's unit from its name's suffix (the longest that matches): (low, high, low_open), the
+# bounds unit_bounds gives a variant's field of that unit
+UNIT_SUFFIXES = {"_m_s": (-MAX_SPEED_M_S, MAX_SPEED_M_S, False),
+                 "_rad_s": (-MAX_SPEED_RAD_S, MAX_SPEED_RAD_S, False),
+                 "_Nm": (-MAX_TORQUE_NM, MAX_TORQUE_NM, False),
+                 "_N": (-MAX_FORCE_N, MAX_FORCE_N, False),
+                 "_hz": (0.0, MAX_GAIT_FREQUENCY_HZ, True),
+                 "_kg": (0.0, MAX_MASS_KG, False),
+                 "_s": (0.0, 1e5, True),
+                 "_m": (0.0, MAX_LENGTH_M, False)}
 
 
 class ParameterError(ValueError):
@@ -118,3 +130,10 @@ def check_point(field: str, point) -> None:
     require(isinstance(point, (tuple, list)) and len(point) == 2, field, point, "must be [x, y] in m")
     for i, v in enumerate(point):
         check_number(f"{field}[{i}]", v, -MAX_LENGTH_M, MAX_LENGTH_M)
+
+
+def unit_of(name: str) -> str | None:
+    """The unit suffix of a field's name (UNIT_SUFFIXES, the longest that matches: "_m_s"
+    before "_s"), None for a field without one (a share, a count)."""
+    return next((suffix for suffix in sorted(UNIT_SUFFIXES, key=len, reverse=True)
+                 if name.endswith(suffix)), None)

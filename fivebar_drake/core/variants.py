@@ -16,6 +16,7 @@ class Variant:
     """Base of the variants: `kind` names it in its registry; check validates its fields."""
 
     kind: ClassVar[str] = ""
+    replaces: ClassVar[bool] = False   # a plugin's class that replaces a registered kind says so
 
     def __str__(self) -> str:
         """The kind, with the fields that differ from the kind's defaults, e.g. trot or
@@ -61,9 +62,15 @@ def known(registry: dict, kind) -> bool:
     return kind in registry
 
 
-def registrar(registry: dict):
-    """The class decorator that registers a Variant subclass in registry under its kind."""
+def registrar(registry: dict, what: str):
+    """The class decorator that registers a Variant subclass in registry (the registry of
+    `what`, e.g. "gait") under its kind; a kind another class has is refused unless the class
+    says it replaces it (plugins.claim)."""
     def register(cls):
+        old = registry.get(cls.kind)
+        name = (lambda c: f"{c.__module__}.{c.__qualname__}")    # noqa: E731
+        plugins.claim(what, cls.kind, None if old is None else name(old), name(cls),
+                      cls.replaces)
         registry[cls.kind] = cls
         return cls
     return register

@@ -21,12 +21,14 @@ import math
 import numpy as np
 
 from fivebar_drake.core.footpath import Outcome
+from fivebar_drake.core import plugins
 from fivebar_drake.core.summary_schema import ContactCheck, StepCheck, Summary
 from fivebar_drake.core.verdicts import (achievement, contact_check, contact_checked_verdict,
                                          judge, run_verdict, step_check, step_checked_verdict)
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.plant import standing_height
+from fivebar_drake.robots.quadruped.stance_laws import STANCE_LAWS
 from fivebar_drake.simulation.maneuver_figures import maneuver_figures
 from fivebar_drake.simulation.run_statistics import (MIN_CYCLES, Window, end_height,
                                                      leg_statistics, limit_report,
@@ -94,6 +96,18 @@ def broken(sig: Signals, params: Params, legs) -> list[str]:
     return out
 
 
+def origins(scenario) -> dict[str, dict[str, str]]:
+    """Where each variant of the run comes from (core.plugins.origin: module, distribution and
+    version, a plugin's entry point, the kind it replaced): the gait, the controller, the
+    closure and the controller's stance law where it has one."""
+    out = {what: plugins.origin(type(getattr(scenario, what)))
+           for what in ("gait", "controller", "closure")}
+    law = getattr(scenario.controller, "stance_law", None)
+    if law in STANCE_LAWS:
+        out["stance_law"] = plugins.origin(STANCE_LAWS[law])
+    return out
+
+
 def what_ran(record: SimulationRecord, window: Window) -> dict:
     """The summary's record of what ran and how far: the gait's and closure's kinds, every
     variant's fields and the plan's events (s from t = 0), the duration and how the run ended,
@@ -104,7 +118,7 @@ def what_ran(record: SimulationRecord, window: Window) -> dict:
     return {
         "gait": scenario.gait.kind, "closure": scenario.closure.kind,
         "ran": {"gait": scenario.gait.fields(), "controller": scenario.controller.fields(),
-                "closure": scenario.closure.fields(),
+                "closure": scenario.closure.fields(), "origins": origins(scenario),
                 "planned_events_s": {k: window.start + v for k, v in
                                      scenario.gait.events(params.gait).planned().items()}},
         "duration_s": t_end, "requested_duration_s": scenario.duration_s,

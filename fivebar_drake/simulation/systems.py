@@ -41,7 +41,7 @@ MIN_TIME_STEP_S = 1e-6            # any step or period: the explicit bushing nee
 #                                   in the robot is faster
 
 CONTROLLERS: dict[str, type[Controller]] = {}   # the leg controllers by kind
-register_controller = registrar(CONTROLLERS)
+register_controller = registrar(CONTROLLERS, "controller")
 
 
 @dataclass(frozen=True)

@@ -308,3 +308,27 @@ def test_overrides_the_path_reads_are_taken():
     assert load_scenario(gait="trot", gait_duty_factor=0.6).load_params().gait.duty_factor == 0.6
     assert load_scenario(gait="jump", gait_y_home_m=-0.21).load_params().gait.y_home_m == -0.21
     assert load_scenario(gait={"kind": "walk", "duty_factor": 0.85}).gait.duty_factor == 0.85
+
+
+def test_a_maneuvers_fields_are_checked_by_their_unit_suffix():
+    """A forward leap's forward_speed_m_s (a Jump with a speed) is a speed, not a time: 0 and
+    -1 m/s are allowed, 500 m/s refused naming it; unit_of takes the longest suffix."""
+    import dataclasses
+    from typing import ClassVar
+
+    from fivebar_drake.core.footpath import Jump
+    from fivebar_drake.core.validation import ParameterError, unit_of
+
+    assert [unit_of(n) for n in ("forward_speed_m_s", "rise_s", "height_m", "peak_Nm",
+                                 "load_N", "rate_rad_s", "push_share")] == [
+        "_m_s", "_s", "_m", "_Nm", "_N", "_rad_s", None]
+
+    @dataclasses.dataclass(frozen=True)
+    class Leap(Jump):
+        kind: ClassVar[str] = "leap_for_the_test"
+        forward_speed_m_s: float = 0.0
+
+    Leap().check("gait")
+    Leap(forward_speed_m_s=-1.0).check("gait")
+    with pytest.raises(ParameterError, match=r"gait\.forward_speed_m_s = 500"):
+        Leap(forward_speed_m_s=500.0).check("gait")

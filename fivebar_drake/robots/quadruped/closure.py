@@ -141,7 +141,7 @@ IMPLICIT_TIME_STEP_S = 1e-3   # plant step of the closures SAP treats implicitly
 
 
 CLOSURES: dict[str, type[Closure]] = {}    # the loop closures by kind, in registration order
-register_closure = registrar(CLOSURES)
+register_closure = registrar(CLOSURES, "closure")
 
 
 @dataclass(frozen=True)

@@ -25,7 +25,7 @@ from fivebar_drake.core.variants import Variant, registrar
 from fivebar_drake.robots.quadruped.control_law import ground_forces
 
 STANCE_LAWS: dict[str, type["StanceLaw"]] = {}   # the stance force laws by kind
-register_stance_law = registrar(STANCE_LAWS)
+register_stance_law = registrar(STANCE_LAWS, "stance law")
 
 
 @dataclass(frozen=True)
