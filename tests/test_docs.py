@@ -1,37 +1,72 @@
-"""The README documents every command-line option and every scenario field, with defaults and
-units: its tables are generated from the parser and the Scenario dataclass, and must be current."""
+"""The manual: the README is a front door (at most 300 lines, its links resolve); the
+documentation site (docs/, mkdocs.yml) builds with warnings as errors; its reference pages are
+generated from the code (tools/gen_docs.py) and current; every scenario field and exit code is
+documented; the sweep page's example is the packaged file."""
 
+import dataclasses
+import importlib.util
 import re
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
 
-from fivebar_drake.cli import EXIT_CODES, options_markdown
-from fivebar_drake.simulation.scenario import Scenario, fields_markdown
+from fivebar_drake.cli import EXIT_CODES
+from fivebar_drake.simulation.scenario import Scenario
 
-README = (Path(__file__).parent.parent / "README.md").read_text()
+ROOT = Path(__file__).resolve().parent.parent
+README = (ROOT / "README.md").read_text()
+DOCS = ROOT / "docs"
 
 
-@pytest.mark.parametrize("name, generate", [("options-table", options_markdown),
-                                            ("scenario-table", fields_markdown)])
-def test_readme_tables_are_current(name, generate):
-    block = re.search(rf"<!-- {name}:[^>]*-->\n(.*?)\n<!-- /{name} -->", README, re.S)
-    assert block, f"README lacks the {name} block"
-    assert block.group(1) == generate(), f"README {name} is stale; replace it with:\n{generate()}"
+def gen_docs():
+    spec = importlib.util.spec_from_file_location("gen_docs", ROOT / "tools" / "gen_docs.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_the_readme_is_a_front_door():
+    """At most 300 lines, the two commands, and every link to a file of the repository resolves."""
+    assert len(README.splitlines()) <= 300
+    assert "make demo" in README and "make test" in README
+    for target in re.findall(r"\]\(([^)#]+)(?:#[^)]*)?\)", README):
+        if not target.startswith("http"):
+            assert (ROOT / target).exists(), target
+
+
+@pytest.mark.parametrize("name", ["options.md", "scenario.md", "summary.md"])
+def test_the_reference_pages_are_current(name):
+    generated = gen_docs().pages()[name]
+    assert (DOCS / "reference" / name).read_text() == generated, (
+        f"docs/reference/{name} is stale: run tools/gen_docs.py")
 
 
 def test_every_field_and_code_is_documented():
-    import dataclasses
-
+    scenario = (DOCS / "reference" / "scenario.md").read_text()
     for f in dataclasses.fields(Scenario):
-        assert f"| `{f.name}` |" in README and f.metadata["doc"]
+        assert f"| `{f.name}` |" in scenario and f.metadata["doc"]
     for code in re.findall(r"^  (\d+) ", EXIT_CODES, re.M):
         assert re.search(rf"^\| ({code}|\d+, {code}|{code}, \d+) \|", README, re.M), code
 
 
-def test_readme_sweep_example_is_the_packaged_file():
+def test_the_sweep_pages_example_is_the_packaged_file():
+    page = (DOCS / "commands" / "sweep.md").read_text()
     block = re.search(r"<!-- sweep-example:[^>]*-->\n```yaml\n(.*?)```\n<!-- /sweep-example -->",
-                      README, re.S)
-    assert block, "README lacks the sweep-example block"
-    path = Path(__file__).parent.parent / "fivebar_drake" / "data" / "sweep_example.yaml"
+                      page, re.S)
+    assert block, "docs/commands/sweep.md lacks the sweep-example block"
+    path = ROOT / "fivebar_drake" / "data" / "sweep_example.yaml"
     assert block.group(1) == path.read_text()
+
+
+def test_the_site_builds_with_warnings_as_errors(tmp_path):
+    """mkdocs build --strict: a broken link, a page left out of the navigation or a missing
+    anchor fails it."""
+    done = subprocess.run([sys.executable, "-m", "mkdocs", "build", "--strict", "--site-dir",
+                           str(tmp_path / "site"), "--config-file", str(ROOT / "mkdocs.yml")],
+                          capture_output=True, text=True, cwd=ROOT, timeout=300,
+                          env={"NO_MKDOCS_2_WARNING": "1", "PATH": "/usr/bin:/bin"})
+    assert done.returncode == 0, done.stderr
+    assert (tmp_path / "site" / "index.html").exists()
+    assert (tmp_path / "site" / "reference" / "summary" / "index.html").exists()

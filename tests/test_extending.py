@@ -1,4 +1,4 @@
-"""The README's extension templates, run as a package outside fivebar_drake: its gait, stance
+"""The manual's extension templates (docs/extending.md), run as a package outside fivebar_drake: its gait, stance
 law, controller and closure blocks become the modules of a package in a temporary folder,
 registered by entry points of the group fivebar_drake.plugins (a dist-info folder on the path,
 as pip installs one) and simulated through the command line in fresh processes; a swapped
@@ -14,16 +14,14 @@ from pathlib import Path
 
 import pytest
 
-README = Path(__file__).resolve().parent.parent / "README.md"
+EXTENDING = Path(__file__).resolve().parent.parent / "docs" / "extending.md"
 MODULES = {"stand_still": "gait", "vertical_only": "stance_law", "hold": "controller",
            "ball_api": "closure"}                 # a template's kind -> its module's name
 
 
 def templates() -> dict[str, str]:
-    """The README's extension templates by the kind each registers."""
-    text = README.read_text()
-    section = text[text.index("**Extending:"):text.index("A **mechanism** is a folder")]
-    blocks = re.findall(r"```python\n(.*?)```", section, re.S)
+    """The extension templates of docs/extending.md by the kind each registers."""
+    blocks = re.findall(r"```python\n(.*?)```", EXTENDING.read_text(), re.S)
     found = {}
     for block in blocks:
         kind = re.search(r'kind: ClassVar\[str\] = "(\w+)"', block).group(1)
@@ -33,14 +31,14 @@ def templates() -> dict[str, str]:
 
 @pytest.fixture(scope="module")
 def plugin_path(tmp_path_factory) -> Path:
-    """A folder holding the package fivebar_templates (the README's templates, one module
+    """A folder holding the package fivebar_templates (the manual's templates, one module
     each) and its dist-info with the entry points."""
     root = tmp_path_factory.mktemp("plugins")
     package = root / "fivebar_templates"
     package.mkdir()
     (package / "__init__.py").write_text('"""The README\'s templates."""\n')
     found = templates()
-    assert set(found) == set(MODULES), f"the README's templates register {sorted(found)}"
+    assert set(found) == set(MODULES), f"the manual's templates register {sorted(found)}"
     for kind, code in found.items():
         (package / f"{MODULES[kind]}.py").write_text(code)
     info = root / "fivebar_templates-0.1.dist-info"
@@ -213,11 +211,10 @@ def test_a_plugin_that_exits_at_import_is_refused_naming_it(tmp_path):
 
 def test_the_docs_options_table_holds_with_a_plugin_installed(plugin_path):
     """The package's own tests pass with a plugin installed: the options table leaves a
-    plugin's kinds out, so the README's is current in a process that loaded the templates."""
+    plugin's kinds out, so the reference page's is current in a process that loaded the templates."""
     done = run(plugin_path, "-c", "from fivebar_drake.cli import parser, options_markdown; "
                "parser(); print(options_markdown())")
     assert done.returncode == 0, done.stderr
-    block = re.search(r"<!-- options-table:[^>]*-->\n(.*?)\n<!-- /options-table -->",
-                      README.read_text(), re.S)
-    assert done.stdout.rstrip("\n") == block.group(1)
+    page = (EXTENDING.parent / "reference" / "options.md").read_text()
+    assert done.stdout.rstrip("\n") in page
     assert "stand_still" in run(plugin_path, "-m", "fivebar_drake", "simulate", "--help").stdout

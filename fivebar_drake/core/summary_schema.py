@@ -14,6 +14,7 @@ the verdict policy beside checks.py (verdicts.py) takes it too.
 
 # no `from __future__ import annotations`: Python 3.11's TypedDict reads NotRequired only from
 # evaluated annotations
+import re
 from typing import NotRequired, TypedDict
 
 Scalar = float | int | bool | str | None   # a variant's field (Variant.fields)
@@ -435,3 +436,34 @@ class Summary(TypedDict):
     any_controller: AnyController | None       # a jump's floor (pipeline.any_controller)
     answer: str
     timing: NotRequired[Timing]
+
+
+def schema_markdown() -> str:
+    """The reference page of summary.json (docs/reference/summary.md): Summary first, then every
+    record it holds in the order this module declares them, each with its docstring and a table
+    of its keys, types and the comment beside each key."""
+    import inspect
+    import sys
+    import typing
+
+    module = sys.modules[__name__]
+    classes = [c for _, c in inspect.getmembers(module, typing.is_typeddict)
+               if c.__module__ == __name__]
+    classes.sort(key=lambda c: (c is not Summary, inspect.getsourcelines(c)[1]))
+    out = ["# summary.json", "",
+           "Every simulation writes `summary.json` with these keys (SI units). Generated from "
+           "`fivebar_drake/core/summary_schema.py` by `tools/gen_docs.py`; a test keeps it "
+           "current.", ""]
+    for cls in classes:
+        doc = " ".join(inspect.getdoc(cls).split()) if cls.__doc__ else ""
+        comments = {}
+        for line in inspect.getsource(cls).splitlines():
+            found = re.match(r"\s+(\w+):\s*([^#]+?)\s*(?:#\s*(.*))?$", line)
+            if found:
+                comments[found.group(1)] = (found.group(2), found.group(3) or "")
+        out += [f"## {cls.__name__}", "", doc, "", "| key | type | note |", "|---|---|---|"]
+        cell = (lambda text: text.replace("|", "\\|").replace("<", "&lt;"))   # noqa: E731
+        out += [f"| `{key}` | `{cell(kind)}` | {cell(note)} |"
+                for key, (kind, note) in comments.items() if key in cls.__annotations__]
+        out.append("")
+    return "\n".join(out).rstrip() + "\n"
