@@ -27,11 +27,12 @@ from fivebar_drake.analysis.plots import write_plots
 from fivebar_drake.analysis.report import ANALYSIS_FILES, write_report
 from fivebar_drake.analysis.torques import Analysis, analyze, seed_results
 from fivebar_drake.core.files import prepare_output_dir
-from fivebar_drake.core.footpath import Jump as JumpPath, Landing, StandUp
 from fivebar_drake.core.summary_schema import AnyController, Summary
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.core.verdicts import fails_for
-from fivebar_drake.optimal import gait_floor, stand_up, vertical_jump
+from fivebar_drake.optimal import vertical_jump
+from fivebar_drake.optimal.needs import needs_of
+from fivebar_drake.optimal.vertical_jump import Need
 from fivebar_drake.optimal.report import max_jump_plan
 from fivebar_drake.robots.quadruped.config import load_params, sampling_error, with_changes
 from fivebar_drake.robots.quadruped.params import Params
@@ -153,35 +154,28 @@ def _signals(record: SimulationRecord) -> tuple:
     return signals(record), step_signals(record) if record.steps is not None else None
 
 
-def any_controller(record: SimulationRecord, summary: Summary) -> AnyController | None:
-    """For a jump or a drop, what any controller would need (optimal/vertical_jump.py: jump_need,
-    landing_need), on the maneuver's own strokes (or the leg's whole reach beyond them) and the
-    run's payload: each phase's need in the quadrant it acts (the push-off driving, the landing
-    braking) beside what the run's controller asked in it, the optima and the bound, and whom
-    a failing verdict blames (verdict_split). A stand-up's and a gait's:
-    stand_up_any_controller, stance_any_controller (None for a gait without a floor)."""
+def any_controller(record: SimulationRecord, summary: Summary) -> AnyController:
+    """What any controller would need for the run's path (optimal/needs.py: its kind's need
+    function, built-in or a plugin's; on the run's payload): each phase's need in the quadrant
+    it acts beside what the run's controller asked in it (a phase the run measured by name, the
+    largest demand peak of its motors otherwise), the optima and the bound, and whom a failing
+    verdict blames (verdict_split). A path whose kind has no floor: one phase, unknown."""
     path, params = record.scenario.gait, record.params
-    if isinstance(path, StandUp):
-        return stand_up_any_controller(record, summary)
-    if not isinstance(path, Landing):
-        return stance_any_controller(record, summary)
-    payload, motor = record.scenario.payload_kg, params.motor
-    needs = {}
-    if isinstance(path, JumpPath):
-        needs["push-off"] = (vertical_jump.jump_need(params, path, payload),
-                             motor.peak_torque_Nm)
-    needs["landing"] = (vertical_jump.landing_need(params, path, payload),
-                        motor.braking_peak_torque_Nm)
-    asked = {name: figures["demand_peak_Nm"] for name, figures in
-             (summary["phases"] or {}).items()}
-    first = next(iter(needs.values()))[0]
-    phases = {name: _phase(need.status, need.floor_Nm, limit, asked.get(name))
+    needs = needs_of(params, path, record.scenario.payload_kg)
+    if needs is None:
+        needs = {path.kind: (Need("unknown", None, f"no floor for the {path.kind} path", None),
+                             params.motor.peak_torque_Nm)}
+    measured = {name: figures["demand_peak_Nm"] for name, figures in
+                (summary["phases"] or {}).items()}
+    by_name = bool(set(measured) & set(needs))     # the run measured these phases by name
+    phases = {name: _phase(need.status, need.floor_Nm, limit,
+                           measured.get(name) if by_name else _most_asked(summary))
               for name, (need, limit) in needs.items()}
     why = [need.why for need, _ in needs.values() if need.why]
-    reached = (summary["jump"] or {}).get("height_m")
-    return verdict_split(record, path.kind, path.height_m, phases, why, summary,
+    first = next(iter(needs.values()))[0]
+    return verdict_split(record, path.kind, getattr(path, "height_m", 0.0), phases, why, summary,
                          ceiling_m=first.stroke_optimum_m, reach_ceiling_m=first.reach_optimum_m,
-                         bound_m=first.bound_m, reached_m=reached)
+                         bound_m=first.bound_m, reached_m=(summary["jump"] or {}).get("height_m"))
 
 
 def _phase(status: str, floor: float | None, limit: float, asked: float | None) -> dict:
@@ -193,53 +187,6 @@ def _most_asked(summary: Summary) -> float | None:
     """The largest demand peak (N*m) of the run's motors (None: none finite)."""
     return max((m["demand_peak_Nm"] for motors in summary["legs"].values()
                 for m in motors.values() if math.isfinite(m["demand_peak_Nm"])), default=None)
-
-
-def stand_up_any_controller(record: SimulationRecord, summary: Summary) -> AnyController:
-    """For a stand-up, what any controller would need (optimal/stand_up.py): its floor (driving)
-    beside the largest demand peak of the run's motors, and whom a failing verdict blames
-    (verdict_split); a stand-up no balanced loaded path does is undecided."""
-    params, path = record.params, record.scenario.gait
-    why = ["quasi-static, a level lift balanced about the pitch axis (front and rear feet "
-           "placed apart; the nose resting on the ground is not modelled)"]
-    try:
-        found = stand_up.stand_up_floor(params, path, record.scenario.payload_kg)
-        status, floor = "floor", found.floor_Nm
-        why.append(f"the dynamics add at most {found.dynamic_share:.0%} of the weight in "
-                   f"{path.rise_s:g} s")
-    except ParameterError as err:
-        status, floor = "undecided", None
-        why.append(err.message)
-    phases = {"stand-up": _phase(status, floor, params.motor.peak_torque_Nm,
-                                 _most_asked(summary))}
-    return verdict_split(record, path.kind, 0.0, phases, why, summary)
-
-
-def stance_any_controller(record: SimulationRecord, summary: Summary) -> AnyController | None:
-    """For a trot, walk, bound or pronk, what any controller would need (optimal/gait_floor.py):
-    the gait's floor at its own mean height (driving) beside the largest demand peak of the
-    run's motors, and whom a failing verdict blames (verdict_split). A path asking a joint
-    beyond the no-load speed is this path's (and so this controller's) failing, not every
-    path's. None for another gait."""
-    params, path = record.params, record.scenario.gait
-    why = ["stance legs only (the swing legs' torques are not in the floor)",
-           "the least a local search found (a lower one may exist)"]
-    try:
-        floor = gait_floor.gait_floor(params, path, record.scenario.payload_kg)
-    except ParameterError as err:           # the local search found no motion: no floor
-        phases = {"stance": _phase("unknown", None, params.motor.peak_torque_Nm,
-                                   _most_asked(summary))}
-        return verdict_split(record, path.kind, 0.0, phases, why[:1] + [err.message], summary)
-    if floor is None:
-        return None
-    joint = gait_floor.fastest_joint(params, path)
-    if joint > params.motor.no_load_speed_rad_s:
-        why.append(f"this path asks a joint for {joint:.2f} rad/s, beyond the motors' no-load "
-                   f"speed {params.motor.no_load_speed_rad_s:.2f} rad/s (another path of the "
-                   "gait may ask less)")
-    phases = {"stance": _phase("floor", floor.floor_Nm, params.motor.peak_torque_Nm,
-                               _most_asked(summary))}
-    return verdict_split(record, path.kind, 0.0, phases, why, summary)
 
 
 def verdict_split(record: SimulationRecord, maneuver: str, height_m: float, phases: dict,

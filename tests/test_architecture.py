@@ -72,3 +72,35 @@ def test_the_five_bar_is_used_through_its_package():
              for d in deps if d.startswith(inside + ".")]
     assert not wrong, wrong
 
+
+
+def test_no_isinstance_on_a_maneuver_outside_its_module():
+    """A maneuver owns its contract (its needs by kind: optimal/needs.py; its phases:
+    FootPath.lands, pushes; its events and achievement: its methods): no module but the paths'
+    own asks isinstance or issubclass of a path class, under any name it imports it by."""
+    import ast
+    import inspect
+
+    from fivebar_drake.core import footpath
+
+    paths = {name for name, obj in vars(footpath).items()
+             if inspect.isclass(obj) and issubclass(obj, footpath.FootPath)}
+    package = Path(footpath.__file__).resolve().parent.parent
+    offenders = []
+    for file in package.rglob("*.py"):
+        if file.name == "footpath.py" and file.parent.name == "core":
+            continue
+        tree = ast.parse(file.read_text())
+        alias = {}
+        for node in ast.walk(tree):
+            if isinstance(node, ast.ImportFrom) and (node.module or "").endswith("footpath"):
+                alias.update({a.asname or a.name: a.name for a in node.names})
+        for node in ast.walk(tree):
+            if (isinstance(node, ast.Call) and isinstance(node.func, ast.Name)
+                    and node.func.id in ("isinstance", "issubclass") and len(node.args) == 2):
+                kinds = node.args[1].elts if isinstance(node.args[1], ast.Tuple) else [node.args[1]]
+                for kind in kinds:
+                    name = kind.id if isinstance(kind, ast.Name) else getattr(kind, "attr", "")
+                    if alias.get(name, name if name in alias.values() else None) in paths:
+                        offenders.append(f"{file.relative_to(package)}:{node.lineno}")
+    assert offenders == []

@@ -33,11 +33,11 @@ import numpy as np
 from fivebar_drake.analysis.design_points import evaluate_designs
 from fivebar_drake.codesign.designs import actuator_mass, design_name, design_params
 from fivebar_drake.codesign.spec import GAITS, MASS, ON_MANEUVER, CodesignSpec
-from fivebar_drake.core.footpath import Jump, Landing
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.envelope.spec import Maneuver
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.optimal import gait_floor, vertical_jump
+from fivebar_drake.optimal.needs import NEEDS, needs_of
 from fivebar_drake.robots.quadruped.params import Params
 
 SCREENED = ("trot",)              # gait kinds level (a) predicts
@@ -80,26 +80,20 @@ def _severity(verdict: str) -> int:
 
 
 def floors(maneuver: Maneuver, params: Params, accept) -> dict:
-    """Level (b) of a jump or a drop: its push-off's and landing's needs (vertical_jump.jump_need,
-    landing_need: the floors, N*m), the motors' safety factor on them (each phase's limit in its
-    quadrant, driving or braking, over its floor: the least), the torque margin. A phase beyond
-    the bound by another method is a margin of 0 with why; a phase between the model's optimum
-    and its bound has no prediction (undecided: margin None, left to the simulation), as
-    pipeline.any_controller splits a run."""
-    path = maneuver.scenario.gait
-    payload, motor = maneuver.scenario.payload_kg, params.motor
-    needs_ = {}
-    if isinstance(path, Jump):
-        needs_["push-off"] = (vertical_jump.jump_need(params, path, payload), motor.peak_torque_Nm)
-    needs_["landing"] = (vertical_jump.landing_need(params, path, payload),
-                         motor.braking_peak_torque_Nm)
+    """Level (b) of a maneuver whose kind has a need (optimal/needs.needs_of: a jump's push-off
+    and landing, a drop's landing; their floors, N*m), the motors' safety factor on them (each
+    phase's limit in its quadrant, driving or braking, over its floor: the least), the torque
+    margin. A phase beyond the bound by another method is a margin of 0 with why; a phase
+    between the model's optimum and its bound has no prediction (undecided: margin None, left to
+    the simulation), as pipeline.any_controller splits a run."""
+    needs_ = needs_of(params, maneuver.scenario.gait, maneuver.scenario.payload_kg)
     phases = {name: need.floor_Nm for name, (need, _) in needs_.items()}
     why = "; ".join(need.why for need, _ in needs_.values() if need.why)
     statuses = {need.status for need, _ in needs_.values()}
     if "beyond bound" in statuses:
         return {"level": "floor", "phases": phases, "safety_factor": 0.0, "verdict": "fail",
                 "why": why, "margins": {"torque": 0.0}}
-    if "undecided" in statuses:
+    if statuses - {"floor"}:
         return {"level": "floor", "phases": phases, "safety_factor": None,
                 "verdict": "undecided", "why": why, "margins": {}}
     sf = min(limit / need.floor_Nm for need, limit in needs_.values())
@@ -245,7 +239,7 @@ def predict(spec: CodesignSpec, designs: list[dict]) -> list[dict]:
             entry["maneuvers"][MASS] = band
         screened = _least(entry)[0] >= 1.0
         for m in maneuvers:
-            if isinstance(m.scenario.gait, Landing) and screened:
+            if m.scenario.gait.lands and m.scenario.gait.kind in NEEDS and screened:
                 entry["maneuvers"][m.name] = floors(m, built[i][m.name], spec.accept)
             elif m.scenario.gait.kind in FLOORED and screened:
                 entry["maneuvers"][m.name] = gait_floors(m, built[i][m.name], spec.accept)

@@ -119,6 +119,8 @@ class FootPath(Variant):
     title: ClassVar[str] = ""          # the path in a few words, e.g. "trot foot path"
     periodic: ClassVar[bool] = True    # False: a one-shot maneuver (Maneuver)
     early_touchdown: ClassVar[bool] = True   # the controller's touchdown detection applies
+    lands: ClassVar[bool] = False      # lands (Landing: landing_stroke_m, touchdown_speed)
+    pushes: ClassVar[bool] = False     # pushes off first (Jump: height_m, crouch_m, ...)
     gait_defaults: ClassVar[dict] = {}  # gait fields (m, Hz) this path takes unless the scenario
     #                                     sets them (scenario.gait_*)
 
@@ -619,6 +621,7 @@ class Landing(Maneuver):
     quintic from speed v_td to rest: peak deceleration 0.75 v_td^2 / stroke), then recovers to
     standing over recovery_s and holds it settle_s."""
 
+    lands: ClassVar[bool] = True
     extension_m: float = 0.03
     landing_stroke_m: float = 0.06
     recovery_s: float = 0.5
@@ -655,6 +658,7 @@ class Jump(Landing):
     land (Landing). The takeoff speed puts the body's apex
     height_m above its standing height: v = sqrt(2 g (height_m - extension_m))."""
 
+    pushes: ClassVar[bool] = True
     kind: ClassVar[str] = "jump"
     title: ClassVar[str] = "vertical jump"
     height_m: float = 0.06

@@ -23,7 +23,6 @@ from typing import ClassVar
 
 import numpy as np
 
-from fivebar_drake.core.footpath import Jump as JumpPath, Landing
 from fivebar_drake.core.validation import ParameterError, check_number, require
 from fivebar_drake.core.variants import documented
 from fivebar_drake.mechanisms.fivebar import KNEES_OUT
@@ -271,7 +270,7 @@ class Tracking(FootLeg):
 
     def check_scenario(self, scenario) -> None:
         path = scenario.gait
-        require(path.kind in KINDS or isinstance(path, Landing), "scenario.gait", path.kind,
+        require(path.kind in KINDS or path.lands, "scenario.gait", path.kind,
                 f"the tracking controller follows a gait's floor or a jump's or a drop's optimal "
                 f"strokes: one of {[*KINDS, 'jump', 'drop']}")
         own = [path.leg_phase(leg) for leg in LEGS]
@@ -281,7 +280,7 @@ class Tracking(FootLeg):
 
     def add_to(self, builder, params, layout, scenario) -> FootLegController:
         path = scenario.gait
-        if isinstance(path, Landing):
+        if path.lands:
             return self._add_strokes(builder, params, layout, scenario)
         plan = Plan(gait_floor(params, path, scenario.payload_kg), params,
                     path.stance_speed(params.gait), whole_body(params, scenario.payload_kg)[1])
@@ -300,7 +299,7 @@ class Tracking(FootLeg):
         path, g, payload = scenario.gait, params.gait, scenario.payload_kg
         start, events = path.start_s(scenario.stand_s), path.events(g)
         push, falling = None, start
-        if isinstance(path, JumpPath):
+        if path.pushes:
             jump = maneuver_push(params, path, payload)
             onset = start + events.onset
             falling = onset + max(path.timing(g)[0], jump.stance_s) * (1.0 + PUSH_WINDOW_SLACK)

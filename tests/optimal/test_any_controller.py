@@ -97,11 +97,13 @@ def test_the_drops_landing_floor_is_below_what_the_controller_asked(simulated):
 
 
 def test_a_path_without_a_floor_has_none_and_a_run_without_demand_asks_nothing():
-    """The doggo path has no floor (gait_floor.KINDS); a bound too short for a whole cycle has
-    its floor and no demand to set beside it (asked None, not nan)."""
+    """The doggo path's kind registers no need (optimal/needs.py): one phase, unknown, never
+    another path's floor; a bound too short for a whole cycle has its floor and no demand to
+    set beside it (asked None, not nan)."""
     s = summarize_run(run_simulation(load_scenario(gait="doggo", duration_s=0.3,
                                                    closure="ball"), progress=False))
-    assert s["any_controller"] is None
+    a = s["any_controller"]
+    assert a["floor_Nm"] is None and a["phases"]["doggo"]["status"] == "unknown"
     s = summarize_run(run_simulation(load_scenario(gait="bound", duration_s=0.3,
                                                    closure="ball"), progress=False))
     a = s["any_controller"]
