@@ -31,7 +31,7 @@ import numpy as np
 from fivebar_drake.codesign.designs import design_of, design_params
 from fivebar_drake.codesign.predict import FLOORED, closed_form, floors, gait_floors, predict
 from fivebar_drake.codesign.spec import load_codesign_spec
-from fivebar_drake.core.footpath import Landing
+from fivebar_drake.gaits import Landing
 from fivebar_drake.envelope.maneuver import run_maneuver
 
 DATA = Path(__file__).resolve().parent.parent / "fivebar_drake" / "data"

@@ -13,7 +13,7 @@ import json
 import statistics
 import time
 
-from fivebar_drake.core.footpath import Jump as JumpPath
+from fivebar_drake.gaits import Jump as JumpPath
 from fivebar_drake.optimal import gait_floor as gf
 from fivebar_drake.optimal import stand_up
 from fivebar_drake.optimal import vertical_jump as vj

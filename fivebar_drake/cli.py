@@ -28,7 +28,7 @@ from importlib.metadata import version
 from fivebar_drake import catalog
 from fivebar_drake.core.files import (check_output_file, check_path_name, prepare_output_dir,
                                       release_folders, say)
-from fivebar_drake.core.footpath import PATHS
+from fivebar_drake.gaits import PATHS
 from fivebar_drake.core import plugins
 from fivebar_drake.core.interrupts import Interrupted, Signals
 from fivebar_drake.core.validation import ParameterError

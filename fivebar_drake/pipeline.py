@@ -28,7 +28,6 @@ from fivebar_drake.analysis.report import ANALYSIS_FILES, write_report
 from fivebar_drake.analysis.torques import Analysis, analyze, seed_results
 from fivebar_drake.core.files import prepare_output_dir
 from fivebar_drake.core.summary_schema import AnyController, Summary
-from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.core.verdicts import fails_for
 from fivebar_drake.optimal import vertical_jump
 from fivebar_drake.optimal.needs import needs_of
@@ -73,7 +72,7 @@ class AnalysisRecord:
 
 def run_analysis(config: str | Path | Params | None = None,
                  gait: str = "seed_ellipse") -> AnalysisRecord:
-    """The seed's torque analysis over one cycle of the foot path `gait` (footpath.PATHS).
+    """The seed's torque analysis over one cycle of the foot path `gait` (gaits.PATHS).
     config: a parameter file (TOML), None for the packaged one, or parameters already loaded.
     ParameterError naming the file and field for a bad parameter file."""
     params = config if isinstance(config, Params) else load_params(config)

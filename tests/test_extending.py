@@ -16,7 +16,8 @@ import pytest
 
 EXTENDING = Path(__file__).resolve().parent.parent / "docs" / "extending.md"
 MODULES = {"stand_still": "gait", "vertical_only": "stance_law", "hold": "controller",
-           "ball_api": "closure"}                 # a template's kind -> its module's name
+           "ball_api": "closure", "hop": "hop", "high_jump": "high_jump"}
+#            a template's kind -> its module's name
 
 
 def templates() -> dict[str, str]:
@@ -160,7 +161,7 @@ def _package(root: Path, name: str, modules: dict[str, str]) -> Path:
 HIJACK = """
     from typing import ClassVar
     from dataclasses import dataclass
-    from fivebar_drake.core.footpath import Trot, register_path
+    from fivebar_drake.gaits import Trot, register_path
 
     @register_path
     @dataclass(frozen=True)
@@ -179,7 +180,7 @@ def test_a_plugin_cannot_hijack_a_kind_unless_it_says_so(tmp_path):
     done = run(hijack, "-m", "fivebar_drake", "simulate", "--duration", "0.3", "--out", "x",
                cwd=tmp_path)
     assert done.returncode == 2, done.stderr
-    assert ("registered twice" in done.stderr and "fivebar_drake.core.footpath.Trot" in done.stderr
+    assert ("registered twice" in done.stderr and "fivebar_drake.gaits.trot.Trot" in done.stderr
             and "hijack.trot.StillTrot" in done.stderr and "entry point trot" in done.stderr)
     assert not (tmp_path / "x").exists()
     for flag, env in ((["--no-plugins"], {}), ([], {"FIVEBAR_DRAKE_NO_PLUGINS": "1"})):
@@ -189,7 +190,7 @@ def test_a_plugin_cannot_hijack_a_kind_unless_it_says_so(tmp_path):
                               env={**os.environ, **env, "PYTHONPATH": str(hijack)})
         assert done.returncode in (0, 1), done.stderr          # 0.3 s: no verdict (exit 1)
         ran = json.loads((tmp_path / "plain" / "summary.json").read_text())["ran"]
-        assert ran["origins"]["gait"]["module"] == "fivebar_drake.core.footpath.Trot"
+        assert ran["origins"]["gait"]["module"] == "fivebar_drake.gaits.trot.Trot"
         assert ran["origins"]["gait"]["distribution"].startswith("fivebar_drake ")
     asked = _package(tmp_path / "b", "hijack", {"trot": HIJACK.replace(
         "REPLACES", "replaces: ClassVar[bool] = True")})
@@ -199,7 +200,7 @@ def test_a_plugin_cannot_hijack_a_kind_unless_it_says_so(tmp_path):
     gait = json.loads((tmp_path / "y" / "summary.json").read_text())["ran"]["origins"]["gait"]
     assert gait == {"module": "hijack.trot.StillTrot", "distribution": "hijack 0.3",
                     "entry_point": "trot = hijack.trot",
-                    "replaces": "fivebar_drake.core.footpath.Trot"}
+                    "replaces": "fivebar_drake.gaits.trot.Trot"}
 
 
 def test_a_plugin_that_exits_at_import_is_refused_naming_it(tmp_path):
@@ -218,3 +219,24 @@ def test_the_docs_options_table_holds_with_a_plugin_installed(plugin_path):
     page = (EXTENDING.parent / "reference" / "options.md").read_text()
     assert done.stdout.rstrip("\n") in page
     assert "stand_still" in run(plugin_path, "-m", "fivebar_drake", "simulate", "--help").stdout
+
+
+def test_a_maneuver_with_its_own_floor_and_one_without(plugin_path, tmp_path):
+    """The templates' two maneuvers simulated through the command line: the high jump's need is
+    its registered floors (push-off driving, landing braking); the hop, a Jump subclass that
+    registers none, has no floor (unknown), never the vertical jump's."""
+    floors = {}
+    for kind in ("high_jump", "hop"):
+        done = run(plugin_path, "-m", "fivebar_drake", "simulate", "--gait", kind,
+                   "--duration", "2.8", "--out", kind, cwd=tmp_path)
+        assert done.returncode in (0, 1), done.stderr
+        summary = json.loads((tmp_path / kind / "summary.json").read_text())
+        assert summary["ran"]["gait"]["kind"] == kind
+        floors[kind] = summary["any_controller"]
+    high = floors["high_jump"]["phases"]
+    assert high["push-off"]["status"] == "floor" and high["push-off"]["floor_Nm"] > 0
+    assert high["landing"]["limit_Nm"] > high["push-off"]["limit_Nm"]
+    hop = floors["hop"]
+    assert hop["floor_Nm"] is None and hop["phases"] == {"hop": {
+        "status": "unknown", "floor_Nm": None, "limit_Nm": high["push-off"]["limit_Nm"],
+        "asked_Nm": hop["phases"]["hop"]["asked_Nm"]}}

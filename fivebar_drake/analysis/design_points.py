@@ -14,7 +14,7 @@ import dataclasses
 import numpy as np
 
 from fivebar_drake.core.checks import Checks, checks_of, torque_check, verdict
-from fivebar_drake.core.footpath import cycle_phase, foot_path, path_arrays, stance_loads
+from fivebar_drake.gaits import cycle_phase, foot_path, path_arrays, stance_loads
 from fivebar_drake.core.motor import Motor
 from fivebar_drake.core.thermal import thermal_margin
 from fivebar_drake.core.validation import require

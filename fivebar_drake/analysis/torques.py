@@ -78,7 +78,7 @@ def seed_results(params: Params) -> dict:
 
 
 def analyze(params: Params, path: str = "seed_ellipse") -> Analysis:
-    """Run the seed's analysis over one cycle of the foot path (footpath.PATHS) for the seed
+    """Run the seed's analysis over one cycle of the foot path (gaits.PATHS) for the seed
     model, the full model and the full model under trot loading."""
     samples = sample_gait(params.leg, params.gait, path)
     models = {m.name: m for m in (seed_model(params), full_model(params),

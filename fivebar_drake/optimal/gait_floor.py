@@ -37,7 +37,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import sparse
 
-from fivebar_drake.core.footpath import Trot, evaluate, foot_path
+from fivebar_drake.gaits import Trot, evaluate, foot_path
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.mechanisms.fivebar import KNEES_OUT, limit_tests, link_coms, past_any
 from fivebar_drake.robots.quadruped.leg_loads import full_model

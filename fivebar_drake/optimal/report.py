@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from fivebar_drake.core.files import json_ready, save_figure, write_atomic
-from fivebar_drake.core.footpath import (EXTENSION_STOP_S, PUSH_SHARES, Drop, Jump as JumpPath,
+from fivebar_drake.gaits import (EXTENSION_STOP_S, PUSH_SHARES, Drop, Jump as JumpPath,
                                          StandUp)
 from fivebar_drake.core.validation import ParameterError, check_number
 from fivebar_drake.mechanisms.fivebar import MOTORS
@@ -81,7 +81,7 @@ def jump_limits(params: Params, height_m: float | None = None,
     """The design's vertical jump, for any controller: the ceiling (the highest jump over the
     leg's whole reach within [limits]) beside a bound by another method, and the floor (the
     least peak motor torque) of the packaged jump maneuver's stroke (crouch and extension of
-    core.footpath.Jump) to height_m above standing (default the maneuver's), or why it is
+    gaits.Jump) to height_m above standing (default the maneuver's), or why it is
     beyond the motors. Returns (the figures, JSON-ready; the jumps by name)."""
     plan = JumpPath()
     height = plan.height_m if height_m is None else check_number("--height", height_m, 0.0,

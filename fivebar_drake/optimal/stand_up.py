@@ -1,5 +1,5 @@
 """The stand-up's floor: the least peak motor torque with which any controller raises the robot
-from lying on its belly (core.footpath.StandUp: the feet folded at fold_x_m, fold_y_m from the
+from lying on its belly (gaits.StandUp: the feet folded at fold_x_m, fold_y_m from the
 hips) to standing at the home point (gait.x_center_m, gait.y_home_m).
 
 Model (quasi-static, a level lift, front and rear pairs placed apart). Lying, the belly carries
@@ -33,7 +33,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import ndimage
 
-from fivebar_drake.core.footpath import StandUp
+from fivebar_drake.gaits import StandUp
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.mechanisms.fivebar import KNEES_OUT, limit_tests, past_any
 from fivebar_drake.optimal.gait_floor import mass_centre

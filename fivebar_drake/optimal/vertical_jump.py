@@ -40,7 +40,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fivebar_drake.core.footpath import Jump as JumpPath, Landing
+from fivebar_drake.gaits import Jump as JumpPath, Landing
 from fivebar_drake.core.motor import Motor
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.mechanisms.fivebar import (KNEES_OUT, LINK_NAMES, held_force, limit_tests,
@@ -289,14 +289,14 @@ def torque_floor(s: Stroke, standing_u: float, rise_m: float) -> tuple[float, Ju
 
 
 def push_stroke(params: Params, path: JumpPath, payload_kg: float = 0.0) -> Stroke:
-    """The Stroke of a jump maneuver's push (core.footpath.Jump): from its crouch, crouch_m
+    """The Stroke of a jump maneuver's push (gaits.Jump): from its crouch, crouch_m
     above the standing line, to its takeoff, extension_m below it."""
     standing = -params.gait.y_home_m
     return stroke(params, standing - path.crouch_m, standing + path.extension_m, payload_kg)
 
 
 def maneuver_push(params: Params, path: JumpPath, payload_kg: float = 0.0) -> Jump:
-    """The optimal push of a jump maneuver (core.footpath.Jump; its height_m the apex above
+    """The optimal push of a jump maneuver (gaits.Jump; its height_m the apex above
     standing, m): the push of least peak torque that reaches height_m (torque_floor), or the
     highest (push) where none does. ParameterError if the motors cannot start it from the
     crouch."""
@@ -310,7 +310,7 @@ def maneuver_push(params: Params, path: JumpPath, payload_kg: float = 0.0) -> Ju
 
 
 def landing_stroke(params: Params, path: Landing, payload_kg: float = 0.0) -> Stroke:
-    """The Stroke a maneuver's landing (core.footpath.Landing: a jump's or a drop's) stops the
+    """The Stroke a maneuver's landing (gaits.Landing: a jump's or a drop's) stops the
     body within: its landing_stroke_m up to its touchdown pose, extension_m below standing."""
     top = -params.gait.y_home_m + path.extension_m
     return stroke(params, top - path.landing_stroke_m, top, payload_kg)

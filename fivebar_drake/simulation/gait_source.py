@@ -1,12 +1,12 @@
 """The gait source block: time -> the foot references of every leg (a foot path of
-core/footpath.py, any registered kind), the first block of the quadruped's Diagram."""
+gaits/, any registered kind), the first block of the quadruped's Diagram."""
 
 from __future__ import annotations
 
 import numpy as np
 from pydrake.systems.framework import BasicVector, LeafSystem
 
-from fivebar_drake.core.footpath import REFERENCES_PER_LEG, FootPath, Gait, references_kernel
+from fivebar_drake.gaits import REFERENCES_PER_LEG, FootPath, Gait, references_kernel
 
 
 class GaitSource(LeafSystem):

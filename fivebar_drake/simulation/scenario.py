@@ -25,7 +25,7 @@ from pydrake.systems.analysis import SimulatorConfig
 from fivebar_drake.core.drake_configs import check_simulator_config, config_fields
 from fivebar_drake.core.files import read_input_text
 from fivebar_drake.core.variants import known
-from fivebar_drake.core.footpath import PATHS, FootPath, Trot
+from fivebar_drake.gaits import PATHS, FootPath, Trot
 from fivebar_drake.core.validation import (MAX_LENGTH_M, MAX_MASS_KG, ParameterError,
                                            check_number, require)
 from fivebar_drake.core.yaml_files import load_yaml
@@ -75,7 +75,7 @@ class Scenario:
     """What to simulate and how; each field's description is in its metadata["doc"]."""
 
     duration_s: float = _doc(8.0, "simulated time from t = 0")
-    gait: FootPath = _doc(None, f"foot path, one of {', '.join(PATHS)} (core/footpath.py), by "
+    gait: FootPath = _doc(None, f"foot path, one of {', '.join(PATHS)} (gaits/), by "
                                 "kind (its defaults) or as {kind: KIND, FIELD: value, ...} (trot: "
                                 "duty_factor, null = the parameter file's)", factory=Trot)
     closure: Closure = _doc(None, f"loop closure, one of {', '.join(CLOSURES)} "

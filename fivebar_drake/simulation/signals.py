@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fivebar_drake.core.footpath import evaluate, shared_loads
+from fivebar_drake.gaits import evaluate, shared_loads
 from fivebar_drake.core.rotation import body_rotations, tilt_deg
 from fivebar_drake.mechanisms.fivebar import (LINK_NAMES, LimitTest, forward, inverse, limit_tests,
                                               link_coms, link_jacobians, static_torques, torques)

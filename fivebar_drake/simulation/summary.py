@@ -20,7 +20,7 @@ import math
 
 import numpy as np
 
-from fivebar_drake.core.footpath import Outcome
+from fivebar_drake.gaits import Outcome
 from fivebar_drake.core import plugins
 from fivebar_drake.core.summary_schema import ContactCheck, StepCheck, Summary
 from fivebar_drake.core.verdicts import (achievement, contact_check, contact_checked_verdict,

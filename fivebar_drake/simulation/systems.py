@@ -14,7 +14,7 @@ from typing import ClassVar
 import numpy as np
 from pydrake.systems.framework import LeafSystem
 
-from fivebar_drake.core.footpath import REFERENCES_PER_LEG
+from fivebar_drake.gaits import REFERENCES_PER_LEG
 from fivebar_drake.core.validation import check_number, require
 from fivebar_drake.core.variants import Variant, documented, known, registrar
 from fivebar_drake.mechanisms.fivebar import LINK_NAMES, com_fractions, physical_izz

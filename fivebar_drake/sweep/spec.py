@@ -36,7 +36,7 @@ from pathlib import Path
 import numpy as np
 
 from fivebar_drake.analysis.design_points import MODELS
-from fivebar_drake.core.footpath import PATHS
+from fivebar_drake.gaits import PATHS
 from fivebar_drake.core.variants import known
 from fivebar_drake.core.files import read_input_text
 from fivebar_drake.core.validation import check_number, require

@@ -5,7 +5,7 @@ import dataclasses
 
 import pytest
 
-from fivebar_drake.core.footpath import Jump as JumpPath
+from fivebar_drake.gaits import Jump as JumpPath
 from fivebar_drake.core.verdicts import fails_for
 from fivebar_drake.optimal.vertical_jump import jump_need
 from fivebar_drake.pipeline import run_simulation, summarize_run

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from pydrake.multibody.plant import MultibodyPlant
 
-from fivebar_drake.core.footpath import evaluate, foot_path
+from fivebar_drake.gaits import evaluate, foot_path
 from fivebar_drake.mechanisms.fivebar import sample_gait
 from fivebar_drake.optimal.gait_floor import (KNOTS, fastest_gait, gait_floor, max_pitch_rad,
                                               whole_body, within_envelope, mass_centre)

@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from fivebar_drake.core.footpath import StandUp
+from fivebar_drake.gaits import StandUp
 from fivebar_drake.mechanisms.fivebar import KNEES_OUT, link_coms
 from pydrake.multibody.plant import MultibodyPlant
 

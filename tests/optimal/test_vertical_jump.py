@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from fivebar_drake.cli import main
-from fivebar_drake.core.footpath import Drop, Jump as JumpPath
+from fivebar_drake.gaits import Drop, Jump as JumpPath
 from fivebar_drake.core.rerun_files import read_series
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.mechanisms.fivebar import (LINK_NAMES, link_coms, link_jacobians,

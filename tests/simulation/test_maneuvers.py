@@ -14,7 +14,7 @@ import pytest
 
 from fivebar_drake.cli import main
 from fivebar_drake.core.checks import CHECK_ORDER
-from fivebar_drake.core.footpath import PATHS, evaluate
+from fivebar_drake.gaits import PATHS, evaluate
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.mechanisms.fivebar import forward, static_torques
 from fivebar_drake.pipeline import run_simulation, summarize_run

@@ -7,7 +7,7 @@ the same design does its motion at both steps."""
 import pytest
 
 from fivebar_drake.codesign.designs import design_params
-from fivebar_drake.core.footpath import foot_path
+from fivebar_drake.gaits import foot_path
 from fivebar_drake.pipeline import run_simulation, summarize_run
 from fivebar_drake.robots.quadruped.config import load_params, with_path_defaults
 from fivebar_drake.simulation.scenario import load_scenario

@@ -12,7 +12,7 @@ from pydrake.systems.analysis import Simulator
 from rerun.chunk import RrdReader
 
 from fivebar_drake.cli import main
-from fivebar_drake.core.footpath import Trot
+from fivebar_drake.gaits import Trot
 from fivebar_drake.mechanisms.fivebar import UnreachableError, foot_jacobian, forward
 from fivebar_drake.pipeline import summarize_run
 from fivebar_drake.core.rerun_files import read_series

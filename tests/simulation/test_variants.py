@@ -14,7 +14,7 @@ import pytest
 from pydrake.systems.framework import DiagramBuilder
 
 from fivebar_drake.core.compiled import jit
-from fivebar_drake.core.footpath import PATHS, FootPath, SeedEllipse, Trot, register_path
+from fivebar_drake.gaits import PATHS, FootPath, SeedEllipse, Trot, register_path
 from fivebar_drake.core.rotation import tilt_deg
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.pipeline import run_simulation

@@ -1,4 +1,4 @@
-"""A foot path (core/footpath.py: the seed's ellipse or the trot path) sampled over one cycle, the IK
+"""A foot path (gaits/: the seed's ellipse or the trot path) sampled over one cycle, the IK
 mode tracking along it (seed 000 appendix B) and periodic central differences (seed 000
 section 5)."""
 
@@ -7,7 +7,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 import numpy as np
 
-from fivebar_drake.core.footpath import (FootPath, Gait, PathPoints, cycle_times, evaluate,
+from fivebar_drake.gaits import (FootPath, Gait, PathPoints, cycle_times, evaluate,
                                          foot_path)
 from fivebar_drake.core.rotation import wrap
 from fivebar_drake.mechanisms.fivebar.geometry import LegGeometry

@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from fivebar_drake.core.checks import Checks
-from fivebar_drake.core.footpath import FootPath, Gait, foot_path
+from fivebar_drake.gaits import FootPath, Gait, foot_path
 from fivebar_drake.core.motor import build_motor
 from fivebar_drake.core.parameter_files import build_section, load_parameter_file, packaged
 from fivebar_drake.core.validation import MAX_SAMPLES, ParameterError, require

@@ -35,7 +35,7 @@ from typing import NamedTuple
 import numpy as np
 
 from fivebar_drake.core.compiled import jit
-from fivebar_drake.core.footpath import reference_parts, smoothstep
+from fivebar_drake.gaits import reference_parts, smoothstep
 from fivebar_drake.core.rotation import body_rotation, wrap
 from fivebar_drake.mechanisms.fivebar import (bias_at, coriolis_at, foot_from, forward_pose,
                                               inverse_pose, link_jacobians_at, mass_matrix_at,
@@ -347,7 +347,7 @@ class LegPlan(NamedTuple):
 
 @jit
 def leg_plan(k, references, state, loads, memory, t):
-    """The tick's LegPlan at time t (s) from the foot references (footpath.reference_parts:
+    """The tick's LegPlan at time t (s) from the foot references (gaits.reference_parts:
     targets, velocities, accelerations (legs, 2) each, scheduled stance weights (legs,)), the
     plant state (nx,) and the feet's measured normal forces (legs,) in N (foot_loads); memory
     (legs, SUPPORT_FIELDS): the feet's support (support_weights), updated in place. A foot due

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from fivebar_drake.core.footpath import FootPath, stance_loads
+from fivebar_drake.gaits import FootPath, stance_loads
 from fivebar_drake.mechanisms.fivebar import DynamicsModel, LINK_NAMES, physical_izz
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.legs import TROT_PHASES_RAD
@@ -42,7 +42,7 @@ def trot_model(params: Params, path: FootPath | str, t, phases_rad=TROT_PHASES_R
                leg: int = 0) -> DynamicsModel:
     """The full model under trot loading at times t (s) of the foot path: the robot's weight
     shared by the feet the schedule (legs' gait phases phases_rad) has in stance, none in swing
-    (footpath.stance_loads), on leg number `leg`."""
+    (gaits.stance_loads), on leg number `leg`."""
     weight = params.robot.total_mass_kg * params.robot.gravity_m_s2
     foot_load_N = stance_loads(params.gait, path, t, phases_rad, weight)[leg]
     return DynamicsModel(

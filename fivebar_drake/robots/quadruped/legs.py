@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from fivebar_drake.core.footpath import foot_path
+from fivebar_drake.gaits import foot_path
 
 LEGS = ("FL", "FR", "RL", "RR")           # front/rear, left/right
 

@@ -11,7 +11,7 @@ import pytest
 from pydrake.multibody.parsing import Parser
 from pydrake.multibody.plant import MultibodyPlant
 
-from fivebar_drake.core.footpath import evaluate
+from fivebar_drake.gaits import evaluate
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.mechanisms.fivebar import (KNEES_OUT, LegLimits, UnreachableError, inverse,
                                               path_poses, sample_gait, tree_positions)

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from pydrake.systems.framework import DiagramBuilder
 
-from fivebar_drake.core.footpath import REFERENCES_PER_LEG, reference_parts
+from fivebar_drake.gaits import REFERENCES_PER_LEG, reference_parts
 from fivebar_drake.mechanisms.fivebar import foot_jacobian, forward, static_torques
 from fivebar_drake.robots.quadruped.closure import Ball
 from fivebar_drake.robots.quadruped.control_law import AIRBORNE_S, support_weights

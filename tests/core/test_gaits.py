@@ -10,7 +10,7 @@ import pytest
 
 from fivebar_drake.analysis.torques import analyze
 from fivebar_drake.cli import main
-from fivebar_drake.core.footpath import evaluate, stance_loads, stance_weight
+from fivebar_drake.gaits import evaluate, stance_loads, stance_weight
 from fivebar_drake.analysis.plots import FIGURES
 from fivebar_drake.analysis.report import markdown
 from fivebar_drake.robots.quadruped.legs import TROT_PHASES_RAD
@@ -170,7 +170,7 @@ def test_doggo_path_by_its_own_derivatives(params):
     """The Doggo-style path (half sines up in flight, down in stance): velocity and acceleration
     against central differences of the position inside each segment, the position continuous
     through lift-off and touchdown, the stance at constant x speed 2a / ((1 - share) T)."""
-    from fivebar_drake.core.footpath import Doggo
+    from fivebar_drake.gaits import Doggo
 
     path = Doggo(flight_height_m=0.03, stance_depth_m=0.01, flight_share=0.35)
     g = params.gait
@@ -217,7 +217,7 @@ def test_a_jump_is_achieved_only_near_the_height_asked():
     """Issue 33's first class: a jump that left the ground but rose 1.8 mm of the 60 mm asked
     is not the jump asked for (its shortfall names both heights); 55 mm of 60 (92 %) is."""
     from fivebar_drake.core.checks import Checks
-    from fivebar_drake.core.footpath import Jump, Outcome
+    from fivebar_drake.gaits import Jump, Outcome
     from fivebar_drake.robots.quadruped.config import load_params
 
     params = load_params(None)
@@ -256,7 +256,7 @@ def test_the_push_share_sets_the_push_time_and_the_events():
     """A jump's push_share scales its push-off's time (2 stroke / takeoff speed at 1), its
     planned takeoff and touchdown with it; its foot reference still starts at rest at the
     crouch and reaches the takeoff point at the takeoff speed."""
-    from fivebar_drake.core.footpath import Jump
+    from fivebar_drake.gaits import Jump
     from fivebar_drake.robots.quadruped.config import load_params
 
     gait = load_params().gait
@@ -316,7 +316,7 @@ def test_a_maneuvers_fields_are_checked_by_their_unit_suffix():
     import dataclasses
     from typing import ClassVar
 
-    from fivebar_drake.core.footpath import Jump
+    from fivebar_drake.gaits import Jump
     from fivebar_drake.core.validation import ParameterError, unit_of
 
     assert [unit_of(n) for n in ("forward_speed_m_s", "rise_s", "height_m", "peak_Nm",
