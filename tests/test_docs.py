@@ -70,3 +70,36 @@ def test_the_site_builds_with_warnings_as_errors(tmp_path):
     assert done.returncode == 0, done.stderr
     assert (tmp_path / "site" / "index.html").exists()
     assert (tmp_path / "site" / "reference" / "summary" / "index.html").exists()
+
+
+def test_every_command_in_the_manual_parses():
+    """Every command line the README and the site give in a code block (not a usage synopsis
+    with [OPTIONS], not an output block) is a valid command: the command line's own parser takes
+    it, and the files it names exist. The extension templates run in tests/test_extending.py;
+    the demo's commands run in `make demo`."""
+    import shlex
+
+    from fivebar_drake.cli import parser
+
+    pages = [ROOT / "README.md", *sorted(DOCS.rglob("*.md"))]
+    checked = 0
+    for page in pages:
+        for lang, block in re.findall(r"^```(\w*)\n(.*?)^```", page.read_text(), re.S | re.M):
+            if lang not in ("", "console", "bash", "sh"):
+                continue
+            for line in block.splitlines():
+                line = line.split("  #")[0].strip()
+                found = re.match(r"^(?:\.venv/bin/)?fivebar-drake (.+)$", line)
+                if not found or "[" in line or "..." in line or line.endswith("\\"):
+                    continue
+                args = shlex.split(found.group(1))
+                try:
+                    parser().parse_args(args)
+                except SystemExit as err:        # --version and --help exit 0
+                    if err.code not in (0, None):
+                        raise AssertionError(f"{page.name}: {line!r} does not parse") from err
+                for arg in args:
+                    if arg.startswith("fivebar_drake/"):
+                        assert (ROOT / arg).exists(), f"{page.name}: {arg}"
+                checked += 1
+    assert checked >= 8
