@@ -23,12 +23,12 @@ from typing import ClassVar
 
 import numpy as np
 
-from fivebar_drake.core.validation import ParameterError, check_number, require
+from fivebar_drake.core.validation import check_number, require
 from fivebar_drake.core.variants import documented
 from fivebar_drake.mechanisms.fivebar import KNEES_OUT
 from fivebar_drake.optimal.gait_floor import KINDS, GaitFloor, gait_floor, whole_body
-from fivebar_drake.optimal.vertical_jump import (Catch, Jump, catch, landing_floor,
-                                                 landing_stroke, maneuver_push)
+from fivebar_drake.optimal.vertical_jump import (Catch, Jump, catch, landing_need,
+                                                 landing_stroke, maneuver_push, reach, stroke)
 from fivebar_drake.robots.quadruped.control_law import (body_attitude, plane_forces,
                                                         split_wrench)
 from fivebar_drake.robots.quadruped.legs import LEGS
@@ -149,8 +149,11 @@ class CatchPlan:
 
     def __init__(self, catch: Catch, start_s: float, end_s: float):
         s = catch.stroke
-        first = s.u.size - catch.w.size
-        self.u, self.w = s.u[first:], catch.w
+        w = catch.w
+        if w.size < 2:                  # the legs give way at the top: the touchdown speed held
+            w = np.full(2, w[-1] if w.size else 0.0)
+        first = s.u.size - w.size
+        self.u, self.w = s.u[first:], w
         x = self.w**2
         b = 0.5 * np.gradient(x, self.u)                    # u'' = d(u'^2)/du / 2
         self.force = s.fy[first:, 0] * b + s.fy[first:, 1] * x + s.fy[first:, 2]
@@ -305,10 +308,12 @@ class Tracking(FootLeg):
             falling = onset + max(path.timing(g)[0], jump.stance_s) * (1.0 + PUSH_WINDOW_SLACK)
             push = JumpPlan(jump, onset, falling)
         legs, touchdown = landing_stroke(params, path, payload), path.touchdown_speed(g)
-        try:
-            landing = landing_floor(legs, touchdown)[1]
-        except ParameterError:                         # the legs give way for any controller
-            landing = catch(legs, touchdown)
+        need = landing_need(params, path, payload)
+        # the least-torque catch on the landing stroke, or over the leg's whole reach beyond it;
+        # where even that gives way, the soonest stop over the whole reach (the run then says
+        # the legs gave way: not achieved)
+        landing = need.found if need.found is not None else catch(
+            stroke(params, reach(params)[0], float(legs.u[-1]), payload), touchdown)
         return builder.AddNamedSystem("leg_controller", JumpTrackingController(
             params, layout, self.gains(params, layout), self, scenario.load_transfer_s, push,
             CatchPlan(landing, falling, start + events.touchdown + 2.0 * landing.duration_s)))

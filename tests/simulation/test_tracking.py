@@ -71,3 +71,21 @@ def test_the_plan_is_the_floors_motion():
         forces, body = plan.at(floor.t[k] + 3 * params.gait.period_s)
         assert forces == pytest.approx(floor.force_N[:, k], abs=1e-9)
         assert body[3] == pytest.approx(floor.pitch_rad[k], abs=1e-12)
+
+
+def test_a_tracked_drop_beyond_what_any_stroke_absorbs_is_judged_not_a_crash(tmp_path, capsys):
+    """A drop from 0.35 m with the tracking controller (its landing stroke absorbs 250 mm; even
+    the whole reach gives way): the catch plan takes the soonest stop over the whole reach, the
+    run happens and is judged (the legs give way: not achieved, exit 1, every file written),
+    never an internal error (issue 44: IndexError in CatchPlan)."""
+    import json
+
+    from fivebar_drake.cli import main
+
+    scenario = tmp_path / "drop.yaml"
+    scenario.write_text("gait: {kind: drop, height_m: 0.35}\ncontroller: {kind: tracking}\n"
+                        "duration_s: 1.6\n")
+    assert main(["simulate", "--scenario", str(scenario), "--out", str(tmp_path / "run")]) == 1
+    summary = json.loads((tmp_path / "run" / "summary.json").read_text())
+    assert summary["verdict"] in ("not_achieved", "insufficient")
+    assert "internal error" not in capsys.readouterr().err
