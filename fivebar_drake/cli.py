@@ -19,6 +19,7 @@ gaits and maneuvers, the closures, the mechanisms.)"""
 from __future__ import annotations
 
 import argparse
+import contextlib
 import sys
 import tempfile
 import time
@@ -284,6 +285,15 @@ def _optimal(args, signals) -> int:
     start = time.perf_counter()
     result, jumps = jump_limits(params, args.height, args.payload or 0.0)
     files = []
+    stale = out / "max_jump"                 # an earlier --simulate's run: never left beside
+    if stale.is_dir():                       # this run's answer (only the names it writes)
+        for name in SIMULATION_FILES:
+            (stale / name).unlink(missing_ok=True)
+        with contextlib.suppress(OSError):   # emptied: gone; another file in it: kept
+            stale.rmdir()
+    if args.simulate and jumps["ceiling"] is None:
+        result["max_jump_simulated"] = None
+        _err(f"--simulate: no highest jump to simulate ({result['ceiling_why_none']})")
     if args.simulate and jumps["ceiling"] is not None:
         scenario = max_jump_scenario(params, jumps["ceiling"], args.payload or 0.0)
         plan = scenario.gait

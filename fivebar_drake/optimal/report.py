@@ -89,6 +89,13 @@ def jump_limits(params: Params, height_m: float | None = None,
     standing = -params.gait.y_home_m
     u0, u1 = reach(params)
     ceiling = push(stroke(params, u0, u1, payload_kg), standing)
+    why_none = ("the motors cannot lift the crouched robot" if ceiling is None else
+                f"the motors cannot lift the body above its standing height (the highest "
+                f"push's apex lies {-ceiling.body_apex_above_standing_m * 1e3:.0f} mm below it; "
+                f"no-load speed {params.motor.no_load_speed_rad_s:.2g} rad/s)"
+                if ceiling.body_apex_above_standing_m <= 0.0 else "")
+    if why_none:
+        ceiling = None
     bound_speed, bound_rise = point_mass_bound(params, u0, u1, standing, payload_kg)
     result = {
         "model": "one leg of a symmetric vertical jump: a quarter of the robot on the leg's "
@@ -97,7 +104,7 @@ def jump_limits(params: Params, height_m: float | None = None,
         "quarter_mass_kg": float((params.robot.total_mass_kg + payload_kg) / params.robot.legs),
         "payload_kg": payload_kg,
         "ceiling": None if ceiling is None else _jump_figures(ceiling, params.motor),
-        "ceiling_why_none": "" if ceiling else "the motors cannot lift the crouched robot",
+        "ceiling_why_none": why_none,
         "bound": {"takeoff_speed_m_s": bound_speed, "hip_apex_above_standing_m": bound_rise,
                   "method": "point mass at the hip on a massless leg, the envelope through "
                             "J_F^T, energy over the same stroke"},
@@ -198,7 +205,7 @@ def stand_up_limits(params: Params, payload_kg: float = 0.0) -> dict:
 def answer(r: dict, params: Params) -> str:
     """The result in two sentences: how high the legs can jump, what the packaged jump needs."""
     c = r["ceiling"]
-    first = ("The motors cannot lift the crouched robot: no jump." if c is None else
+    first = (f"No jump: {r['ceiling_why_none']}." if c is None else
              f"In the one-leg model the legs and motors allow a vertical jump of "
              f"{c['body_apex_above_standing_m'] * 1e3:.0f} mm above standing (the body's apex; "
              f"the centre of mass rises {c['com_rise_from_crouch_m'] * 1e3:.0f} mm from the crouch, "
@@ -374,11 +381,12 @@ def beyond_motor(params: Params, floor_Nm: float) -> bool:
 
 
 def beyond(result: dict) -> str:
-    """What the design cannot do for any controller, in a line ("" where it can do all): the
-    crouched robot it cannot lift, a jump beyond the bound by another method, a gait's or the
+    """What the design cannot do for any controller, in a line ("" where it can do all): no
+    jump where the bound by another method allows none either, a jump beyond that bound, a gait's or the
     stand-up's floor beyond the motors by more than the model margin. An undecided jump (beyond
     the model's optimum, within the bound) or a landing without a floor is not among them."""
-    why = [result["ceiling_why_none"]]
+    bound = result["bound"]["hip_apex_above_standing_m"]
+    why = [result["ceiling_why_none"] if result["ceiling"] is None and bound <= 0.0 else ""]
     if result["floor_status"] == "beyond bound":
         why.append(result["floor_why_none"])
     why += [f"the {kind} needs at least {t['floor_Nm']:.2f} N·m in stance"

@@ -255,13 +255,15 @@ def point_mass_bound(params: Params, u0: float, u1: float, standing_u: float,
     rates = np.linalg.solve(jf, np.broadcast_to([0.0, -1.0], u.shape + (2,))[..., None])[..., 0]
     m = quarter_mass_kg(params, payload_kg)
     x = np.zeros(points)
+    reached = 1                         # the nodes the hip reaches (from rest at u0)
     for k in range(points - 1):
         upper, lower = motor.limits(rates[k] * math.sqrt(x[k]))
         force = float(held_force(jf[k], upper, lower, np.array([0.0, 1.0])))
         x[k + 1] = max(x[k] + 2.0 * (force / m - g) * (u[k + 1] - u[k]), 0.0)
         if x[k + 1] == 0.0:
             break
-    apex = u + x / (2.0 * g)
+        reached = k + 2
+    apex = u[:reached] + x[:reached] / (2.0 * g)
     return float(np.sqrt(x.max())), float(apex.max() - standing_u)
 
 
@@ -457,7 +459,10 @@ class Need:
 
 
 def _apex(jump: Jump | None) -> float | None:
-    return None if jump is None else jump.body_apex_above_standing_m
+    """A jump's body apex above standing (m); None for none or one below standing (no jump)."""
+    if jump is None or jump.body_apex_above_standing_m <= 0.0:
+        return None
+    return jump.body_apex_above_standing_m
 
 
 def jump_need(params: Params, path: JumpPath, payload_kg: float = 0.0) -> Need:

@@ -3,6 +3,7 @@ a point-mass bound, the energy the motors put in, Drake's linear program, the si
 and the way a floor moves with the design."""
 
 import json
+import re
 import math
 
 import numpy as np
@@ -212,3 +213,22 @@ def test_a_design_too_weak_for_everything_is_told_so(tmp_path, capsys):
     assert result["drop"]["least_peak_torque_Nm"] is None
     assert result["drop"]["status"] == "undecided" and "give way" in result["drop"]["why_none"]
     assert result["gaits"]["trot"]["beyond_motors"] and result["gaits"]["walk"]["beyond_motors"]
+
+
+def test_a_gear_too_slow_to_jump_says_so_and_leaves_no_stale_simulation(tmp_path, capsys):
+    """900:1 (no-load speed about 0.14 rad/s): no jump, neither in the one-leg model nor by the
+    point-mass bound: the answer never quotes a negative jump, --simulate says there is nothing
+    to simulate (exit 1, not a ZeroDivisionError after --out was cleared), and an earlier run's
+    max_jump/ beside it is removed (issue 44)."""
+    stale = tmp_path / "max_jump"
+    stale.mkdir()
+    (stale / "summary.json").write_text("{}")
+    code = main(["optimal", "--set", "motor.gear_ratio=900", "--simulate", "--out",
+                 str(tmp_path)])
+    err = capsys.readouterr().err
+    assert code == 1 and "no highest jump to simulate" in err and "internal error" not in err
+    result = json.loads((tmp_path / "optimal.json").read_text())
+    assert result["ceiling"] is None and result["bound"]["hip_apex_above_standing_m"] <= 0
+    assert result["answer"].startswith("No jump:")
+    assert not re.search(r"-\d", result["answer"].split(". ")[0])       # no negative jump
+    assert result["max_jump_simulated"] is None and not stale.exists()
