@@ -10,12 +10,15 @@ same trials as an uninterrupted run.
 
 from __future__ import annotations
 
+import json
 import math
+import sys
 from pathlib import Path
 
 from fivebar_drake.codesign.designs import GEARBOX, MOTOR, design_of
 from fivebar_drake.codesign.predict import predict
 from fivebar_drake.codesign.spec import CodesignSpec
+from fivebar_drake.core.files import say
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.core.progress import Progress
 
@@ -24,24 +27,63 @@ STUDY = "codesign"
 STARTUP_SHARE = 3            # a third of the trials (at most 10) sample at random first
 
 
+def journal_records(path: Path) -> list[dict]:
+    """The journal's records (one JSON object a line), read before Optuna touches the file: a
+    last line cut short (a crash, a full disk) is dropped from the file, and said on stderr; a
+    line that is not a record anywhere else is ParameterError naming the journal and the line
+    (the file is left as it is)."""
+    text = path.read_bytes()
+    lines = text.split(b"\n")
+    records, good = [], 0
+    for number, line in enumerate(lines, 1):
+        if not line.strip():
+            good += len(line) + 1
+            continue
+        try:
+            record = json.loads(line)
+            if not isinstance(record, dict):
+                raise ValueError("not a record")
+        except ValueError:
+            if number >= len(lines) - 1 and not any(x.strip() for x in lines[number:]):
+                with path.open("r+b") as f:          # the cut last record: dropped
+                    f.truncate(good)
+                say(f"warning: {path}: its last line {number} was cut short (a crash or a full "
+                    "disk); dropped, the study resumes from the record before it", sys.stderr)
+                break
+            raise ParameterError(f"line {number} is not a journal record (a stray or damaged "
+                                 "line): repair or remove the line, or the file to start "
+                                 "over", source=str(path)) from None
+        records.append(record)
+        good += len(line) + 1
+    return records
+
+
 def open_study(spec: CodesignSpec, out: Path):
     """The study in out's journal (made if new); ParameterError if the journal holds another
-    co-design's study (another spec or other files it names)."""
+    co-design's study (another spec or other files it names), or a damaged line
+    (journal_records). A refused run and a resumed one add nothing to the journal."""
     import optuna
     from optuna.storages import JournalStorage
     from optuna.storages.journal import JournalFileBackend
 
     optuna.logging.set_verbosity(optuna.logging.WARNING)
-    storage = JournalStorage(JournalFileBackend(str(out / JOURNAL_FILE)))
-    study = optuna.create_study(study_name=STUDY, storage=storage, load_if_exists=True,
-                                directions=spec.directions)
-    fingerprint = study.user_attrs.get("fingerprint")
-    if fingerprint is None:
-        study.set_user_attr("fingerprint", spec.fingerprint())
-    elif fingerprint != spec.fingerprint():
+    path = out / JOURNAL_FILE
+    records = journal_records(path) if path.exists() else []
+    fingerprint = next((r["user_attr"]["fingerprint"] for r in records
+                        if "trial_id" not in r and isinstance(r.get("user_attr"), dict)
+                        and "fingerprint" in r["user_attr"]), None)
+    if fingerprint is not None and fingerprint != spec.fingerprint():
         raise ParameterError("holds the journal of another co-design (another spec, or a file "
                              "it names has changed): give another folder or remove "
                              f"{JOURNAL_FILE}", source=f"--out {out}")
+    storage = JournalStorage(JournalFileBackend(str(path)))
+    if any(r.get("study_name") == STUDY for r in records):
+        study = optuna.load_study(study_name=STUDY, storage=storage)
+    else:
+        study = optuna.create_study(study_name=STUDY, storage=storage,
+                                    directions=spec.directions)
+    if fingerprint is None:
+        study.set_user_attr("fingerprint", spec.fingerprint())
     return study
 
 
@@ -60,6 +102,7 @@ def _suggest(trial, spec: CodesignSpec) -> dict:
         values[GEARBOX] = trial.suggest_categorical(GEARBOX, list(spec.gearboxes))
     for v in spec.vary:
         values[v.path] = (trial.suggest_categorical(v.path, list(v.values)) if v.values else
+                          trial.suggest_int(v.path, v.low, v.high) if v.integer else
                           trial.suggest_float(v.path, v.low, v.high))
     return values
 

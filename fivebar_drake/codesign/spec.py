@@ -123,6 +123,8 @@ def spec_from_dict(data, folder: Path, source: str = "") -> CodesignSpec:
              if GEARBOX in variables else ())
     vary = tuple(_varied(str(k), v) for k, v in variables.items() if k not in (MOTOR, GEARBOX))
     envelope, accept, flags, band = _requirements(data.get("requirements"), folder, source)
+    base = envelope.maneuvers[0].params
+    vary = tuple(_applies(v, base, motors, kinds) for v in vary)
     for v in vary:                  # each path and value alone against the base parameters
         for value in (v.values or (v.low, v.high)):
             try:
@@ -217,8 +219,37 @@ def _varied(path: str, value) -> Varied:
     if len(value) == 2:
         require(value[0] < value[1], where, value, "a range [low, high] needs low < high (a "
                 "list of values has three or more, or one)")
-        return Varied(path, low=float(value[0]), high=float(value[1]))
-    return Varied(path, values=tuple(float(v) for v in value))
+        return Varied(path, low=value[0], high=value[1])
+    return Varied(path, values=tuple(value))
+
+
+def _applies(v: Varied, base, motors: tuple, kinds: tuple) -> Varied:
+    """The variable if every design can take it, as the parameter's type (an integer parameter's
+    range sampled as integers, its values kept as given); ParameterError naming it where the
+    design itself sets the parameter (the catalogue motor's fields, the actuators' mass) or no
+    listed motor takes it (a gear ratio where every motor has its gearbox built in)."""
+    where = f"variables.{v.path}"
+    for path in v.path.split(LINKED):
+        require(path == RATIO or not path.startswith("motor."), where, path,
+                "the catalogue motor sets the motor's fields: vary `motor` (and its "
+                f"{RATIO}) instead")
+        require(path != "robot.motors_kg", where, path, "the design sets the motors' mass "
+                "from its actuators (motor and gearbox): vary `motor` instead")
+    if RATIO in v.path.split(LINKED) and not kinds:
+        require(any(catalog()[m].built_in_gearbox is None for m in motors), where, v.path,
+                f"every listed motor ({', '.join(motors)}) has its gearbox built in at its own "
+                "ratio, which the design keeps: list a bare motor or drop the variable")
+    current = base
+    for part in v.path.split(LINKED)[0].split("."):
+        current = getattr(current, part, None)
+    if isinstance(current, int) and not isinstance(current, bool):
+        given = v.values or (v.low, v.high)
+        require(all(float(x).is_integer() for x in given), where, list(given),
+                f"{v.path} is an integer (now {current}): give whole numbers")
+        return dataclasses.replace(v, values=tuple(int(x) for x in v.values),
+                                   low=None if v.low is None else int(v.low),
+                                   high=None if v.high is None else int(v.high), integer=True)
+    return v
 
 
 def _requirements(value, folder: Path, source: str) -> tuple[EnvelopeSpec, str, dict, tuple]:

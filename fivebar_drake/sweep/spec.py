@@ -56,6 +56,7 @@ class Varied:
     low: float | None = None
     high: float | None = None
     num: int | None = None
+    integer: bool = False      # an integer parameter's range (the co-design samples integers)
 
     def grid(self) -> list:
         if self.values:

@@ -205,10 +205,21 @@ def test_a_spec_no_candidate_meets_names_the_requirement_and_the_best_margin(tmp
     assert float(found.group(3)) == pytest.approx(max(margins.values()), abs=0.005)
     assert not (out / "design.toml").exists() and not (out / "finalists").exists()
     assert (out / "design.md").read_text().startswith("No design recommended: no candidate")
-    # another spec into the same folder: refused, the journal kept
+    # another spec into the same folder: refused, the journal kept as it was (not appended to)
+    journal = (out / "codesign.journal").read_bytes()
     other = write(tmp_path, NOBODY.replace("trials: 4", "trials: 5"), "other.yaml")
     assert main(["codesign", str(other), "--out", str(out)]) == 2
     assert "another co-design" in capsys.readouterr().err
+    assert (out / "codesign.journal").read_bytes() == journal
+    # a journal cut mid-line (a crash, a full disk): the cut record dropped, resumed to the same
+    # answer; a stray line in the middle: exit 2 naming the journal and the line
+    (out / "codesign.journal").write_bytes(journal + b'{"op_code": 5, "worker_id": "x", "tr')
+    assert main(["codesign", str(write(tmp_path, NOBODY)), "--out", str(out)]) == 1
+    assert "was cut short" in capsys.readouterr().err
+    lines = (out / "codesign.journal").read_bytes().split(b"\n")
+    (out / "codesign.journal").write_bytes(b"\n".join(lines[:2] + [b"stray"] + lines[2:]))
+    assert main(["codesign", str(write(tmp_path, NOBODY)), "--out", str(out)]) == 2
+    assert "line 3 is not a journal record" in capsys.readouterr().err
 
 
 @pytest.mark.parametrize("change, words", [
@@ -223,6 +234,14 @@ def test_a_spec_no_candidate_meets_names_the_requirement_and_the_best_margin(tmp
     (("accept: warn", "accept: fail"), ["requirements.accept"]),
     (("trials: 6", "trials: 0"), ["budget.trials"]),
     (("budget:", "objectives: [speed]\nbudget:"), ["objectives", "speed"]),
+    (("motor.gear_ratio: [8.0, 12.0]", "robot.motors_kg: [2.0, 3.0]"),
+     ["variables.robot.motors_kg", "vary `motor`"]),
+    (("motor.gear_ratio: [8.0, 12.0]", "motor.peak_current_A: [3.0, 4.0]"),
+     ["variables.motor.peak_current_A", "catalogue motor"]),
+    (("[tmotor_mn5212_kv340, cubemars_ak80_9]", "[cubemars_ak80_9, mit_mini_cheetah]"),
+     ["variables.motor.gear_ratio", "built in"]),
+    (("motor.gear_ratio: [8.0, 12.0]", "gait.samples: [60.5, 120]"),
+     ["variables.gait.samples", "whole numbers"]),
 ])
 def test_bad_specs_are_refused_naming_the_field(tmp_path, capsys, change, words):
     spec = write(tmp_path, SPEC.replace(*change))
@@ -269,3 +288,17 @@ def test_a_prediction_found_optimistic_is_trusted_less_for_the_next_finalist(tmp
     assert factors == {"trot thermal": pytest.approx(0.92 / 1.02)}   # the torque held up
     # 1.05 x 0.90 < 1: the middle design is skipped; 1.20 x 0.90 >= 1
     assert next_finalist(spec, entries, {light["name"]}, factors) is heavy
+
+
+def test_an_integer_parameter_is_varied_as_integers(tmp_path):
+    """gait.samples is an integer: its values stay integers and its range is sampled as
+    integers (every value became a float: "60.0 must be an integer")."""
+    spec = load_codesign_spec(write(tmp_path, SEARCH_ONLY.replace(
+        "leg.ce_m: [0.135, 0.145, 0.155]", "gait.samples: [60, 120]")))
+    varied = {v.path: v for v in spec.vary}["gait.samples"]
+    assert varied.integer and (varied.low, varied.high) == (60, 120)
+    study = search_module.search(spec, tmp_path, progress=False)
+    samples = [t.params["gait.samples"] for t in study.trials]
+    assert all(isinstance(x, int) and 60 <= x <= 120 for x in samples)
+    assert not any("must be an integer" in (t.user_attrs["prediction"].get("error") or "")
+                   for t in study.trials)
