@@ -82,3 +82,16 @@ def test_a_signal_while_loading_is_quiet(tmp_path, delay_s, signum, code):
     assert proc.returncode == code, err
     assert "Traceback" not in err and "At:" not in err and "interrupted" in err
     assert len(err.strip().splitlines()) == 1, err
+
+
+def test_a_set_gait_field_the_path_never_reads_is_refused(tmp_path, capsys):
+    """--set gait.frequency_hz on a jump did nothing and summary.json reported it (issue 44; the
+    scenario route refused it): exit 2 naming the field and what the path reads, nothing
+    written."""
+    from fivebar_drake.cli import main
+
+    out = tmp_path / "run"
+    assert main(["simulate", "--gait", "drop", "--set", "gait.frequency_hz=3.5",
+                 "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert "the drop path does not read gait.frequency_hz" in err and not out.exists()

@@ -239,9 +239,13 @@ def answer(r: dict, params: Params) -> str:
                       if u["straight_path_peak_Nm"] is None else
                       f"asks {u['straight_path_peak_Nm']:.2f} N·m")
                    + f"; its dynamics add at most {u['dynamic_share']:.0%} in "
-                     f"{u['rise_s']:g} s).")
+                     f"{u['rise_s']:g} s)"
+                   + (f", beyond the motors' {params.motor.peak_torque_Nm:.2f} N·m for any "
+                      "controller" if u["beyond_motors"] else "") + ".")
     fourth = "".join(
-        f" The {kind} needs at least {t['floor_Nm']:.2f} N·m in stance at its own height (the "
+        f" The {kind} needs at least {t['floor_Nm']:.2f} N·m in stance"
+        + (f" (beyond the motors' {params.motor.peak_torque_Nm:.2f} N·m)"
+           if t["beyond_motors"] else "") + " at its own height (the "
         f"body heaving {t['height_swing_m'] * 1e3:.0f} mm and pitching through "
         f"{t['pitch_swing_deg']:.0f} deg; "
         + ("no level body balances" if t["level_floor_Nm"] is None else

@@ -93,6 +93,13 @@ def load_simulation(config: str | Path | None, duration_s: float | None,
     check before a run; and whether to run the step check and the contact check."""
     scenario_, params = load_run(scenario, duration_s=duration_s, closure=closure, gait=gait,
                                  params_file=config)
+    used = scenario_.gait.gait_fields()
+    for item in sets or ():                  # a gait field the path never reads does nothing
+        name = item.partition("=")[0].strip()
+        if name.startswith("gait.") and name[len("gait."):] not in used:
+            raise ParameterError(f"--set {item}: the {scenario_.gait.kind} path does not read "
+                                 f"{name} (it reads gait.{', gait.'.join(used)})", "--set",
+                                 "command line")
     params = with_sets(params, sets)
     if sets or step_check:                   # the edited robot, before the folder is touched
         design = check_run(scenario_, params)
