@@ -1,7 +1,8 @@
 """The console entry point (`fivebar-drake`, `python -m fivebar_drake`): the command line, with a
 Ctrl-C or SIGTERM while it loads (Drake and numba take seconds; pydrake turns an interrupt in
-its initialisation into a fatal error) held until the loading is done, then ending quietly with
-exit code 130 or 143, as one during a command does."""
+its initialisation into a fatal error) held until the loading is done: one that came while the
+modules were imported ends quietly with exit code 130 or 143; one after is held until the
+command's own handlers are in place (cli.main unblocks it there), never lost."""
 
 from __future__ import annotations
 
@@ -21,8 +22,7 @@ def main() -> int:
         print(f"fivebar-drake: interrupted by {signal.Signals(sig).name} while loading: stopped",
               file=sys.stderr)
         return 128 + sig
-    signal.pthread_sigmask(signal.SIG_UNBLOCK, HELD)
-    return command_line()
+    return command_line()          # it unblocks them once its handlers are in place
 
 
 if __name__ == "__main__":

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import signal
 import sys
 import tempfile
 import time
@@ -31,7 +32,7 @@ from fivebar_drake.core.files import (check_output_file, check_path_name, prepar
                                       release_folders, say)
 from fivebar_drake.gaits import PATHS
 from fivebar_drake.core import plugins
-from fivebar_drake.core.interrupts import Interrupted, Signals
+from fivebar_drake.core.interrupts import SIGNALS, Interrupted, Signals
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.robots.quadruped.closure import CLOSURES
 from fivebar_drake.simulation.scenario import Scenario
@@ -540,6 +541,10 @@ def main(argv=None) -> int:
         if getattr(args, "out", None):
             check_path_name(args.out, "--out")
         with Signals(stop_gently=args.command == "simulate") as signals:
+            # the console entry point holds SIGINT and SIGTERM blocked while it loads
+            # (__main__.py); they reach the command only now that its handlers are in place,
+            # so one sent at any moment of the loading is this command's, never lost
+            signal.pthread_sigmask(signal.SIG_UNBLOCK, SIGNALS)
             return args.run(args, signals)
     except ParameterError as err:
         _err(f"error: {err}")

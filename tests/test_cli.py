@@ -64,7 +64,7 @@ def test_module_entry_point_and_bad_config(tmp_path):
     assert not (tmp_path / "o").exists()
 
 
-@pytest.mark.parametrize("delay_s", [0.05, 0.2, 1.0])
+@pytest.mark.parametrize("delay_s", [0.02, 0.05, 0.2, 1.0])
 @pytest.mark.parametrize("signum, code", [(2, 130), (15, 143)])
 def test_a_signal_while_loading_is_quiet(tmp_path, delay_s, signum, code):
     """SIGINT or SIGTERM while the command is still importing (Drake, numba: pydrake turns an
