@@ -8,11 +8,13 @@ and scenario fields over the base scenario), and a duty cycle.
     maneuvers:
       - {name: trot_1hz, gait: trot}
       - {name: trot_fast, gait: trot, gait_frequency_hz: 1.5}
+      - {name: jump, gait: jump, duration_s: 3.0, contact_check: true}   # run again with the
+                                 # foot contact softer and stiffer (simulate --contact-check)
     duty_cycle:                  # optional: maneuvers one after the other, each for a time
       - {maneuver: trot_1hz, duration_s: 300}
       - {maneuver: trot_fast, duration_s: 60}
 
-A maneuver's keys other than `name` are scenario fields (simulation/scenario.py, README), so a
+A maneuver's keys other than `name` and `contact_check` are scenario fields (simulation/scenario.py, README), so a
 new gait kind or scenario field is a maneuver as soon as it exists. Every maneuver is checked as
 `simulate` checks a run (its scenario, its parameters, builder.check_run) before anything runs;
 relative paths are taken from the spec file's folder.

@@ -298,13 +298,13 @@ def any_controller_text(a: AnyController, sf_warn: float | None = None) -> str:
     text = (f"Any controller needs at least {a['floor_Nm']:.2f} N·m at the peak for this {what}"
             if a["floor_Nm"] is not None else f"No floor for this {what}")
     text += f" ({'; '.join(parts)} N·m)"
-    if a["maneuver"] == "jump":
+    if "push-off" in a["phases"] or a.get("reached_m") is not None:     # it jumps
         optima = [f"{label} {a[key] * 1e3:.1f} mm" for key, label in (
             ("reached_m", "this run reached"), ("ceiling_m", "its stroke's optimum"),
             ("reach_ceiling_m", "the whole reach's optimum"), ("bound_m", "the bound"))
             if a.get(key) is not None]
         text += "; " + ", ".join(optima) if optima else ""
-    elif a.get("ceiling_m") is not None:
+    elif "landing" in a["phases"] and a.get("ceiling_m") is not None:         # it lands
         text += f"; the highest drop its stroke absorbs: {a['ceiling_m'] * 1e3:.0f} mm"
     if a["controller_cost"] is not None:
         text += f"; this controller asked {a['controller_cost']:.2f}x the floor"
