@@ -42,7 +42,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from fivebar_drake.codesign.designs import (GEARBOX, LINKED, MOTOR, RATIO, actuator_mass,
-                                           design_of, design_params)
+                                           design_of, design_params, gearing)
 from fivebar_drake.core.actuators import catalog, gearboxes
 from fivebar_drake.core.files import read_input_text
 from fivebar_drake.core.validation import MAX_MASS_KG, ParameterError, check_number, require
@@ -125,6 +125,7 @@ def spec_from_dict(data, folder: Path, source: str = "") -> CodesignSpec:
     envelope, accept, flags, band = _requirements(data.get("requirements"), folder, source)
     base = envelope.maneuvers[0].params
     vary = tuple(_applies(v, base, motors, kinds) for v in vary)
+    _buildable(motors, kinds, vary)
     for v in vary:                  # each path and value alone against the base parameters
         for value in (v.values or (v.low, v.high)):
             try:
@@ -221,6 +222,31 @@ def _varied(path: str, value) -> Varied:
                 "list of values has three or more, or one)")
         return Varied(path, low=value[0], high=value[1])
     return Varied(path, values=tuple(value))
+
+
+def _buildable(motors: tuple, kinds: tuple, vary: tuple) -> None:
+    """ParameterError (before any search) where no design of the space can be built: no listed
+    motor has its gearbox built in, and no gear ratio the space gives (its list, or a range
+    sampled at 64 points) fits a listed (or any) gearbox type."""
+    if any(catalog()[m].built_in_gearbox is not None for m in motors):
+        return
+    ratio = next((v for v in vary if RATIO in v.path.split(LINKED)), None)
+    require(ratio is not None, "variables", sorted({MOTOR, *(v.path for v in vary)}),
+            f"no listed motor has a gearbox of its own: vary {RATIO} too")
+    ratios = ratio.values or [ratio.low + (ratio.high - ratio.low) * i / 63 for i in range(64)]
+    for motor in motors:
+        for kind in kinds or (None,):
+            for value in ratios:
+                try:
+                    gearing(motor, float(value), kind)
+                    return
+                except ParameterError:
+                    continue
+    spans = ", ".join(f"{k} {g.ratio_min.value:g}..{g.ratio_max.value:g}"
+                      for k, g in gearboxes().items() if not kinds or k in kinds)
+    raise ParameterError(f"variables.{ratio.path} = {list(ratio.values) or [ratio.low, ratio.high]}"
+                         f": no design of the space can be built: no gear ratio it gives fits a "
+                         f"gearbox type ({spans})", f"variables.{ratio.path}")
 
 
 def _applies(v: Varied, base, motors: tuple, kinds: tuple) -> Varied:

@@ -242,6 +242,10 @@ def test_a_spec_no_candidate_meets_names_the_requirement_and_the_best_margin(tmp
      ["variables.motor.gear_ratio", "built in"]),
     (("motor.gear_ratio: [8.0, 12.0]", "gait.samples: [60.5, 120]"),
      ["variables.gait.samples", "whole numbers"]),
+    (("[tmotor_mn5212_kv340, cubemars_ak80_9]\n  motor.gear_ratio: [8.0, 12.0]",
+      "[tmotor_mn5212_kv340]\n  gearbox: [single_stage_planetary]\n"
+      "  motor.gear_ratio: [500.0, 900.0]"),
+     ["variables.motor.gear_ratio", "no design of the space can be built"]),
 ])
 def test_bad_specs_are_refused_naming_the_field(tmp_path, capsys, change, words):
     spec = write(tmp_path, SPEC.replace(*change))
