@@ -240,3 +240,51 @@ def test_a_maneuver_with_its_own_floor_and_one_without(plugin_path, tmp_path):
     assert hop["floor_Nm"] is None and hop["phases"] == {"hop": {
         "status": "unknown", "floor_Nm": None, "limit_Nm": high["push-off"]["limit_Nm"],
         "asked_Nm": hop["phases"]["hop"]["asked_Nm"]}}
+
+
+NAN_GAIT = """
+    from dataclasses import dataclass
+    from typing import ClassVar, NamedTuple
+
+    from fivebar_drake.core.compiled import jit
+    from fivebar_drake.gaits import FootPath, register_path
+
+
+    class Home(NamedTuple):
+        x: float
+        y: float
+
+
+    @jit
+    def broken_point(c, u):            # a NaN from a quarter of the cycle on
+        x = c.x if u < 0.25 else c.x * float("nan")
+        return x, c.y, 0.0, 0.0, 0.0, 0.0, True
+
+
+    @register_path
+    @dataclass(frozen=True)
+    class Broken(FootPath):
+        kind: ClassVar[str] = "broken_path"
+        point: ClassVar = staticmethod(broken_point)
+
+        def constants(self, gait):
+            return Home(gait.x_center_m, gait.y_home_m)
+
+        def stance_start(self, gait):
+            return 0.0
+
+        def stance_speed(self, gait):
+            return 0.0
+"""
+
+
+def test_a_plugin_path_that_gives_nan_is_refused_at_load(tmp_path):
+    """A plugin's path whose point function gives NaN part of the way ran until 0.5 s and
+    stopped with a raw solver message (exit 1, issue 44): refused before the run, exit 2,
+    naming the path and the time, nothing written."""
+    root = _package(tmp_path, "nanpath", {"broken": NAN_GAIT})
+    done = run(root, "-m", "fivebar_drake", "simulate", "--gait", "broken_path",
+               "--duration", "2", "--out", "x", cwd=tmp_path)
+    assert done.returncode == 2, done.stderr
+    assert "the broken_path path gives a value that is not a number" in done.stderr
+    assert not (tmp_path / "x").exists()

@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from fivebar_drake.core.checks import Checks
-from fivebar_drake.gaits import FootPath, Gait, foot_path
+from fivebar_drake.gaits import FootPath, Gait, evaluate, foot_path
 from fivebar_drake.core.motor import build_motor
 from fivebar_drake.core.parameter_files import build_section, load_parameter_file, packaged
 from fivebar_drake.core.validation import MAX_SAMPLES, ParameterError, require
@@ -86,9 +86,19 @@ def check_path(params: Params, path: FootPath | str) -> None:
     outside the workspace or past a limit, naming the sample (index, time, foot target), the
     limit and the fields that place the path."""
     g = params.gait
+    t = np.linspace(0.0, foot_path(path).span_s(g), PATH_CHECK_SAMPLES)
+    points = evaluate(g, path, t)              # a path of numbers (a plugin's may not be)
+    bad = ~(np.isfinite(points.pos).all(-1) & np.isfinite(points.vel).all(-1)
+            & np.isfinite(points.acc).all(-1))
+    if bad.any():
+        k = int(np.argmax(bad))
+        raise ParameterError(f"the {foot_path(path).kind} path gives a value that is not a "
+                             f"number at t = {t[k]:.4g} s (foot {points.pos[k].tolist()} m, "
+                             f"velocity {points.vel[k].tolist()} m/s, acceleration "
+                             f"{points.acc[k].tolist()} m/s^2): its point function is broken",
+                             "gait")
     try:
-        path_poses(params.leg, g, path,
-                   np.linspace(0.0, foot_path(path).span_s(g), PATH_CHECK_SAMPLES))
+        path_poses(params.leg, g, path, t)
     except UnreachableError as err:
         where = (f"the path spans x = gait.x_center_m +- gait.a_m = {g.x_center_m:g} +- "
                  f"{g.a_m:g} m and y = gait.y_home_m .. + gait.b_m = {g.y_home_m:g} .. "
