@@ -534,18 +534,23 @@ def main(argv=None) -> int:
     except ParameterError as err:           # a plugin that cannot be imported
         _err(f"error: {err}")
         return 2
+    signals = Signals(stop_gently=args.command == "simulate")
     try:
         if getattr(args, "out", None) == "":
             raise ParameterError("--out = '': an empty path; give a folder or file name (or "
                                  "leave --out out for the default)", "--out", "command line")
         if getattr(args, "out", None):
             check_path_name(args.out, "--out")
-        with Signals(stop_gently=args.command == "simulate") as signals:
+        with signals:
             # the console entry point holds SIGINT and SIGTERM blocked while it loads
             # (__main__.py); they reach the command only now that its handlers are in place,
             # so one sent at any moment of the loading is this command's, never lost
             signal.pthread_sigmask(signal.SIG_UNBLOCK, SIGNALS)
-            return args.run(args, signals)
+            code = args.run(args, signals)
+        if signals.signum and code == 0:    # the signal's exception swallowed on its way (a
+            _err(f"interrupted by {signals.name}: stopped")   # finalizer, a library's
+            return 128 + signals.signum                        # callback): never exit 0
+        return code
     except ParameterError as err:
         _err(f"error: {err}")
         return 2
@@ -556,6 +561,9 @@ def main(argv=None) -> int:
         _err("interrupted: stopped")
         return 130
     except Exception as err:  # noqa: BLE001  (anything else is a bug: logged, never a traceback)
+        if signals.signum:                  # raised by the interrupt inside compiled code
+            _err(f"interrupted by {signals.name}: stopped")   # (numba's SystemError): the
+            return 128 + signals.signum                        # signal's, not a bug
         return _internal_error(err, argv)
     finally:
         release_folders()                   # the output folders this command held

@@ -108,3 +108,29 @@ def test_a_set_gait_field_the_path_never_reads_is_refused(tmp_path, capsys):
                  "--out", str(out)]) == 2
     err = capsys.readouterr().err
     assert "the drop path does not read gait.frequency_hz" in err and not out.exists()
+
+
+@pytest.mark.parametrize("swallow", ["return 0", "raise SystemError"])
+def test_a_signal_whose_exception_is_swallowed_still_ends_the_command(monkeypatch, capsys,
+                                                                      swallow, tmp_path):
+    """SIGINT 150 s into a co-design printed "Exception ignored ... Interrupted" and exited 0;
+    one inside compiled code surfaced as SystemError, exit 3 (issue 44). A command whose
+    Interrupted is swallowed on its way (a finalizer, a callback) and returns 0, or that turns
+    it into another exception, still exits 130 with one line."""
+    import os
+    import signal
+
+    from fivebar_drake import cli
+
+    def command(args, signals):
+        try:
+            os.kill(os.getpid(), signal.SIGINT)      # its handler runs before the next line
+        except BaseException:                        # noqa: BLE001 (the swallowing library)
+            if swallow == "raise SystemError":
+                raise SystemError("<built-in function> returned a result with an error set")
+        return 0
+
+    monkeypatch.setattr(cli, "_analyze", command)
+    assert cli.main(["analyze", "--out", str(tmp_path / "o")]) == 130
+    err = capsys.readouterr().err
+    assert "interrupted by SIGINT" in err and "internal error" not in err

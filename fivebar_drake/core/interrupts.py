@@ -21,9 +21,10 @@ class Interrupted(BaseException):
 
 
 class Signals:
-    """While active (with-block), SIGINT and SIGTERM raise Interrupted; with stop_gently=True the
-    first one only sets .signum (a running simulate() polls it and stops at its next slice) and a
-    second one raises. Outside the main thread, where handlers cannot be set, nothing changes."""
+    """While active (with-block), SIGINT and SIGTERM raise Interrupted, .signum recording the first
+    (cli.main turns a command that still returned 0 into its exit code); with stop_gently=True
+    the first one only sets .signum (a running simulate() polls it and stops at its next slice)
+    and a second one raises. Outside the main thread, where handlers cannot be set, nothing changes."""
 
     def __init__(self, stop_gently: bool = False):
         self.stop_gently = stop_gently
@@ -42,8 +43,9 @@ class Signals:
             signal.signal(s, handler)
 
     def _handle(self, signum, frame) -> None:
-        if self.stop_gently and not self.signum:
-            self.signum = signum
+        first = not self.signum
+        self.signum = self.signum or signum     # recorded always: a caller can tell a signal
+        if self.stop_gently and first:          # came even where its exception was swallowed
             return
         raise Interrupted(signum)
 
