@@ -16,6 +16,7 @@ import io
 import json
 import logging
 import os
+import socket
 import sys
 import tempfile
 from contextlib import contextmanager, nullcontext
@@ -86,6 +87,9 @@ def check_workers(workers: int | None) -> None:
                              "command line")
 
 
+REACH_TIMEOUT_S = 5.0       # a scheduler's address must answer a TCP connection within this
+
+
 def check_scheduler(address: str) -> None:
     """ParameterError unless address reads as a Dask scheduler's, SCHEME://HOST:PORT."""
     try:
@@ -97,6 +101,14 @@ def check_scheduler(address: str) -> None:
         raise ParameterError(f"--scheduler = {address!r}: not a Dask scheduler address; write "
                              f"SCHEME://HOST:PORT with SCHEME one of {list(SCHEDULER_SCHEMES)}, "
                              "e.g. tcp://127.0.0.1:8786", "--scheduler", "command line")
+    if parts.scheme == "tcp":                # reached before any folder is made (a nested --out
+        try:                                 # is never left behind by a scheduler that is not
+            socket.create_connection((parts.hostname, port), REACH_TIMEOUT_S).close()   # there)
+        except OSError as err:
+            raise ParameterError(f"--scheduler = {address!r}: nothing answers there "
+                                 f"({err.strerror or err}; waited {REACH_TIMEOUT_S:g} s): start "
+                                 "the scheduler, or leave --scheduler out for a local cluster",
+                                 "--scheduler", "command line") from None
 
 
 def check_output_folder(out: Path) -> None:

@@ -306,3 +306,13 @@ def test_an_integer_parameter_is_varied_as_integers(tmp_path):
     assert all(isinstance(x, int) and 60 <= x <= 120 for x in samples)
     assert not any("must be an integer" in (t.user_attrs["prediction"].get("error") or "")
                    for t in study.trials)
+
+
+def test_an_unreachable_scheduler_is_refused_before_any_folder(tmp_path, capsys):
+    """codesign --scheduler to an address nothing answers, with a nested --out: exit 2 naming
+    --scheduler before the search, no level of the nested folder left (issue 44)."""
+    out = tmp_path / "new" / "a" / "b"
+    assert main(["codesign", str(write(tmp_path, SPEC)), "--out", str(out), "--scheduler",
+                 "tcp://127.0.0.1:9"]) == 2
+    assert "--scheduler" in capsys.readouterr().err
+    assert not (tmp_path / "new").exists()
