@@ -72,6 +72,9 @@ def scheduler_address():
     try:
         procs.append(subprocess.Popen([sys.executable, "-m", "dask", "worker", address,
                                        "--nthreads", "1", "--no-dashboard"], **quiet))
+        from dask.distributed import Client       # wait on the event: the scheduler answers
+        with Client(address, timeout=120) as client:   # and its worker has joined
+            client.wait_for_workers(1, timeout=120)
         yield address
     finally:
         for p in procs:

@@ -19,6 +19,7 @@ import os
 import socket
 import sys
 import tempfile
+import time
 from contextlib import contextmanager, nullcontext
 from dataclasses import dataclass
 from pathlib import Path
@@ -101,14 +102,25 @@ def check_scheduler(address: str) -> None:
         raise ParameterError(f"--scheduler = {address!r}: not a Dask scheduler address; write "
                              f"SCHEME://HOST:PORT with SCHEME one of {list(SCHEDULER_SCHEMES)}, "
                              "e.g. tcp://127.0.0.1:8786", "--scheduler", "command line")
-    if parts.scheme == "tcp":                # reached before any folder is made (a nested --out
-        try:                                 # is never left behind by a scheduler that is not
-            socket.create_connection((parts.hostname, port), REACH_TIMEOUT_S).close()   # there)
+    if parts.scheme == "tcp":                # reached before any folder is made: a nested
+        reach(address, parts.hostname, port)  # --out is never left behind by a missing one
+
+
+def reach(address: str, host: str, port: int) -> None:
+    """ParameterError naming --scheduler unless a TCP connection to host:port opens within
+    REACH_TIMEOUT_S (tried again every 0.1 s: a scheduler that is still starting answers)."""
+    deadline = time.monotonic() + REACH_TIMEOUT_S
+    while True:
+        try:
+            socket.create_connection((host, port), REACH_TIMEOUT_S).close()
+            return
         except OSError as err:
-            raise ParameterError(f"--scheduler = {address!r}: nothing answers there "
-                                 f"({err.strerror or err}; waited {REACH_TIMEOUT_S:g} s): start "
-                                 "the scheduler, or leave --scheduler out for a local cluster",
-                                 "--scheduler", "command line") from None
+            if time.monotonic() >= deadline:
+                raise ParameterError(f"--scheduler = {address!r}: nothing answers there "
+                                     f"({err.strerror or err}; tried for {REACH_TIMEOUT_S:g} s): "
+                                     "start the scheduler, or leave --scheduler out for a local "
+                                     "cluster", "--scheduler", "command line") from None
+            time.sleep(0.1)
 
 
 def check_output_folder(out: Path) -> None:
