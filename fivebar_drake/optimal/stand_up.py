@@ -28,6 +28,7 @@ rest to rest), which adds at most that share of g to the load (dynamic_share, re
 from __future__ import annotations
 
 import math
+import pickle
 from dataclasses import dataclass
 
 import numpy as np
@@ -120,11 +121,27 @@ def _cost(params: Params, us: np.ndarray, xs: np.ndarray, payload_kg: float) -> 
     return np.where(np.isfinite(cost), cost, np.inf)
 
 
+CACHE_SIZE = 32   # stand_up_floor's results kept per process (a summary, its step and contact
+#                   checks and its report ask for the same floor)
+_FLOORS: dict[bytes, StandUpFloor] = {}   # oldest first
+
+
 def stand_up_floor(params: Params, path: StandUp | None = None,
                    payload_kg: float = 0.0) -> StandUpFloor:
-    """The floor of standing up (module docstring) from path's lying line to the home point.
-    ParameterError if the home point is out of reach or no balanced loaded path reaches it."""
+    """The floor of standing up (module docstring) from path's lying line to the home point,
+    cached per process by every input. ParameterError if the home point is out of reach or no
+    balanced loaded path reaches it."""
     path = path or StandUp()
+    key = pickle.dumps((params, path, float(payload_kg)))
+    if key not in _FLOORS:
+        if len(_FLOORS) >= CACHE_SIZE:
+            _FLOORS.pop(next(iter(_FLOORS)))
+        _FLOORS[key] = _floor(params, path, payload_kg)
+    return _FLOORS[key]
+
+
+def _floor(params: Params, path: StandUp, payload_kg: float) -> StandUpFloor:
+    """stand_up_floor, computed."""
     g = params.gait
     lying, standing = -path.fold_y_m, -g.y_home_m
     if not standing > lying:
