@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import dataclasses
+import math
 from dataclasses import dataclass
 from typing import ClassVar, Optional
 
@@ -31,6 +33,12 @@ class Pronk(Trot):
 
     def leg_phase(self, leg: str) -> float:
         return 0.0
+
+    def at_duty(self, beta: float, gait: Gait) -> "Pronk":
+        """At duty factor beta with the dip that flies the body for the rest of the period:
+        dip_m = g (1 - beta) beta T^2 / (2 pi)."""
+        dip = gait.gravity_m_s2 * (1.0 - beta) * beta * gait.period_s**2 / (2.0 * math.pi)
+        return dataclasses.replace(self, duty_factor=beta, dip_m=dip)
 
     def check(self, field: str) -> None:
         super().check(field)

@@ -3,13 +3,14 @@ base of the walk, bound and pronk."""
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 from typing import ClassVar, NamedTuple, Optional
 
 import numpy as np
 
 from fivebar_drake.core.compiled import jit
-from fivebar_drake.core.validation import check_number
+from fivebar_drake.core.validation import MAX_LENGTH_M, check_number
 from fivebar_drake.gaits.base import FootPath, Gait, register_path
 
 
@@ -23,7 +24,8 @@ def _quintic_h(r):
 
 class TrotConstants(NamedTuple):
     """The trot path's stride half-length a, lift b and centre (x_center, y_home) in m, period
-    in s, duty factor beta and stance dip (m; the pronk's, 0 for a flat stance)."""
+    in s, duty factor beta, stance dip (m; the pronk's, 0 for a flat stance) and the swing's
+    shape terms (m; Trot's swing_*_m)."""
 
     a: float
     b: float
@@ -32,6 +34,9 @@ class TrotConstants(NamedTuple):
     period: float
     beta: float
     dip: float = 0.0
+    reach: float = 0.0
+    skew: float = 0.0
+    lift_skew: float = 0.0
 
 
 @jit
@@ -57,11 +62,18 @@ def trot_point(c, u):
     bump = 64 * s**3 * (1 - s) ** 3
     dbump = 192 * s**2 * (1 - s) ** 2 * (1 - 2 * s) / t_sw
     ddbump = 384 * s * (1 - s) * ((1 - 2 * s) ** 2 - s * (1 - s)) / t_sw**2
+    # the shape terms: the bump and the bump times (2s - 1), which leave the ends' position,
+    # speed and acceleration as they are
+    skew, dskew = bump * (2 * s - 1), dbump * (2 * s - 1) + 2 * bump / t_sw
+    ddskew = ddbump * (2 * s - 1) + 4 * dbump / t_sw
     # the dip's vertical speed -A w at lift-off and +A w at touchdown, matched by H and G
     vd = -c.dip * w * t_sw
-    return (a - 2 * a * p + v * t_sw * hg + x_center, y_home + b * bump + vd * (h0 + h1),
-            (-2 * a * dp + v * t_sw * dhg) / t_sw, b * dbump + vd * (dh0 - dh1) / t_sw,
-            (-2 * a * ddp + v * t_sw * ddhg) / t_sw**2, b * ddbump + vd * (ddh0 + ddh1) / t_sw**2,
+    return (a - 2 * a * p + v * t_sw * hg + x_center + c.reach * bump + c.skew * skew,
+            y_home + b * bump + vd * (h0 + h1) + c.lift_skew * skew,
+            (-2 * a * dp + v * t_sw * dhg) / t_sw + c.reach * dbump + c.skew * dskew,
+            b * dbump + vd * (dh0 - dh1) / t_sw + c.lift_skew * dskew,
+            (-2 * a * ddp + v * t_sw * ddhg) / t_sw**2 + c.reach * ddbump + c.skew * ddskew,
+            b * ddbump + vd * (ddh0 + ddh1) / t_sw**2 + c.lift_skew * ddskew,
             False)
 
 
@@ -69,12 +81,19 @@ def trot_point(c, u):
 @dataclass(frozen=True)
 class Trot(FootPath):
     """The trot path (module docstring); duty_factor: its fraction of the cycle in stance
-    (None: the parameter file's gait.duty_factor)."""
+    (None: the parameter file's gait.duty_factor); the swing's shape terms (m, 0: the plain
+    quintic): swing_reach_m adds 64 s^3 (1 - s)^3 to x (the foot further back at mid-swing),
+    swing_skew_m and swing_lift_skew_m that times (2s - 1) to x and y (the foot earlier or later
+    along its way, its lift earlier or later); none changes the ends (the optimal top speed's
+    swing, optimal/top_speed.py)."""
 
     kind: ClassVar[str] = "trot"
     point: ClassVar = staticmethod(trot_point)
     title: ClassVar[str] = "trot foot path"
     duty_factor: Optional[float] = None
+    swing_reach_m: float = 0.0
+    swing_skew_m: float = 0.0
+    swing_lift_skew_m: float = 0.0
 
     def text(self, gait: Gait) -> str:
         g = gait
@@ -82,6 +101,11 @@ class Trot(FootPath):
                 f"over the stride 2a = {2 * g.a_m * 1e3:g} mm at {self.stance_speed(g):.3f} m/s, "
                 f"duty factor {self.beta(g):g} (stance fraction of the cycle), swing lifting the "
                 f"foot by b = {g.b_m * 1e3:g} mm with matched touchdown speed")
+
+    def at_duty(self, beta: float, gait: Gait) -> "Trot":
+        """This path at duty factor beta under gait (its frequency): the top speed's search
+        varies both (optimal/top_speed.py)."""
+        return dataclasses.replace(self, duty_factor=beta)
 
     def beta(self, gait: Gait) -> float:
         """The duty factor: this path's, or the parameter file's."""
@@ -95,10 +119,13 @@ class Trot(FootPath):
         if self.duty_factor is not None:
             check_number(f"{field}.duty_factor", self.duty_factor, 0.0, 1.0, low_open=True,
                          high_open=True)
+        for name in ("swing_reach_m", "swing_skew_m", "swing_lift_skew_m"):
+            check_number(f"{field}.{name}", getattr(self, name), -MAX_LENGTH_M, MAX_LENGTH_M)
 
     def constants(self, gait: Gait) -> TrotConstants:
         return TrotConstants(gait.a_m, gait.b_m, gait.x_center_m, gait.y_home_m, gait.period_s,
-                             self.beta(gait))
+                             self.beta(gait), 0.0, self.swing_reach_m, self.swing_skew_m,
+                             self.swing_lift_skew_m)
 
     def stance_start(self, gait: Gait) -> float:
         return 1.0 - self.beta(gait)

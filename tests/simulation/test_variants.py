@@ -58,7 +58,8 @@ def test_a_gait_by_kind_or_as_a_mapping(tmp_path):
     for text, message in [("gait: {kind: trot, duty_factor: 1.5}\n",
                            "scenario.gait.duty_factor = 1.5"),
                           ("gait: {kind: trot, stride: 1}\n",
-                           "scenario.gait.stride = 1: unknown field; trot has ['duty_factor']"),
+                           "scenario.gait.stride = 1: unknown field; trot has ['duty_factor', "
+                           "'swing_reach_m', 'swing_skew_m', 'swing_lift_skew_m']"),
                           ("gait: {duty_factor: 0.7}\n", "a mapping needs the kind"),
                           ("gait: {kind: hop}\n", "scenario.gait = 'hop': allowed")]:
         path.write_text(text)
