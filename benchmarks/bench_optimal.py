@@ -16,6 +16,7 @@ import time
 from fivebar_drake.gaits import Jump as JumpPath
 from fivebar_drake.optimal import gait_floor as gf
 from fivebar_drake.optimal import stand_up
+from fivebar_drake.optimal import top_speed as ts
 from fivebar_drake.optimal import vertical_jump as vj
 from fivebar_drake.robots.quadruped.config import load_params, with_path_defaults
 
@@ -33,6 +34,7 @@ def timed(function, repeats: int) -> tuple[float, object]:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--repeats", type=int, default=5)
+    parser.add_argument("--speed-repeats", type=int, default=1)
     args = parser.parse_args()
     params, plan = load_params(None), JumpPath()
     standing = -params.gait.y_home_m
@@ -81,11 +83,25 @@ def main() -> None:
               f"pitch residual {floor.moment_residual_Nm:.1e} N m): {seconds * 1e3:.0f} ms   "
               f"(target <= 10 s)")
     print(f"  stand-up floor ({rise.floor_Nm:.3f} N m, a 1 mm grid): {stand_s * 1e3:.0f} ms")
+
+    def uncached_top_speed(kind):
+        ts._CACHE.clear()
+        gf._FLOORS.clear()
+        return ts.top_speed(params, kind)
+
+    speeds = {kind: timed(lambda kind=kind: uncached_top_speed(kind), args.speed_repeats)
+              for kind in ts.GAITS}
+    for kind, (seconds, top) in speeds.items():
+        print(f"  {kind} top speed ({top.speed_m_s:.3f} m/s, {top.checks} checks, limited by "
+              f"{top.limited_by}): {seconds:.1f} s   (target <= 60 s)")
     print(json.dumps({"ceiling_s": ceiling_s, "floor_s": floor_s, "lp_s": lp_s,
                       "lp_solver": solver, "bisection_steps": steps,
                       **{f"{kind}_floor_s": seconds for kind, (seconds, _) in gaits.items()},
                       **{f"{kind}_programs": f.programs for kind, (_, f) in gaits.items()},
-                      "stand_up_floor_s": stand_s}))
+                      "stand_up_floor_s": stand_s,
+                      **{f"{kind}_top_speed_s": seconds for kind, (seconds, _) in speeds.items()},
+                      **{f"{kind}_top_speed_m_s": t.speed_m_s for kind, (_, t) in speeds.items()},
+                      **{f"{kind}_top_speed_checks": t.checks for kind, (_, t) in speeds.items()}}))
 
 
 if __name__ == "__main__":

@@ -9,7 +9,7 @@
   fivebar-drake envelope [SPEC.yaml] [--out DIR] [--workers N] [--scheduler ADDRESS]
   fivebar-drake codesign SPEC.yaml [--out DIR] [--workers N] [--scheduler ADDRESS]
   fivebar-drake optimal  [--config FILE] [--set FIELD=VALUE ...] [--height M] [--payload KG]
-                         [--simulate] [--out DIR]
+                         [--top-speed GAITS] [--simulate] [--out DIR]
   fivebar-drake compare  RUN_DIR [RUN_DIR ...] [--out FILE]
   fivebar-drake models   [--scenario FILE] [--config FILE] [--out DIR]
 
@@ -282,9 +282,10 @@ def _optimal(args, signals) -> int:
                 check_number(flag, value, 0.0, high, low_open=flag == "--height")
             except ParameterError as err:
                 raise err.located("command line") from None
+    gaits = speed_gaits(args.top_speed)
     out = prepare_output_dir(args.out or "out/optimal", "--out", OPTIMAL_FILES)
     start = time.perf_counter()
-    result, jumps = jump_limits(params, args.height, args.payload or 0.0)
+    result, jumps = jump_limits(params, args.height, args.payload or 0.0, gaits)
     files = []
     stale = out / "max_jump"                 # an earlier --simulate's run: never left beside
     if stale.is_dir():                       # this run's answer (only the names it writes)
@@ -321,6 +322,23 @@ def _optimal(args, signals) -> int:
         _err(f"beyond the motors for any controller: {short}")
         return 1
     return 0
+
+
+def speed_gaits(text: str | None) -> tuple[str, ...]:
+    """The gaits of --top-speed (None: all of them; "none": none), ParameterError naming the
+    option and the allowed ones."""
+    from fivebar_drake.optimal.top_speed import GAITS
+
+    if text is None:
+        return GAITS
+    if text.strip() == "none":
+        return ()
+    names = tuple(n.strip() for n in text.split(","))
+    for name in names:
+        if name not in GAITS:
+            raise ParameterError(f"--top-speed = {text!r}: {name!r} is not one of "
+                                 f"{list(GAITS)} (or none)", "", "command line")
+    return tuple(dict.fromkeys(names))
 
 
 def _compare(args, signals) -> int:
@@ -464,6 +482,9 @@ def parser() -> argparse.ArgumentParser:
                    "above standing (m; default: the jump maneuver's, 0.06)")
     o.add_argument("--payload", type=float, metavar="KG", help="mass added to the body (kg; "
                    "default 0)")
+    o.add_argument("--top-speed", metavar="GAITS", help="the gaits whose top speed is "
+                   "searched, comma-separated from trot, bound and pronk, or none (default: all "
+                   "three, about 15 s each)")
     o.add_argument("--simulate", action="store_const", const=True,
                    help="also simulate the highest jump (the jump maneuver planned at the "
                         "ceiling, the tracking controller pushing with the ceiling's torques) "

@@ -137,6 +137,7 @@ def test_bad_output_path_of_optimal(out_kind, tmp_path, capsys):
 @pytest.mark.parametrize("option, value", [
     ("--height", v) for v in ("nan", "-1", "0", "inf", "1e300", "two")] + [
     ("--payload", v) for v in ("nan", "-1", "inf", "1e300", "two")] + [
+    ("--top-speed", v) for v in ("gallop", "", "trot,,bound", "none,trot")] + [
     ("--set", v) for v in ("motor.gear_ratio", "motor.gear_ratio=-1", "nosuch.field=1")])
 def test_bad_values_of_optimal(option, value, tmp_path, capsys):
     """Every bad value of optimal's options: exit 2 naming the option, nothing written."""

@@ -1,6 +1,7 @@
 """What the legs allow for any controller, for one design (`fivebar-drake optimal`): the
 vertical jump's ceiling and floor and the drop's landing (vertical_jump.py), the stand-up's
-floor (stand_up.py), the gaits' floors (gait_floor.py: trot, walk, bound, pronk), as optimal.json, optimal.md and optimal_jump.png: the answer first, then the
+floor (stand_up.py), the gaits' floors (gait_floor.py: trot, walk, bound, pronk) and top speeds
+(top_speed.py), as optimal.json, optimal.md and optimal_jump.png: the answer first, then the
 figures beside the bounds."""
 
 from __future__ import annotations
@@ -21,6 +22,7 @@ from fivebar_drake.optimal.recording import RECORDING_FILE, write_recording
 from fivebar_drake.optimal.gait_floor import (KINDS, fastest_gait, fastest_joint, gait_floor,
                                               max_pitch_rad)
 from fivebar_drake.optimal.stand_up import stand_up_floor
+from fivebar_drake.optimal.top_speed import GAITS as SPEED_GAITS, top_speed
 from fivebar_drake.optimal.vertical_jump import (Jump, body_apexes, jump_need, landing_need,
                                                  point_mass_bound, push, reach, stroke)
 from fivebar_drake.robots.quadruped.config import with_path_defaults
@@ -56,6 +58,23 @@ def published_jump(params: Params, ceiling: dict | None) -> list[dict]:
     return rows
 
 
+def published_speed(params: Params, speeds: dict) -> list[dict]:
+    """The parameter file's published forward speed beside the fastest top speed found (a
+    model's optimum against a robot's run: never "reproduced"; below it, the reason: what
+    limits the top speed)."""
+    entry = params.published.get("forward_speed_m_s")
+    found = {k: t for k, t in speeds.items() if t["speed_m_s"] == t["speed_m_s"]}
+    if entry is None or not found:
+        return []
+    kind, top = max(found.items(), key=lambda item: item[1]["speed_m_s"])
+    ours = top["speed_m_s"]
+    return [{"name": "forward_speed_m_s", "value": entry.value, "source": entry.source,
+             "definition": entry.definition, "computed": ours, "ratio": ours / entry.value,
+             "reproduced": None, "gait": kind,
+             "why_below": f"the {kind}'s top speed is limited by {top['limited_by']}"
+             if ours < entry.value else ""}]
+
+
 def _jump_figures(j: Jump, motor) -> dict:
     """A jump's figures (SI) and each motor's peak delivered torque, speed and share of the
     envelope's torque at its speed (the most used point)."""
@@ -76,13 +95,14 @@ def _jump_figures(j: Jump, motor) -> dict:
                    for i, m in enumerate(MOTORS)}}
 
 
-def jump_limits(params: Params, height_m: float | None = None,
-                payload_kg: float = 0.0) -> tuple[dict, dict[str, Jump]]:
+def jump_limits(params: Params, height_m: float | None = None, payload_kg: float = 0.0,
+                speed_gaits=SPEED_GAITS) -> tuple[dict, dict[str, Jump]]:
     """The design's vertical jump, for any controller: the ceiling (the highest jump over the
     leg's whole reach within [limits]) beside a bound by another method, and the floor (the
     least peak motor torque) of the packaged jump maneuver's stroke (crouch and extension of
     gaits.Jump) to height_m above standing (default the maneuver's), or why it is
-    beyond the motors. Returns (the figures, JSON-ready; the jumps by name)."""
+    beyond the motors; the drop, the stand-up, the gaits' floors and the top speeds of
+    speed_gaits. Returns (the figures, JSON-ready; the jumps by name)."""
     plan = JumpPath()
     height = plan.height_m if height_m is None else check_number("--height", height_m, 0.0,
                                                                   low_open=True)
@@ -126,7 +146,10 @@ def jump_limits(params: Params, height_m: float | None = None,
     result["stand_up"] = stand_up_limits(params, payload_kg)
     result["gaits"] = {kind: gait_limits(params, kind, payload_kg) for kind in KINDS}
     result["fastest"] = {kind: fastest_gait(params, kind, payload_kg) for kind in FASTEST}
-    result["published"] = published_jump(params, result["ceiling"])
+    result["top_speed"] = {kind: top_speed(params, kind, payload_kg).row()
+                           for kind in speed_gaits}
+    result["published"] = (published_jump(params, result["ceiling"])
+                           + published_speed(params, result["top_speed"]))
     result["answer"] = answer(result, params)
     return result, jumps
 
@@ -261,14 +284,30 @@ def answer(r: dict, params: Params) -> str:
         + f"; its best speed margin {t['speed_margin']:.2f}"
         + "." for kind, t in r["gaits"].items())
     fifth = "".join(
-        f" The fastest {kind} at its stride and duty factor: "
+        f" The package's own {kind} path at its stride and duty factor runs at most "
         + (f"none (its own {f['gait_frequency_hz']:g} Hz does not pass)"
            if f["limited_by"] == "its own frequency" else
            f"{f['speed_m_s']:.3f} m/s ({f['frequency_hz']:.2f} Hz, against its "
            f"{f['gait_speed_m_s']:.3f} m/s), limited by the joints' "
            + ("no-load speed" if f["limited_by"] == "speed" else "torque in stance"))
         + "." for kind, f in r["fastest"].items())
-    return first + second + third + fourth + fifth
+    return first + second + third + fourth + fifth + top_speed_text(r["top_speed"])
+
+
+def top_speed_text(speeds: dict) -> str:
+    """The top speeds in a sentence ("" for none searched)."""
+    if not speeds:
+        return ""
+    parts = [f"the {kind} " + (f"{t['speed_m_s']:.2f} m/s ({t['frequency_hz']:.2f} Hz, duty "
+                               f"factor {t['duty_factor']:.2f}, stride "
+                               f"{t['stride_m'] * 1e3:.0f} mm; limited by {t['limited_by']})"
+                               if t["speed_m_s"] == t["speed_m_s"] else
+                               f"none ({t['limited_by']})")
+             for kind, t in speeds.items()]
+    bound = next(iter(speeds.values()))["bound_m_s"]
+    return (" Running, for any controller (the fastest a search of stride, frequency, duty "
+            "factor and swing found; no gait is faster than the no-load bound of "
+            f"{bound:.2f} m/s): " + "; ".join(parts) + ".")
 
 
 def markdown(r: dict) -> str:
@@ -307,6 +346,24 @@ def markdown(r: dict) -> str:
                      + ("—" if fast is None else "none" if fast["limited_by"] ==
                         "its own frequency" else f"{fast['speed_m_s']:.3f} "
                         f"({fast['limited_by']})") + " |")
+    if r["top_speed"]:
+        lines += ["", "## Top speed (any controller)", "",
+                  "The fastest a search of duty factor, stride and frequency found (per gait, "
+                  "the swing's shape optimized against the leg's dynamics, the stance's floor "
+                  "with the body's sagittal dynamics; optimal/top_speed.py), under the no-load "
+                  f"bound of {next(iter(r['top_speed'].values()))['bound_m_s']:.2f} m/s.", "",
+                  "| gait | speed (m/s) | Hz | duty factor | stride (mm) | Froude | cost of "
+                  "transport | A peak / RMS (N·m) | B peak / RMS (N·m) | limited by |",
+                  "|---|---|---|---|---|---|---|---|---|---|"]
+        for kind, t in r["top_speed"].items():
+            if t["speed_m_s"] != t["speed_m_s"]:
+                lines.append(f"| {kind} | none | | | | | | | | {t['limited_by']} |")
+                continue
+            lines.append(
+                f"| {kind} | {t['speed_m_s']:.3f} | {t['frequency_hz']:.2f} | "
+                f"{t['duty_factor']:.2f} | {t['stride_m'] * 1e3:.0f} | {t['froude']:.2f} | "
+                f"{t['cost_of_transport']:.2f} | {t['peak_Nm'][0]:.2f} / {t['rms_Nm'][0]:.2f} | "
+                f"{t['peak_Nm'][1]:.2f} / {t['rms_Nm'][1]:.2f} | {t['limited_by']} |")
     if r.get("max_jump_simulated"):
         m = r["max_jump_simulated"]
         asked = "; ".join(f"{name}: asked {p['asked_Nm']:.2f} N·m against its floor "
@@ -324,10 +381,12 @@ def markdown(r: dict) -> str:
                   "the source's definition |", "|---|---|---|---|---|---|"]
         for p in r["published"]:
             extra = (f" from the crouch ({p['computed_from_standing']:.3f} body apex above "
-                     "standing)" if "computed_from_standing" in p else "")
+                     "standing)" if "computed_from_standing" in p else
+                     f" (the {p['gait']}'s top speed)" if "gait" in p else "")
+            said = ("a run against a limit" + (f"; {p['why_below']}" if p["why_below"] else "")
+                    if p["reproduced"] is None else "yes" if p["reproduced"] else "no")
             lines.append(f"| {p['name']} | {p['value']:g} | {p['computed']:.3f}{extra} | "
-                         f"{p['ratio']:.2f} | {'yes' if p['reproduced'] else 'no'} | "
-                         f"{p['definition']} |")
+                         f"{p['ratio']:.2f} | {said} | {p['definition']} |")
     return "\n".join(lines) + "\n"
 
 
@@ -398,6 +457,8 @@ def beyond(result: dict) -> str:
     u = result["stand_up"]
     if u["beyond_motors"]:
         why.append(f"standing up needs at least {u['least_peak_torque_Nm']:.2f} N·m")
+    why += [f"no {kind} at any speed: {t['limited_by']}"
+            for kind, t in result["top_speed"].items() if t["speed_m_s"] != t["speed_m_s"]]
     return "; ".join(w for w in why if w)
 
 

@@ -238,7 +238,7 @@ def check(base: Params, kind: str, beta: float, a: float, f: float,
     try:
         params = with_gait(base, a_m=a, frequency_hz=f)
     except ParameterError as error:
-        return Check(False, f"the leg's reach or [limits] ({error})")
+        return Check(False, f"the leg's reach or [limits] ({error.message})")
     path = foot_path(kind).at_duty(beta, params.gait)
     if not _reaches(params, params.gait, path):
         return Check(False, "the leg's reach or [limits] (the path at this duty factor)")
@@ -252,7 +252,7 @@ def check(base: Params, kind: str, beta: float, a: float, f: float,
         floor = gait_floor(params, dataclasses.replace(
             path, swing_reach_m=0.0, swing_skew_m=0.0, swing_lift_skew_m=0.0), payload_kg)
     except ParameterError as error:
-        return Check(False, f"no stance motion ({error})")
+        return Check(False, f"the stance's balance ({error.message})")
     held = _stance(params, path, floor)
     if held["margin"] < 0.0:
         return Check(False, f"the stance's {held['bind']}")

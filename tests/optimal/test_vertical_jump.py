@@ -151,9 +151,12 @@ def test_the_floor_is_below_what_the_simulated_jump_asked(params):
 
 
 def test_the_command_writes_the_answer_first(tmp_path, capsys):
-    assert main(["optimal", "--out", str(tmp_path)]) == 0
+    assert main(["optimal", "--top-speed", "pronk", "--out", str(tmp_path)]) == 0
     result = json.loads((tmp_path / "optimal.json").read_text())
     assert result["ceiling"]["com_rise_from_standing_m"] >= 0.08
+    top = result["top_speed"]["pronk"]                 # the one gait asked, in the answer
+    assert list(result["top_speed"]) == ["pronk"] and 0 < top["speed_m_s"] <= top["bound_m_s"]
+    assert f"the pronk {top['speed_m_s']:.2f} m/s" in result["answer"]
     assert (tmp_path / "optimal.md").read_text().splitlines()[2] == result["answer"]
     assert report_violations(tmp_path / "optimal.md") == []
     _, torque = read_series(tmp_path / "optimal.rrd", "/torque/A/ceiling")     # Rerun's file
@@ -172,7 +175,8 @@ def test_the_command_writes_the_answer_first(tmp_path, capsys):
         assert worst == pytest.approx(gait["floor_Nm"], rel=1e-6)
         _, pitch = read_series(tmp_path / "optimal.rrd", f"/gait/{kind}/pitch_deg/pitch")
         assert np.ptp(pitch) == pytest.approx(gait["pitch_swing_deg"], rel=1e-6)
-    assert main(["optimal", "--out", str(tmp_path), "--height", "0.5"]) == 1
+    assert main(["optimal", "--out", str(tmp_path), "--height", "0.5", "--top-speed",
+                 "none"]) == 1
     assert "beyond the bound of" in capsys.readouterr().err
     assert main(["optimal", "--out", str(tmp_path), "--payload", "-1"]) == 2
 
@@ -186,7 +190,7 @@ def test_the_highest_jump_simulated_reaches_85_percent_of_it(tmp_path):
     free to pitch, 1 %). Its push asks no motor for more than the peak torque (the controller
     keeps within the envelope: what it asks is not saturation), and the run's events are the
     ceiling's: it takes off within 10 ms of the ceiling's push time."""
-    assert main(["optimal", "--simulate", "--out", str(tmp_path)]) == 0
+    assert main(["optimal", "--simulate", "--top-speed", "none", "--out", str(tmp_path)]) == 0
     result = json.loads((tmp_path / "optimal.json").read_text())
     simulated = result["max_jump_simulated"]
     assert simulated["controller"] == "tracking"
@@ -201,13 +205,15 @@ def test_the_highest_jump_simulated_reaches_85_percent_of_it(tmp_path):
 
 
 def test_a_design_too_weak_for_everything_is_told_so(tmp_path, capsys):
-    """Motors of 0.5 A peak: no jump, a trot beyond them: exit 1, each named, and every file
-    written with the reasons (never a floor where there is none). The landing gives way even
-    over the whole reach, but without a bound by another method that is undecided, not a claim
-    for any controller (issue 39's rule)."""
-    assert main(["optimal", "--set", "motor.peak_current_A=0.5", "--out", str(tmp_path)]) == 1
+    """Motors of 0.5 A peak: no jump, a trot beyond them, no trot at any speed: exit 1, each
+    named, and every file written with the reasons (never a floor where there is none). The
+    landing gives way even over the whole reach, but without a bound by another method that is
+    undecided, not a claim for any controller (issue 39's rule)."""
+    assert main(["optimal", "--set", "motor.peak_current_A=0.5", "--top-speed", "trot",
+                 "--out", str(tmp_path)]) == 1
     err = capsys.readouterr().err
     assert "cannot lift the crouched robot" in err and "trot" in err and "give way" not in err
+    assert "no trot at any speed: the st" in err          # the stance's torque or balance
     result = json.loads((tmp_path / "optimal.json").read_text())
     assert result["ceiling"] is None and result["floor"] is None
     assert result["drop"]["least_peak_torque_Nm"] is None
@@ -223,8 +229,8 @@ def test_a_gear_too_slow_to_jump_says_so_and_leaves_no_stale_simulation(tmp_path
     stale = tmp_path / "max_jump"
     stale.mkdir()
     (stale / "summary.json").write_text("{}")
-    code = main(["optimal", "--set", "motor.gear_ratio=900", "--simulate", "--out",
-                 str(tmp_path)])
+    code = main(["optimal", "--set", "motor.gear_ratio=900", "--simulate", "--top-speed", "none",
+                 "--out", str(tmp_path)])
     err = capsys.readouterr().err
     assert code == 1 and "no highest jump to simulate" in err and "internal error" not in err
     result = json.loads((tmp_path / "optimal.json").read_text())

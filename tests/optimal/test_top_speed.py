@@ -1,0 +1,133 @@
+"""The top speed for any controller (optimal/top_speed.py) held against other methods: Drake's
+inverse dynamics for the swing's torques, the work-energy balance over the swing, the impulse
+of the stance forces against the body's weight over a period, the package's fixed path, and
+the design's direction (a stronger motor runs no slower, a payload no faster). The searches run
+on a one-cell grid (one duty factor, one stride) to keep the suite quick; the full grid is
+benchmarks/bench_optimal.py's."""
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+
+from fivebar_drake.gaits import foot_path
+from fivebar_drake.mechanisms.fivebar import link_coms, mass_matrix
+from fivebar_drake.optimal.gait_floor import fastest_gait, gait_floor
+from fivebar_drake.optimal.top_speed import (_leg_motion, _swing_torques, check, speed_bound,
+                                             top_speed)
+from fivebar_drake.robots.quadruped.closure import fixed_leg
+from fivebar_drake.robots.quadruped.config import with_changes, with_gait, with_path_defaults
+from fivebar_drake.robots.quadruped.inverse_dynamics import projected_inverse_dynamics
+from fivebar_drake.robots.quadruped.leg_loads import full_model
+
+CELL = {"duties": (0.5,), "shares": (0.75,)}
+
+
+@pytest.fixture(scope="module")
+def trot(params):
+    """The default robot's trot top speed on the one-cell grid, and its design at the optimum."""
+    found = top_speed(params, "trot", **CELL)
+    at = with_gait(with_path_defaults(params, "trot"), a_m=found.stride_m / 2,
+                   frequency_hz=found.frequency_hz)
+    return found, at
+
+
+def test_the_optimum_is_a_gait_within_the_bound(trot):
+    found, at = trot
+    assert 0.0 < found.speed_m_s <= found.bound_m_s
+    assert found.speed_m_s == pytest.approx(found.path.stance_speed(at.gait), rel=1e-9)
+    assert found.path.beta(at.gait) == found.duty_factor == 0.5
+    assert check(at, "trot", 0.5, found.stride_m / 2, found.frequency_hz).passed
+    assert found.limited_by                       # what stopped a faster one is named
+
+
+def test_the_swing_torques_match_drakes_inverse_dynamics(trot):
+    """The optimum's swing (its shape terms set) through Drake's plant of one leg (tree inverse
+    dynamics projected through the loop, the rotors included) within 1 % of the peak."""
+    found, at = trot
+    torque, _ = _swing_torques(at, found.path)
+    t = np.linspace(0.0, 1.0 - found.duty_factor, torque.shape[0]) * at.gait.period_s
+    pose, qd, qdd = _leg_motion(at, found.path, t)
+    plant, context, instance, idx = fixed_leg(at)
+    drake = projected_inverse_dynamics(plant, context, instance, at, "leg", idx, pose, qd, qdd,
+                                       0.0)
+    assert np.abs(drake - torque).max() <= 0.01 * np.abs(torque).max()
+    assert any(abs(v) > 1e-4 for v in (found.path.swing_reach_m, found.path.swing_skew_m))
+
+
+def test_the_swing_work_is_its_energy(trot):
+    """Work-energy over the swing: the motors' work (the trapezoid of tau . q') equals the
+    change of the links' and rotors' kinetic energy and the links' potential energy, within
+    1 % of the work done either way."""
+    found, at = trot
+    t = np.linspace(0.0, 1.0 - found.duty_factor, 2001) * at.gait.period_s
+    pose, qd, qdd = _leg_motion(at, found.path, t)
+    model = dataclasses.replace(full_model(at), foot_load_N=0.0)
+    tau = at.fivebar_leg.torques(model, pose, qd, qdd).total
+    power = np.einsum("ni,ni->n", tau, qd)
+    work = float(np.sum(0.5 * (power[1:] + power[:-1]) * np.diff(t)))
+    ends = [0, -1]
+    inertia = mass_matrix(at.leg, at.links, model.izz, type(pose)(
+        *(a[ends] for a in (pose.q, pose.c, pose.d, pose.e, pose.f))))
+    inertia = inertia + at.motor.reflected_inertia_kg_m2 * np.eye(2)
+    kinetic = 0.5 * np.einsum("ni,nij,nj->n", qd[ends], inertia, qd[ends])
+    masses = np.array([link.mass_kg for link in at.links.values()])
+    potential = at.robot.gravity_m_s2 * link_coms(at.leg, at.links, pose)[..., 1] @ masses
+    change = kinetic[1] - kinetic[0] + potential[-1] - potential[0]
+    assert work == pytest.approx(change, abs=0.01 * float(np.sum(np.abs(power[1:]) * np.diff(t))))
+
+
+def test_the_stance_forces_carry_the_weight_over_a_period(trot):
+    """Momentum over a period of the periodic body: the feet's vertical impulse is the weight's
+    (m g T) and their forward impulse zero, within 1e-6 of m g T."""
+    found, at = trot
+    floor = gait_floor(at, dataclasses.replace(found.path, swing_reach_m=0.0, swing_skew_m=0.0,
+                                               swing_lift_skew_m=0.0))
+    dt = floor.t[1] - floor.t[0]
+    weight = floor.mass_kg * at.robot.gravity_m_s2 * at.gait.period_s
+    impulse = floor.force_N.sum((0, 1)) * dt
+    assert impulse[1] == pytest.approx(weight, rel=1e-6)
+    assert abs(impulse[0]) <= 1e-6 * weight
+
+
+def test_the_free_optimum_is_at_or_above_the_paths_own(trot, params):
+    """The package's own trot path, at its stride and duty factor, is one gait of the search's
+    family: the free optimum runs at least as fast."""
+    found, _ = trot
+    assert found.speed_m_s >= fastest_gait(params, "trot")["speed_m_s"]
+
+
+def test_a_stronger_motor_runs_no_slower_and_a_payload_no_faster(trot, params):
+    """A higher bus voltage (the no-load speed up by half) runs at least as fast, faster where
+    the voltage limited the default; a 1 kg payload no faster."""
+    found, _ = trot
+    stronger = top_speed(with_changes(params, {"motor.bus_voltage_V": 36.0}), "trot", **CELL)
+    assert stronger.speed_m_s >= found.speed_m_s
+    if "voltage" in found.limited_by:
+        assert stronger.speed_m_s > 1.02 * found.speed_m_s
+    loaded = top_speed(params, "trot", payload_kg=1.0, **CELL)
+    assert loaded.speed_m_s <= found.speed_m_s
+
+
+def test_a_payload_beyond_the_motors_has_no_speed_and_says_why(params):
+    found = top_speed(params, "trot", payload_kg=25.0, **CELL)
+    assert math.isnan(found.speed_m_s) and found.path is None
+    assert "stance" in found.limited_by or "swing" in found.limited_by
+
+
+def test_the_no_load_bound_scales_with_the_no_load_speed(params):
+    """The bound is the no-load speed times a lever of the workspace: 1.5x the bus voltage,
+    1.5x the bound (to the grid's resolution)."""
+    faster = with_changes(params, {"motor.bus_voltage_V": 36.0})
+    assert speed_bound(faster) == pytest.approx(1.5 * speed_bound(params), rel=1e-9)
+
+
+def test_the_pronk_flies_the_rest_of_its_period(params):
+    """The pronk at another duty factor keeps its flight: the dip's lift-off speed throws the
+    body for (1 - beta) T."""
+    gait = with_path_defaults(params, "pronk").gait
+    path = foot_path("pronk").at_duty(0.4, gait)
+    stance_s = 0.4 * gait.period_s
+    lift_off_speed = math.pi * path.dip_m / stance_s
+    assert 2 * lift_off_speed / gait.gravity_m_s2 == pytest.approx(0.6 * gait.period_s)
