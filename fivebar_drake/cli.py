@@ -269,6 +269,7 @@ def _optimal(args, signals) -> int:
     matplotlib.use("Agg")
     from fivebar_drake.core.validation import MAX_MASS_KG, check_number
     from fivebar_drake.optimal.report import OPTIMAL_FILES, beyond, jump_limits, write
+    from fivebar_drake.optimal.top_speed import GAITS as SPEED_GAITS
     from fivebar_drake.pipeline import (SIMULATION_FILES, max_jump_scenario, run_simulation,
                                         write_simulation)
     from fivebar_drake.robots.quadruped.config import load_params
@@ -287,12 +288,12 @@ def _optimal(args, signals) -> int:
     start = time.perf_counter()
     result, jumps = jump_limits(params, args.height, args.payload or 0.0, gaits)
     files = []
-    stale = out / "max_jump"                 # an earlier --simulate's run: never left beside
-    if stale.is_dir():                       # this run's answer (only the names it writes)
-        for name in SIMULATION_FILES:
-            (stale / name).unlink(missing_ok=True)
-        with contextlib.suppress(OSError):   # emptied: gone; another file in it: kept
-            stale.rmdir()
+    for stale in (out / "max_jump", *(out / f"top_speed_{kind}" for kind in SPEED_GAITS)):
+        if stale.is_dir():                   # an earlier --simulate's run: never left beside
+            for name in SIMULATION_FILES:    # this run's answer (only the names it writes)
+                (stale / name).unlink(missing_ok=True)
+            with contextlib.suppress(OSError):   # emptied: gone; another file in it: kept
+                stale.rmdir()
     if args.simulate and jumps["ceiling"] is None:
         result["max_jump_simulated"] = None
         _err(f"--simulate: no highest jump to simulate ({result['ceiling_why_none']})")
@@ -312,6 +313,13 @@ def _optimal(args, signals) -> int:
             "achieved": summary["verdict"] in ("pass", "warn", "fail"),
             "phases": {name: {"floor_Nm": p["floor_Nm"], "asked_Nm": p["asked_Nm"]}
                        for name, p in phases.items()}}
+    if args.simulate:
+        result["top_speed_simulated"] = {}
+        for kind, row in result["top_speed"].items():
+            if row["speed_m_s"] == row["speed_m_s"]:
+                result["top_speed_simulated"][kind], written = _track_top_speed(
+                    params, kind, args.payload or 0.0, out, signals)
+                files += written
     files = write(result, jumps, params, out) + files
     say(result["answer"])
     say(f"wrote {len(files)} files to {out.resolve()} in {time.perf_counter() - start:.1f} s:")
@@ -322,6 +330,33 @@ def _optimal(args, signals) -> int:
         _err(f"beyond the motors for any controller: {short}")
         return 1
     return 0
+
+
+def _track_top_speed(params, kind: str, payload_kg: float, out, signals) -> tuple[dict, list]:
+    """A gait's top speed tracked (pipeline.top_speed_scenario) into out/top_speed_KIND with
+    its step check: (its record for optimal.json, the files written)."""
+    from fivebar_drake.core.files import prepare_output_dir
+    from fivebar_drake.optimal.top_speed import top_speed
+    from fivebar_drake.pipeline import (SIMULATION_FILES, run_simulation, run_step_check,
+                                        top_speed_scenario, write_simulation)
+
+    found = top_speed(params, kind, payload_kg)                   # cached by jump_limits
+    folder = prepare_output_dir(out / f"top_speed_{kind}", "--out", SIMULATION_FILES)
+    try:
+        scenario, design = top_speed_scenario(params, found, payload_kg)
+    except ParameterError as err:
+        return {"folder": folder.name, "why_none": err.message}, []
+    stop = (lambda: signals.name)
+    record = run_simulation(scenario, design, progress=True, stop=stop)
+    half = run_step_check(record, progress=True, stop=stop)
+    summary, files = write_simulation(record, folder, half=half)
+    asked = max(m["demand_peak_Nm"] for leg in summary["legs"].values() for m in leg.values())
+    return {"folder": folder.name, "speed_m_s": summary["mean_forward_speed_m_s"],
+            "share_of_optimum": summary["mean_forward_speed_m_s"] / found.speed_m_s,
+            "verdict": summary["verdict"], "achieved": summary["verdict"] in (
+                "pass", "warn", "fail"), "max_tilt_deg": summary["max_tilt_deg"],
+            "demand_peak_Nm": asked, "optimum_peak_Nm": max(found.peak_Nm),
+            "why_none": ""}, files
 
 
 def speed_gaits(text: str | None) -> tuple[str, ...]:
@@ -488,7 +523,10 @@ def parser() -> argparse.ArgumentParser:
     o.add_argument("--simulate", action="store_const", const=True,
                    help="also simulate the highest jump (the jump maneuver planned at the "
                         "ceiling, the tracking controller pushing with the ceiling's torques) "
-                        "into DIR/max_jump and report its apex against the ceiling")
+                        "into DIR/max_jump and report its apex against the ceiling, and each "
+                        "top speed (the optimum's gait, the tracking controller following its "
+                        "floor, with the step check) into DIR/top_speed_GAIT and report its "
+                        "speed against the optimum's")
     o.add_argument("--out", metavar="DIR", help="output folder: optimal.md, optimal.json, "
                    "optimal_jump.png (default: out/optimal)")
     c = command("compare", _compare, "simulated runs side by side: each motor's verdict and torques (what a foot path or a design costs)")

@@ -364,6 +364,15 @@ def markdown(r: dict) -> str:
                 f"{t['duty_factor']:.2f} | {t['stride_m'] * 1e3:.0f} | {t['froude']:.2f} | "
                 f"{t['cost_of_transport']:.2f} | {t['peak_Nm'][0]:.2f} / {t['rms_Nm'][0]:.2f} | "
                 f"{t['peak_Nm'][1]:.2f} / {t['rms_Nm'][1]:.2f} | {t['limited_by']} |")
+    for kind, m in (r.get("top_speed_simulated") or {}).items():
+        lines += ["", f"Simulated {kind} (the top speed's gait, the tracking controller "
+                      f"following its floor, `{m['folder']}/`): "
+                  + (m["why_none"] if m["why_none"] else
+                     f"{m['speed_m_s']:.3f} m/s, {m['share_of_optimum']:.0%} of its top speed; "
+                     f"verdict {m['verdict'].replace('_', ' ').upper()}"
+                     f"{' (achieved)' if m['achieved'] else ''}; largest tilt {m['max_tilt_deg']:.1f} deg; the controller asked up to "
+                     f"{m['demand_peak_Nm']:.2f} N·m against the optimum's "
+                     f"{m['optimum_peak_Nm']:.2f} N·m") + "."]
     if r.get("max_jump_simulated"):
         m = r["max_jump_simulated"]
         asked = "; ".join(f"{name}: asked {p['asked_Nm']:.2f} N·m against its floor "

@@ -174,7 +174,7 @@ def _search(params: Params, kind: str, payload_kg: float, duties, shares) -> Top
                         high, why = middle, result.why
             speed = 2.0 * a * low / beta
             if best is None or speed > best[0]:
-                longest_used = share == max(shares)
+                longest_used = share == 1.0
                 best, failing = (speed, beta, a, low, passed.figures), why + (
                     "; and the longest stride the leg reaches" if longest_used else "")
     if best is None:

@@ -131,3 +131,24 @@ def test_the_pronk_flies_the_rest_of_its_period(params):
     stance_s = 0.4 * gait.period_s
     lift_off_speed = math.pi * path.dip_m / stance_s
     assert 2 * lift_off_speed / gait.gravity_m_s2 == pytest.approx(0.6 * gait.period_s)
+
+
+def test_the_tracked_run_is_the_optimums_gait(trot, params):
+    """optimal --simulate's scenario of a top speed: the optimum's path (duty factor, swing
+    shape) at its stride and frequency on the tracking controller, the load transfer within a
+    quarter of the stance and at least a hundred recorded intervals a period; a gait beyond
+    10 Hz cannot be recorded so and is refused (ParameterError), not run."""
+    from fivebar_drake.core.validation import ParameterError
+    from fivebar_drake.pipeline import top_speed_scenario
+
+    found, _ = trot
+    scenario, design = top_speed_scenario(params, found)
+    assert scenario.gait == found.path and scenario.controller.kind == "tracking"
+    assert design.gait.a_m == pytest.approx(found.stride_m / 2)
+    assert design.gait.frequency_hz == pytest.approx(found.frequency_hz)
+    assert found.path.stance_speed(design.gait) == pytest.approx(found.speed_m_s)
+    period = 1.0 / found.frequency_hz
+    assert scenario.load_transfer_s <= 0.25 * found.duty_factor * period + 1e-12
+    assert scenario.log_period_s <= period / 100
+    with pytest.raises(ParameterError, match="log_period_s"):
+        top_speed_scenario(params, dataclasses.replace(found, frequency_hz=12.0))
