@@ -150,5 +150,5 @@ def test_the_tracked_run_is_the_optimums_gait(trot, params):
     period = 1.0 / found.frequency_hz
     assert scenario.load_transfer_s <= 0.25 * found.duty_factor * period + 1e-12
     assert scenario.log_period_s <= period / 100
-    with pytest.raises(ParameterError, match="log_period_s"):
+    with pytest.raises(ParameterError, match=r"frequency_hz = 12.0: must be in \(0, 10\]"):
         top_speed_scenario(params, dataclasses.replace(found, frequency_hz=12.0))
