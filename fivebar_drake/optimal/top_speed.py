@@ -41,7 +41,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import minimize
 
-from fivebar_drake.core.validation import ParameterError
+from fivebar_drake.core.validation import MAX_GAIT_FREQUENCY_HZ, ParameterError
 from fivebar_drake.gaits import evaluate, foot_path
 from fivebar_drake.mechanisms.fivebar import KNEES_OUT, limit_tests, past_any
 from fivebar_drake.optimal.gait_floor import gait_floor
@@ -141,14 +141,16 @@ def _search(params: Params, kind: str, payload_kg: float, duties, shares) -> Top
         longest = longest_half_stride(base, path)
         for share in shares:
             a = share * longest
-            top = bound * beta / (2.0 * a)          # no faster: the no-load bound
+            # no faster: the no-load bound, and the gait's own bound on the frequency
+            top = min(bound * beta / (2.0 * a), MAX_GAIT_FREQUENCY_HZ)
             # from the best speed so far (a pair that fails there cannot beat it), else from
             # the slowest frequency
             start = MIN_FREQUENCY_HZ if best is None else min(best[0] * beta / (2.0 * a), top)
             ladder = start * LADDER_RATIO ** np.arange(
                 max(1, math.ceil(math.log(top / start, LADDER_RATIO)) + 1))
             low = passed = None
-            why = "the no-load bound"
+            why = ("the no-load bound" if top < MAX_GAIT_FREQUENCY_HZ else
+                   f"the gaits' highest frequency, {MAX_GAIT_FREQUENCY_HZ:g} Hz")
             for f in np.minimum(ladder, top):
                 result = check(base, kind, beta, a, float(f), payload_kg)
                 checks += 1
@@ -238,7 +240,7 @@ def check(base: Params, kind: str, beta: float, a: float, f: float,
     try:
         params = with_gait(base, a_m=a, frequency_hz=f)
     except ParameterError as error:
-        return Check(False, f"the leg's reach or [limits] ({error.message})")
+        return Check(False, f"the gait's bounds ({error.message})")
     path = foot_path(kind).at_duty(beta, params.gait)
     if not _reaches(params, params.gait, path):
         return Check(False, "the leg's reach or [limits] (the path at this duty factor)")
