@@ -17,6 +17,9 @@
 With requirements.actuator_mass, a design's actuator mass (motor and gearbox, as designed: no
 prediction) must lie within the band: its margin is the band's half-width over the design's
 relative distance from the reference mass (capped at MASS_MARGIN_CAP).
+With requirements.top_speed_m_s, each gait's top speed for any controller (optimal/top_speed.py,
+on the first maneuver's parameters; for the designs that pass (a)) over the least required:
+predicted only, the simulated finalists are not run at it.
 The duty cycle's thermal margin is predicted as the least closed-form thermal margin of its
 maneuvers (duty_cycle). The stand-up has no prediction here: the simulation alone judges it.
 A requirement's margin is the figure over what the accepted verdict needs (>= 1 meets it): the safety factor over checks.sf_pass (sf_warn when warn is accepted), the
@@ -32,11 +35,12 @@ import numpy as np
 
 from fivebar_drake.analysis.design_points import evaluate_designs
 from fivebar_drake.codesign.designs import actuator_mass, design_name, design_params
-from fivebar_drake.codesign.spec import GAITS, MASS, ON_MANEUVER, CodesignSpec
+from fivebar_drake.codesign.spec import (GAITS, MASS, ON_GAIT, ON_MANEUVER, TOP_SPEED,
+                                         CodesignSpec)
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.envelope.spec import Maneuver
 from fivebar_drake.mechanisms.fivebar import MOTORS
-from fivebar_drake.optimal import gait_floor, vertical_jump
+from fivebar_drake.optimal import gait_floor, top_speed, vertical_jump
 from fivebar_drake.optimal.needs import NEEDS, needs_of
 from fivebar_drake.robots.quadruped.params import Params
 
@@ -146,6 +150,30 @@ def mass_band(spec: CodesignSpec, mass_kg: float) -> dict | None:
                 "within": MASS_MARGIN_CAP if off * MASS_MARGIN_CAP <= within else within / off}}
 
 
+def top_speed_of(params: Params, gait: str) -> float:
+    """A gait's top speed for any controller (m/s; optimal/top_speed.py), 0 where none."""
+    speed = top_speed.top_speed(params, gait).speed_m_s
+    return speed if math.isfinite(speed) else 0.0
+
+
+def speed_objectives(spec: CodesignSpec, params: Params) -> dict[str, float]:
+    """The top_speed_m_s:GAIT objectives of spec on the design's parameters."""
+    return {o: top_speed_of(params, o.partition(":")[2]) for o in spec.objectives
+            if o.partition(":")[0] in ON_GAIT}
+
+
+def speed_requirements(spec: CodesignSpec, params: Params) -> dict[str, dict]:
+    """A row per required top speed (TOP_SPEED by gait): the top speed against the least
+    required, its margin their ratio (any controller: predicted, not simulated)."""
+    rows = {}
+    for gait, required in spec.top_speeds:
+        speed = top_speed_of(params, gait)
+        rows[TOP_SPEED.format(gait)] = {"level": "any controller", "top_speed_m_s": speed,
+                                        "required_m_s": required,
+                                        "margins": {"speed": speed / required}}
+    return rows
+
+
 def max_jump_height(params: Params) -> float:
     """The highest vertical jump the legs and motors allow (m above standing, any controller:
     the ceiling over the leg's whole reach, optimal/vertical_jump.push)."""
@@ -245,6 +273,9 @@ def predict(spec: CodesignSpec, designs: list[dict]) -> list[dict]:
                 entry["maneuvers"][m.name] = gait_floors(m, built[i][m.name], spec.accept)
         if "max_jump_height_m" in spec.objectives:
             entry["objectives"]["max_jump_height_m"] = max_jump_height(built[i][maneuvers[0].name])
+        entry["objectives"].update(speed_objectives(spec, built[i][maneuvers[0].name]))
+        if screened:
+            entry["maneuvers"].update(speed_requirements(spec, built[i][maneuvers[0].name]))
         entry["objectives"].update({k: v for k, v in power_objectives(spec, built[i]).items()
                                     if math.isfinite(v)})
         duty = duty_cycle(spec, entry)

@@ -22,10 +22,14 @@ to minimise and how much to spend.
       simulate_max_jump: true       # each simulated design's max-effort jump simulated too
                                     # (optimal --simulate's), its measured apex the simulated
                                     # max_jump_height_m
+      top_speed_m_s: {bound: 1.0}   # a gait's top speed for any controller (optimal/
+                                    # top_speed.py) at least this (m/s; trot, bound, pronk):
+                                    # predicted, not simulated
     compare:                        # optional: designs simulated beside the default design,
       - {motor: odrive_d5065_270kv, motor.gear_ratio: 8.0}   # e.g. the obvious fix
     objectives: [actuator_mass_kg, max_jump_height_m]   # the first decides; default the mass;
-                        # also peak_electrical_power_W[:MANEUVER], cost_of_transport:MANEUVER
+                        # also peak_electrical_power_W[:MANEUVER], cost_of_transport:MANEUVER,
+                        # top_speed_m_s:GAIT (trot, bound or pronk)
     budget: {trials: 40, finalists: 3, seed: 0}
 
 A built-in actuator (CubeMars AK, Mini Cheetah) keeps its own gearbox and ratio: for it the
@@ -49,17 +53,22 @@ from fivebar_drake.core.validation import MAX_MASS_KG, ParameterError, check_num
 from fivebar_drake.core.yaml_files import load_spec_file
 from fivebar_drake.envelope.spec import EnvelopeSpec, spec_from_dict as envelope_from_dict
 from fivebar_drake.optimal.gait_floor import KINDS
+from fivebar_drake.optimal.top_speed import GAITS as SPEED_GAITS
 from fivebar_drake.robots.quadruped.config import with_changes
 from fivebar_drake.sweep.spec import Varied
 
 KEYS = ("variables", "requirements", "objectives", "budget", "compare")
 OBJECTIVES = {"actuator_mass_kg": "minimize", "max_jump_height_m": "maximize",
-              "peak_electrical_power_W": "minimize", "cost_of_transport": "minimize"}
+              "peak_electrical_power_W": "minimize", "cost_of_transport": "minimize",
+              "top_speed_m_s": "maximize"}
 ON_MANEUVER = ("peak_electrical_power_W", "cost_of_transport")  # NAME:MANEUVER (a gait's)
+ON_GAIT = ("top_speed_m_s",)                                     # NAME:GAIT (SPEED_GAITS)
 GAITS = KINDS                                   # the gaits whose floors predict them
 ACCEPT = {"pass": ("pass",), "warn": ("pass", "warn")}
 FLAGS = ("step_check", "never_at_limit", "simulate_max_jump")
 MASS = "actuator mass"            # the mass band's row beside the maneuvers (predict.py)
+TOP_SPEED = "top speed {}"        # a required top speed's row, by its gait (predict.py)
+MAX_TOP_SPEED_M_S = 100.0         # the fastest top speed a spec may require
 MAX_WITHIN = 0.5                  # the widest mass band: +-50 %
 BUDGET = {"trials": (1, 100_000), "finalists": (1, 100), "seed": (0, 2**31 - 1)}
 DEFAULT_BUDGET = {"trials": 40, "finalists": 3, "seed": 0}
@@ -85,6 +94,7 @@ class CodesignSpec:
     never_at_limit: bool = False
     simulate_max_jump: bool = False
     mass_band: tuple[float, float] | None = None     # (kg, relative half-width)
+    top_speeds: tuple[tuple[str, float], ...] = ()  # (gait, least top speed m/s) required
     compare: tuple[dict, ...] = ()
     text: str = field(default="", compare=False)
     source: str = field(default="", compare=False)
@@ -122,7 +132,8 @@ def spec_from_dict(data, folder: Path, source: str = "") -> CodesignSpec:
     kinds = (_names("variables.gearbox", variables[GEARBOX], gearboxes())
              if GEARBOX in variables else ())
     vary = tuple(_varied(str(k), v) for k, v in variables.items() if k not in (MOTOR, GEARBOX))
-    envelope, accept, flags, band = _requirements(data.get("requirements"), folder, source)
+    envelope, accept, flags, band, speeds = _requirements(data.get("requirements"), folder,
+                                                          source)
     base = envelope.maneuvers[0].params
     vary = tuple(_applies(v, base, motors, kinds) for v in vary)
     _buildable(motors, kinds, vary)
@@ -145,7 +156,7 @@ def spec_from_dict(data, folder: Path, source: str = "") -> CodesignSpec:
     compare = _compare(data.get("compare", []), envelope)
     return CodesignSpec(motors=motors, gearboxes=kinds, vary=vary, envelope=envelope,
                         accept=ACCEPT[accept], objectives=tuple(objectives), source=source,
-                        compare=compare, mass_band=band, **flags, **counts)
+                        compare=compare, mass_band=band, top_speeds=speeds, **flags, **counts)
 
 
 def _compare(value, envelope: EnvelopeSpec, field_name: str = "") -> tuple[dict, ...]:
@@ -186,6 +197,10 @@ def _objectives(value, envelope: EnvelopeSpec) -> list[str]:
         name, _, maneuver = str(o).partition(":")
         require(name in OBJECTIVES, f"objectives[{i}]", o, f"must be one of {list(OBJECTIVES)}"
                 f" ({', '.join(ON_MANEUVER)} optionally as NAME:MANEUVER)")
+        if name in ON_GAIT:
+            require(maneuver in SPEED_GAITS, f"objectives[{i}]", o,
+                    f"{name} is on a gait: {name}:GAIT, GAIT one of {list(SPEED_GAITS)}")
+            continue
         require(not maneuver or name in ON_MANEUVER and maneuver in gaits, f"objectives[{i}]",
                 o, f"only {', '.join(ON_MANEUVER)} take a maneuver, one of the envelope's gaits "
                 f"{gaits}")
@@ -278,14 +293,15 @@ def _applies(v: Varied, base, motors: tuple, kinds: tuple) -> Varied:
     return v
 
 
-def _requirements(value, folder: Path, source: str) -> tuple[EnvelopeSpec, str, dict, tuple]:
+def _requirements(value, folder: Path, source: str) -> tuple:
     """(the envelope spec, the accepted verdict's name, {step_check, never_at_limit,
-    simulate_max_jump}, the mass band or None) of `requirements`."""
+    simulate_max_jump}, the mass band or None, the required top speeds) of `requirements`."""
     require(isinstance(value, dict) and "envelope" in value and set(value) <= {
-        "envelope", "accept", "actuator_mass", *FLAGS}, "requirements", value,
+        "envelope", "accept", "actuator_mass", "top_speed_m_s", *FLAGS}, "requirements", value,
         "must be a mapping {envelope: FILE or an envelope spec's mapping, accept: pass|warn, "
         "step_check: true|false, never_at_limit: true|false, actuator_mass: {equal_to: KG or "
-        "a design, within: FRACTION}, simulate_max_jump: true|false}")
+        "a design, within: FRACTION}, simulate_max_jump: true|false, top_speed_m_s: {GAIT: "
+        "M_S}}")
     accept = value.get("accept", "pass")
     require(accept in ACCEPT, "requirements.accept", accept, f"must be one of {list(ACCEPT)}")
     flags = {k: value.get(k, False) for k in FLAGS}
@@ -296,7 +312,16 @@ def _requirements(value, folder: Path, source: str) -> tuple[EnvelopeSpec, str, 
         envelope = dataclasses.replace(envelope, maneuvers=tuple(
             dataclasses.replace(m, step_check=True) for m in envelope.maneuvers))
     band = _mass_band(value["actuator_mass"], envelope) if "actuator_mass" in value else None
-    return envelope, accept, flags, band
+    return envelope, accept, flags, band, _top_speeds(value.get("top_speed_m_s", {}))
+
+
+def _top_speeds(value) -> tuple[tuple[str, float], ...]:
+    """The required top speeds of requirements.top_speed_m_s: {GAIT: M_S, ...}."""
+    where = "requirements.top_speed_m_s"
+    require(isinstance(value, dict) and set(value) <= set(SPEED_GAITS), where, value,
+            f"must be a mapping of gaits {list(SPEED_GAITS)} to the least top speed (m/s)")
+    return tuple((gait, check_number(f"{where}.{gait}", speed, 0.0, MAX_TOP_SPEED_M_S,
+                                     low_open=True)) for gait, speed in value.items())
 
 
 def _mass_band(value, envelope: EnvelopeSpec) -> tuple[float, float]:

@@ -63,6 +63,12 @@ def test_the_spec_holds_the_step_check_the_limits_the_compared_designs_and_objec
     (("\"cost_of_transport:bound\"", "\"peak_electrical_power_W:drop\""),
      ["objectives[1]", "gaits"]),
     (("\"cost_of_transport:bound\"", "\"actuator_mass_kg:bound\""), ["objectives[1]"]),
+    (("\"cost_of_transport:bound\"", "\"top_speed_m_s\""), ["objectives[1]", "top_speed_m_s:GAIT"]),
+    (("\"cost_of_transport:bound\"", "\"top_speed_m_s:gallop\""), ["objectives[1]", "pronk"]),
+    (("never_at_limit: true", "never_at_limit: true\n  top_speed_m_s: {gallop: 1.0}"),
+     ["requirements.top_speed_m_s", "least top speed"]),
+    (("never_at_limit: true", "never_at_limit: true\n  top_speed_m_s: {bound: -1}"),
+     ["requirements.top_speed_m_s.bound"]),
     (("step_check: true", "step_check: yes please"), ["requirements.step_check"]),
     (("motor: odrive_d5065_270kv, motor", "motor: odrive, motor"), ["compare[0].motor"]),
     (("motor.gear_ratio: 8.0}", "motor.gear_ratio: 80.0}"), ["compare[0]"]),
@@ -122,6 +128,25 @@ def test_the_gaits_are_predicted_by_their_floors(spec):
     # through its lever arms, so the floor is no lower than the standing pair's static share
     assert bound["floor_Nm"] > 0.3
     assert math.isfinite(entry["objectives"]["cost_of_transport:bound"])
+
+
+def test_a_top_speed_is_an_objective_and_a_requirement(spec):
+    """top_speed_m_s:GAIT is maximised and predicted by the gait's top speed for any controller
+    on the first maneuver's parameters; a required one is a row whose margin is the top speed
+    over the least required (the design above passes the screening)."""
+    from fivebar_drake.codesign.designs import design_params
+    from fivebar_drake.optimal.top_speed import top_speed
+
+    asked = dataclasses.replace(spec, objectives=("actuator_mass_kg", "top_speed_m_s:pronk"),
+                                top_speeds=(("pronk", 0.5),))
+    assert asked.directions == ["minimize", "maximize"]
+    design = design_of({"motor": "tmotor_mn5212_kv340", "motor.gear_ratio": 12.0})
+    entry = predict(asked, [design])[0]
+    params = design_params(spec.envelope.maneuvers[0].params, design)
+    speed = top_speed(params, "pronk").speed_m_s
+    assert entry["objectives"]["top_speed_m_s:pronk"] == speed > 0
+    row = entry["maneuvers"]["top speed pronk"]
+    assert row["level"] == "any controller" and row["margins"]["speed"] == speed / 0.5
 
 
 @pytest.mark.parametrize("torque, speed", [(2.0, 5.0), (-3.0, -4.0), (2.0, -5.0), (-1.5, 3.0),
