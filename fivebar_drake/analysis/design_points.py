@@ -27,8 +27,10 @@ from fivebar_drake.robots.quadruped.params import Params
 MODELS = ("full_trot", "full")   # leg_loads.trot_model, leg_loads.full_model
 def motor_figures(motor: Motor, checks: Checks, torque, speed) -> dict:
     """Per-motor figures of joint torques (N*m) at joint speeds (rad/s) sampled over one cycle
-    (N, motors), time first: peak |torque|, RMS torque, the seed's safety factor peak_torque /
-    peak, peak |speed|, and on the motor's operating points (Motor.delivered_torque: the joint
+    (N, motors), time first: peak |torque|, RMS torque, the safety factor (the torque check's,
+    as analyze's answer and the simulation give it: each sample against its own quadrant's
+    limit, with the friction) beside the seed's (peak_torque / peak, seed_safety_factor), peak
+    |speed|, and on the motor's operating points (Motor.delivered_torque: the joint
     torque plus the output friction) the least ratio of the envelope's torque to the demand in
     its quadrant (Motor.torque_margins), the RMS current and the motor's checks
     (core/checks.motor_checks: each sample against its own quadrant's limit; the margins and
@@ -39,12 +41,15 @@ def motor_figures(motor: Motor, checks: Checks, torque, speed) -> dict:
     margins, outside = motor.speed_margins(demand, speed)
     current = np.sqrt(np.mean(np.square(motor.currents(demand, speed)), 0))
     out = {"peak_torque_Nm": peak, "rms_torque_Nm": np.sqrt(np.mean(torque**2, 0)),
-           "safety_factor": motor.peak_torque_Nm / peak, "peak_speed_rad_s": np.abs(speed).max(0),
+           "seed_safety_factor": motor.peak_torque_Nm / peak,
+           "peak_speed_rad_s": np.abs(speed).max(0),
            "torque_speed_margin": np.min(motor.torque_margins(demand, speed), 0),
            "rms_current_A": current}
     per_motor = [checks_of(motor, checks, torque_check(checks, motor, demand[:, j], speed[:, j]),
                            margins[:, j], outside[:, j], current[j])
                  for j in range(torque.shape[1])]
+    out["safety_factor"] = np.array([np.inf if c["torque"]["sf"] is None else c["torque"]["sf"]
+                                     for c in per_motor])
     out["speed_margin"] = np.array([c["speed"]["least_margin"] if c["speed"]["least_margin"]
                                     is not None else np.inf for c in per_motor])
     out["speed_outside_fraction"] = np.array([c["speed"]["outside_fraction"] for c in per_motor])
@@ -64,7 +69,8 @@ def evaluate_designs(designs: list[Params], path: str = "seed_ellipse",
     "full_trot", the robot's weight shared by the feet the trot schedule has in stance, none in
     swing; "full", the seed's weight share on the foot all cycle), each as torques.analyze
     computes them: per motor
-    (MOTORS) peak_torque_Nm, rms_torque_Nm, safety_factor, peak_speed_rad_s, speed_ok (the
+    (MOTORS) peak_torque_Nm, rms_torque_Nm, safety_factor (the torque check's),
+    seed_safety_factor, peak_speed_rad_s, speed_ok (the
     seed's check), torque_speed_margin, speed_margin, speed_outside_fraction,
     thermal_current_margin, verdict (the worst of the torque, speed and thermal checks,
     core/checks.motor_checks), deciding_check, torque_verdict; and stride_speed_m_s (2 a f, the

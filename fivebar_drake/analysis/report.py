@@ -186,12 +186,16 @@ def markdown(analysis: Analysis, sampled: dict | None = None) -> str:
               "to that torque (below 1 exactly outside). A joint beyond the no-load speed lies "
               "within the envelope only while it brakes at least as much as the back-EMF forces.",
               "", "## Trot loading (the other reading of the weight share)", "",
-              "| motor | peak torque (N·m) | static (N·m) | safety factor | verdict |",
-              "|---|---|---|---|---|"]
+              "The torque check's safety factor and the verdict of the actuator's checks (below), "
+              "the one figure every output gives for this reading.", "",
+              "| motor | peak torque (N·m) | static (N·m) | SF | quadrant | verdict |",
+              "|---|---|---|---|---|---|"]
     for motor in MOTORS:
         m = r["full_trot"][motor]
+        c = m["checks"]
         lines.append(f"| {motor} | {m['peak_torque_Nm']:.3f} | {m['static_torque_Nm']:.3f} | "
-                     f"{m['safety_factor']:.2f}x | {m['verdict'].upper()} |")
+                     f"{_maybe(c['torque']['sf'], '.2f')} | {c['torque']['quadrant']} | "
+                     f"{c['verdict'].upper()} |")
     mo = analysis.results["motor"]
     lines += ["", "## Verdict: the actuator's checks", "",
               f"The {mo['model']} actuator: peak {mo['peak_torque_Nm']:.3g} N·m (driving, "
