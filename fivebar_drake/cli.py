@@ -394,10 +394,11 @@ def _compare(args, signals) -> int:
 def _models(args, signals) -> int:
     from fivebar_drake.simulation.runner import load_run
     from fivebar_drake.robots.quadruped.closure import MODEL_FILES, write_models
+    from fivebar_drake.robots.quadruped.mjcf import MJCF_FILE
     from fivebar_drake.simulation.builder import closure_design
 
     scenario, params = load_run(args.scenario, closure="bushing_rpy", params_file=args.config)
-    out = prepare_output_dir(args.out, "--out", MODEL_FILES)
+    out = prepare_output_dir(args.out, "--out", (*MODEL_FILES, MJCF_FILE))
     bushing = closure_design(scenario, params).bushing
     for path in write_models(params, bushing, out):
         say(f"wrote {path}")
@@ -533,7 +534,8 @@ def parser() -> argparse.ArgumentParser:
     c.add_argument("runs", nargs="+", metavar="RUN_DIR", help="output folders of `simulate` runs")
     c.add_argument("--out", default="out/gait_comparison.md", metavar="FILE",
                    help="markdown file; a PNG is written beside it (default: %(default)s)")
-    m = command("models", _models, "write the SDF models generated from the parameters")
+    m = command("models", _models, "write the SDF models (Drake) and the MJCF model (MuJoCo) "
+                "generated from the parameters")
     m.add_argument("--scenario", metavar="FILE", help="scenario file (YAML) for the bushing "
                    "design (target_loop_gap_m) and its params_file")
     m.add_argument("--config", **{**config, "help": config["help"] + "; overrides the "

@@ -36,6 +36,7 @@ from fivebar_drake.core.variants import Variant, by_kind, registrar
 from fivebar_drake.mechanisms.fivebar import sample_gait, tree_positions
 from fivebar_drake.robots.quadruped.inverse_dynamics import loop_jacobian, plane_point_jacobian
 from fivebar_drake.robots.quadruped.leg_loads import trot_model
+from fivebar_drake.robots.quadruped.mjcf import MJCF_FILE, quadruped_mjcf
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.plant import ClosureDesign, add_model, leg_indices
 from fivebar_drake.robots.quadruped.sdf import quadruped_sdf, single_leg_sdf
@@ -271,7 +272,9 @@ MODEL_FILES = {"leg.sdf": (single_leg_sdf, ExplicitBushing()),
 
 def write_models(params: Params, bushing: Bushing, out_dir: Path) -> list[Path]:
     """Write the MODEL_FILES into out_dir, each atomically: the fixed-hip leg and the quadruped
-    closed by the explicit bushing, and the quadruped closed by ball constraints."""
+    closed by the explicit bushing, and the quadruped closed by ball constraints; then the
+    quadruped for MuJoCo (mjcf.MJCF_FILE)."""
     out_dir.mkdir(parents=True, exist_ok=True)
     return [write_atomic(out_dir / name, make(params, closure, bushing))
-            for name, (make, closure) in MODEL_FILES.items()]
+            for name, (make, closure) in MODEL_FILES.items()] + [
+        write_atomic(out_dir / MJCF_FILE, quadruped_mjcf(params))]
