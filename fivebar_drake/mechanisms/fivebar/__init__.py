@@ -23,6 +23,7 @@ from fivebar_drake.mechanisms.fivebar.leg import FiveBarLeg
 from fivebar_drake.mechanisms.fivebar.limits import (LIMITS, LimitTest, joint_ranges, limit_tests,
                                                      past_any)
 from fivebar_drake.mechanisms.fivebar.loop import JOINTS, loop_gaps, tree_positions
+from fivebar_drake.mechanisms.fivebar.sdf import link_inertias
 from fivebar_drake.mechanisms.fivebar.singularity import (SingularityMeasures,
                                                            singularity_measures, workspace)
 
@@ -32,7 +33,7 @@ __all__ = ["ALL_MODES", "DynamicsModel", "FiveBarLeg", "GaitSamples", "JOINTS", 
            "TorqueBreakdown", "UnreachableError", "bias_accelerations", "bias_at",
            "com_fractions", "coriolis", "coriolis_at", "foot_from", "foot_jacobian",
            "forward", "forward_points", "forward_pose", "held_force", "inverse", "inverse_pose",
-           "joint_ranges", "knee_modes", "limit_tests", "link_jacobians",
+           "joint_ranges", "knee_modes", "limit_tests", "link_inertias", "link_jacobians",
            "link_coms", "link_jacobians_at", "loop_gaps", "mode_name", "mass_matrix", "mass_matrix_at",
            "past_any", "path_poses", "periodic_derivatives", "physical_izz",
            "point_jacobians", "pose_jacobians", "reachable", "sample_gait",

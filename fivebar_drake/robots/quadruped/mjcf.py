@@ -23,8 +23,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from fivebar_drake.core.sdf import element, fmt
-from fivebar_drake.mechanisms.fivebar import KNEES_OUT, joint_ranges
-from fivebar_drake.mechanisms.fivebar.sdf import link_inertias
+from fivebar_drake.mechanisms.fivebar import KNEES_OUT, joint_ranges, link_inertias
 from fivebar_drake.robots.quadruped.legs import PLANE_RPY, hip_positions
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.sdf import body_height, body_mass_properties
