@@ -28,7 +28,7 @@ from fivebar_drake.analysis.report import ANALYSIS_FILES, write_report
 from fivebar_drake.analysis.torques import Analysis, analyze, seed_results
 from fivebar_drake.core.files import prepare_output_dir
 from fivebar_drake.core.summary_schema import AnyController, Summary
-from fivebar_drake.core.verdicts import fails_for
+from fivebar_drake.core.verdicts import beyond_limit, fails_for
 from fivebar_drake.optimal import vertical_jump
 from fivebar_drake.optimal.needs import needs_of
 from fivebar_drake.optimal.vertical_jump import Need
@@ -236,8 +236,9 @@ def verdict_split(record: SimulationRecord, maneuver: str, height_m: float, phas
                 min(p["limit_Nm"] / p["floor_Nm"] for p in phases.values()))
     blamed = fails_for(summary["verdict"], phases, params.checks.floor_margin)
     if blamed == "this controller" and any(
-            p["status"] == "floor" and p["floor_Nm"] * (1.0 - params.checks.floor_margin)
-            > p["limit_Nm"] for p in phases.values()):
+            p["status"] == "floor" and beyond_limit(p["floor_Nm"], p["limit_Nm"],
+                                                    params.checks.floor_margin)
+            for p in phases.values()):
         why.append("the run did its motion, so its floor's claim is set aside")
     return {"maneuver": maneuver, "height_m": height_m, "phases": phases,
             "floor_Nm": floor, "floor_safety_factor": floor_sf,

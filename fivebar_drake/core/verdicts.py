@@ -242,6 +242,12 @@ def contact_checked_verdict(current: str, check: ContactCheck) -> str:
 NEEDS = ("floor", "undecided", "beyond bound", "unknown")   # a phase's need (PhaseFloor.status)
 
 
+def beyond_limit(floor_Nm: float, limit_Nm: float, margin: float) -> bool:
+    """Whether a floor (N*m) is beyond a motor's limit (N*m) for any controller: the floor less
+    the model's margin (checks.floor_margin), floor (1 - margin), above the limit."""
+    return floor_Nm * (1.0 - margin) > limit_Nm
+
+
 def fails_for(verdict: str, phases: dict, margin: float) -> str | None:
     """Whom a failing verdict blames: the one rule every output reads. phases: per phase its
     need (summary_schema.PhaseFloor: status in NEEDS, floor_Nm, limit_Nm: the motors' limit in
@@ -256,7 +262,7 @@ def fails_for(verdict: str, phases: dict, margin: float) -> str | None:
         return None
     statuses = {p["status"] for p in phases.values()}
     beyond = "beyond bound" in statuses or any(
-        p["status"] == "floor" and p["floor_Nm"] * (1.0 - margin) > p["limit_Nm"]
+        p["status"] == "floor" and beyond_limit(p["floor_Nm"], p["limit_Nm"], margin)
         for p in phases.values())
     if beyond and verdict == "not_achieved":
         return "any controller"
