@@ -42,6 +42,7 @@ from fivebar_drake.core.files import json_ready, lock_folder
 from fivebar_drake.core.progress import Progress
 from fivebar_drake.codesign.designs import actuator_mass, design_envelope, design_name
 from fivebar_drake.codesign.predict import CHECKS, DUTY, ceiling, needs, power_maneuvers
+from fivebar_drake.codesign.dossier import write_dossier
 from fivebar_drake.codesign.report import COMPARED, DEFAULT, CodesignRun, write_report
 from fivebar_drake.codesign.search import corrected, predictions, ranked, search
 from fivebar_drake.codesign.spec import ON_MANEUVER, CodesignSpec
@@ -284,4 +285,6 @@ def run_codesign(spec: CodesignSpec, out: str | Path, workers: int | None = None
     if 0 < bar.done < bar.total:
         bar.total = bar.done
         bar.add(0)                  # the last line, as it ended
-    return write_report(spec, out, entries, chosen, verified, corrections(pairs))
+    run = write_report(spec, out, entries, chosen, verified, corrections(pairs))
+    run.files += write_dossier(spec, run.report, out, out / FINALISTS_DIR)
+    return run

@@ -66,9 +66,12 @@ def codesign(tmp_path_factory):
     2 process workers started here): (exit code, its folder, design.json)."""
     from dask.distributed import LocalCluster
 
+    import fivebar_drake.codesign.dossier as dossier
+
     folder = tmp_path_factory.mktemp("codesign")
     with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                      dashboard_address=":0") as cluster:
+                      dashboard_address=":0") as cluster, pytest.MonkeyPatch.context() as patch:
+        patch.setattr(dossier, "SHEET_GAITS", ("pronk",))     # one top speed: 7 s, not 40
         code = main(["codesign", str(write(folder, SPEC)), "--out", str(folder / "out"),
                      "--scheduler", cluster.scheduler_address])
     return code, folder / "out", json.loads((folder / "out" / "design.json").read_text())
@@ -99,6 +102,44 @@ def test_the_recommended_design_passes_in_simulation_and_is_the_lightest_that_do
     assert {f["key"] for f in report["finalists"] if f["simulated"]["passes"]} == passing
     for key in ("default", *mass):
         assert (out / "finalists" / key / "drop" / "run.rrd").is_file()
+
+
+def test_the_recommended_design_has_its_dossier(codesign):
+    """dossier/: the design's SDF (Drake parses it strictly, the design's mass), its MJCF
+    (MuJoCo loads it, the same mass) and its spec sheet, whose requirements per motor are its
+    simulated envelope's largest demand and RMS current, read here from envelope.json."""
+    import mujoco
+    from pydrake.multibody.parsing import Parser
+    from pydrake.multibody.plant import MultibodyPlant
+
+    from fivebar_drake.codesign.designs import design_params
+    from fivebar_drake.codesign.spec import load_codesign_spec
+
+    _, out, report = codesign
+    r = report["recommended"]
+    folder = out / "dossier"
+    spec = load_codesign_spec(out.parent / "spec.yaml")
+    mass = design_params(spec.envelope.maneuvers[0].params, r["design"]).robot.total_mass_kg
+    plant = MultibodyPlant(0.001)
+    parser = Parser(plant)
+    parser.SetStrictParsing()
+    parser.AddModels(folder / "quadruped.sdf")
+    plant.Finalize()
+    assert plant.CalcTotalMass(plant.CreateDefaultContext()) == pytest.approx(mass, rel=1e-9)
+    model = mujoco.MjModel.from_xml_path(str(folder / "quadruped.xml"))
+    assert model.body_mass.sum() == pytest.approx(mass, rel=1e-9)
+    sheet = (folder / "spec_sheet.md").read_text()
+    assert sheet.splitlines()[2].startswith(f"**Answer:** Recommended: {r['name']}")
+    envelope = json.loads((out / "finalists" / r["key"] / "envelope.json").read_text())
+    for motor in "AB":
+        checks = [e["motors"][motor]["checks"] for e in envelope["maneuvers"].values()]
+        torque = max(c["torque"]["torque_Nm"] for c in checks)
+        current = max(c["thermal"]["rms_current_A"] for c in checks)
+        row = next(line for line in sheet.splitlines() if line.startswith(f"| {motor} | "))
+        cells = [c.strip() for c in row.split("|")[1:-1]]
+        assert float(cells[1]) == pytest.approx(torque, abs=0.005)
+        assert float(cells[7]) == pytest.approx(current, abs=0.005)
+    assert "pronk top speed" in sheet
 
 
 def test_predicted_and_simulated_figures_side_by_side(codesign):
