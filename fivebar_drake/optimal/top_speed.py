@@ -36,6 +36,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import pickle
+from collections import Counter
 from dataclasses import dataclass
 
 import numpy as np
@@ -63,6 +64,7 @@ REACH_SAMPLES = 200                  # samples of a cycle checked for reach
 STRIDE_STEPS = 12                    # bisection steps of the longest half stride
 WORKSPACE_SAMPLES = 61               # per axis, for the no-load bound
 CACHE_SIZE = 32
+HOPELESS_MARGIN = 0.2                # a check this far beyond the envelope (of the peak torque)
 
 
 @dataclass(frozen=True)
@@ -100,11 +102,14 @@ class TopSpeed:
 @dataclass(frozen=True)
 class Check:
     """One (beta, a, f) checked: passed, why not (the first check that failed), and where it
-    passed the figures TopSpeed reports (figures: dict)."""
+    passed the figures TopSpeed reports (figures: dict); hopeless where the swing's or the
+    stance's torques lie more than HOPELESS_MARGIN beyond the envelope (a faster gait of the
+    same stride and duty factor asks more: the search climbs no further)."""
 
     passed: bool
     why: str
     figures: dict | None = None
+    hopeless: bool = False
 
 
 def top_speed(params: Params, kind: str, payload_kg: float = 0.0, duties=None,
@@ -135,7 +140,7 @@ def _search(params: Params, kind: str, payload_kg: float, duties, shares) -> Top
     the pitch bound), then bisection between the last pass and that failure."""
     base = with_path_defaults(params, kind)
     bound = speed_bound(base)
-    best, failing, checks = None, "no duty factor and stride passes at any frequency", 0
+    best, failing, checks, reasons = None, "", 0, Counter()
     for beta in duties:
         path = foot_path(kind).at_duty(beta, base.gait)
         longest = longest_half_stride(base, path)
@@ -160,10 +165,10 @@ def _search(params: Params, kind: str, payload_kg: float, duties, shares) -> Top
                     high, why = float(f), result.why
                     break
                 else:
-                    why = result.why
+                    reasons[result.why.split(" (")[0]] += 1
+                    if result.hopeless:
+                        break
             if passed is None:
-                if best is None:
-                    failing = why
                 continue
             if low < top:
                 for _ in range(FREQUENCY_STEPS):
@@ -179,7 +184,9 @@ def _search(params: Params, kind: str, payload_kg: float, duties, shares) -> Top
                 longest_used = share == 1.0
                 best, failing = (speed, beta, a, low, passed.figures), why + (
                     "; and the longest stride the leg reaches" if longest_used else "")
-    if best is None:
+    if best is None:          # what failed, the commonest first
+        failing = "no duty factor, stride and frequency passes: " + ", ".join(
+            f"{why} ({n} of {checks} checks)" for why, n in reasons.most_common(3))
         return TopSpeed(kind, math.nan, math.nan, math.nan, math.nan, math.nan, math.nan,
                         (math.nan, math.nan), (math.nan, math.nan), failing, bound, None, {},
                         checks)
@@ -249,7 +256,8 @@ def check(base: Params, kind: str, beta: float, a: float, f: float,
         return Check(False, "the stance's joint speed (the no-load speed)")
     path, swing = _best_swing(params, path)
     if swing["margin"] < 0.0:
-        return Check(False, f"the swing's {swing['bind']}")
+        return Check(False, f"the swing's {swing['bind']}",
+                     hopeless=swing["margin"] < -HOPELESS_MARGIN)
     try:
         floor = gait_floor(params, dataclasses.replace(
             path, swing_reach_m=0.0, swing_skew_m=0.0, swing_lift_skew_m=0.0), payload_kg)
@@ -257,7 +265,8 @@ def check(base: Params, kind: str, beta: float, a: float, f: float,
         return Check(False, f"the stance's balance ({error.message})")
     held = _stance(params, path, floor)
     if held["margin"] < 0.0:
-        return Check(False, f"the stance's {held['bind']}")
+        return Check(False, f"the stance's {held['bind']}",
+                     hopeless=held["margin"] < -HOPELESS_MARGIN)
     return Check(True, "", _figures(params, path, beta, swing, floor, held))
 
 

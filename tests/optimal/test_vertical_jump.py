@@ -205,15 +205,15 @@ def test_the_highest_jump_simulated_reaches_85_percent_of_it(tmp_path):
 
 
 def test_a_design_too_weak_for_everything_is_told_so(tmp_path, capsys):
-    """Motors of 0.5 A peak: no jump, a trot beyond them, no trot at any speed: exit 1, each
+    """Motors of 0.5 A peak: no jump, a trot beyond them, no pronk at any speed: exit 1, each
     named, and every file written with the reasons (never a floor where there is none). The
     landing gives way even over the whole reach, but without a bound by another method that is
     undecided, not a claim for any controller (issue 39's rule)."""
-    assert main(["optimal", "--set", "motor.peak_current_A=0.5", "--top-speed", "trot",
+    assert main(["optimal", "--set", "motor.peak_current_A=0.5", "--top-speed", "pronk",
                  "--out", str(tmp_path)]) == 1
     err = capsys.readouterr().err
     assert "cannot lift the crouched robot" in err and "trot" in err and "give way" not in err
-    assert "no trot at any speed: the st" in err          # the stance's torque or balance
+    assert "no pronk at any speed: no duty factor, stride and frequency passes: " in err
     result = json.loads((tmp_path / "optimal.json").read_text())
     assert result["ceiling"] is None and result["floor"] is None
     assert result["drop"]["least_peak_torque_Nm"] is None
