@@ -40,16 +40,12 @@ SEPARATOR = re.compile(r"^\|[-:| ]+\|\s*$")
 
 @lru_cache(maxsize=1)
 def glossary() -> frozenset[str]:
-    """The guide's glossary terms (each row's first cell, split at commas and slashes) and its
-    words in their everyday sense, lower case."""
-    text = GUIDE.read_text(encoding="utf-8")
-    section = text.split("## Glossary", 1)[1]
-    terms = set()
-    for line in section.splitlines():
-        if line.startswith("| ") and not line.startswith("| term"):
-            terms.update(t.strip().lower() for t in re.split(r"[,/]", line.split("|")[1]))
-    everyday = section.split("Words in their everyday sense:", 1)[1]
-    terms.update(w.strip().lower() for w in everyday.replace("\n", " ").rstrip(". ").split(","))
+    """The glossary's terms (fivebar_drake/core/glossary.py: each row's terms, split at commas
+    and slashes) and its words in their everyday sense, lower case."""
+    from fivebar_drake.core.glossary import EVERYDAY, TERMS
+
+    terms = {t.strip().lower() for names, _ in TERMS for t in re.split(r"[,/]", names)}
+    terms.update(w.strip().lower() for w in EVERYDAY)
     return frozenset(t for t in terms if t)
 
 

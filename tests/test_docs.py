@@ -36,7 +36,8 @@ def test_the_readme_is_a_front_door():
             assert (ROOT / target).exists(), target
 
 
-@pytest.mark.parametrize("name", ["options.md", "scenario.md", "summary.md", "specs.md"])
+@pytest.mark.parametrize("name", ["options.md", "scenario.md", "summary.md", "specs.md",
+                                  "glossary.md"])
 def test_the_reference_pages_are_current(name):
     generated = gen_docs().pages()[name]
     assert (DOCS / "reference" / name).read_text() == generated, (

@@ -1,11 +1,13 @@
 """Write the documentation site's reference pages from the code (docs/reference/): every
-command's options (cli.options_markdown), the scenario's fields (scenario.fields_markdown) and
-summary.json's keys (summary_schema.schema_markdown). `make docs` runs it before building the
+command's options (cli.options_markdown), the scenario's fields (scenario.fields_markdown),
+summary.json's keys (summary_schema.schema_markdown) and the glossary of the output terms
+(core/glossary.glossary_markdown). `make docs` runs it before building the
 site; tests/test_docs.py holds the committed pages to what it writes."""
 
 from pathlib import Path
 
 from fivebar_drake.cli import options_markdown, parser
+from fivebar_drake.core.glossary import glossary_markdown
 from fivebar_drake.core.summary_schema import schema_markdown
 from fivebar_drake.simulation.scenario import fields_markdown
 
@@ -26,6 +28,7 @@ def pages() -> dict[str, str]:
                        "current.\n\n" + fields_markdown() + "\n",
         "summary.md": schema_markdown(),
         "specs.md": specs_markdown(),
+        "glossary.md": glossary_markdown(),
     }
 
 
