@@ -27,8 +27,8 @@ from fivebar_drake.analysis.plots import write_plots
 from fivebar_drake.analysis.report import ANALYSIS_FILES, write_report
 from fivebar_drake.analysis.torques import Analysis, analyze, seed_results
 from fivebar_drake.core.files import prepare_output_dir
-from fivebar_drake.core.summary_schema import AnyController, Summary
-from fivebar_drake.core.verdicts import beyond_limit, fails_for
+from fivebar_drake.verdicts.summary_schema import AnyController, Summary
+from fivebar_drake.verdicts.rules import beyond_limit, fails_for
 from fivebar_drake.optimal import vertical_jump
 from fivebar_drake.optimal.needs import needs_of
 from fivebar_drake.optimal.vertical_jump import Need
@@ -221,7 +221,7 @@ def verdict_split(record: SimulationRecord, maneuver: str, height_m: float, phas
     none (the floors model flat ground: unknown); the maneuver's floor (the largest; None if a
     phase has none), its safety factor (the least of each phase's limit over its floor), what
     the controller asked at most and its cost, and whom a failing verdict blames
-    (core.verdicts.fails_for, the one rule)."""
+    (verdicts.rules.fails_for, the one rule)."""
     params = record.params
     if record.scenario.slope_deg:
         phases = {name: {**p, "status": "unknown", "floor_Nm": None}

@@ -74,7 +74,7 @@ def test_the_glossary_has_the_jargon_the_issue_names():
 def written(tmp_path_factory, simulated):
     """The folder of the cheap reports: trot/ and jump/ summary.md, comparison.md, analysis/
     report.md, sweep/sweep.md."""
-    from fivebar_drake.core.checks import thresholds_text
+    from fivebar_drake.verdicts.checks import thresholds_text
     from fivebar_drake.pipeline import run_analysis, summarize_run
     from fivebar_drake.analysis.report import write_report
     from fivebar_drake.simulation.comparison import write_comparison

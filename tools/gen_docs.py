@@ -8,7 +8,7 @@ from pathlib import Path
 
 from fivebar_drake.cli import options_markdown, parser
 from fivebar_drake.core.glossary import glossary_markdown
-from fivebar_drake.core.summary_schema import schema_markdown
+from fivebar_drake.verdicts.summary_schema import schema_markdown
 from fivebar_drake.simulation.scenario import fields_markdown
 
 REFERENCE = Path(__file__).resolve().parent.parent / "docs" / "reference"

@@ -11,7 +11,7 @@ import numpy as np
 from fivebar_drake.analysis.force_capability import home_capability, max_force, support_available
 from fivebar_drake.analysis.gear_ratio import GearTrade, RATIO_RANGE, gear_trade
 from fivebar_drake.analysis.joint_loads import JOINT_LINKS, JOINT_NAMES, JointLoads, joint_loads
-from fivebar_drake.core.thermal import Thermal, rms_current, thermal_margin
+from fivebar_drake.actuators.thermal import Thermal, rms_current, thermal_margin
 from fivebar_drake.mechanisms.fivebar import (ALL_MODES, DynamicsModel, GaitSamples,
                                               MODE_ALIASES, MODE_NAMES, MOTORS, TorqueBreakdown, UnreachableError,
                                               foot_jacobian, inverse)

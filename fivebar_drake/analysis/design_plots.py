@@ -16,7 +16,7 @@ from fivebar_drake.analysis.force_capability import CAPABILITY_KEYS, capability_
 from fivebar_drake.analysis.gear_ratio import EFFECTS, safety_factors
 from fivebar_drake.analysis.joint_loads import JOINT_NAMES
 from fivebar_drake.analysis.torques import Analysis
-from fivebar_drake.core.thermal import winding_temperature
+from fivebar_drake.actuators.thermal import winding_temperature
 from fivebar_drake.mechanisms.fivebar import (ALL_MODES, KNEES_OUT, MOTORS, LegGeometry, LegLimits,
                                               inverse, limit_tests, mode_name, past_any)
 

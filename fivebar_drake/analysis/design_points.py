@@ -13,10 +13,10 @@ from __future__ import annotations
 import dataclasses
 import numpy as np
 
-from fivebar_drake.core.checks import Checks, checks_of, torque_check, verdict
+from fivebar_drake.verdicts.checks import Checks, checks_of, torque_check, verdict
 from fivebar_drake.gaits import cycle_phase, foot_path, path_arrays, stance_loads
-from fivebar_drake.core.motor import Motor
-from fivebar_drake.core.thermal import thermal_margin
+from fivebar_drake.actuators.motor import Motor
+from fivebar_drake.actuators.thermal import thermal_margin
 from fivebar_drake.core.validation import require
 from fivebar_drake.mechanisms.fivebar import (MOTORS, UnreachableError, periodic_derivatives,
                                               track_modes)
@@ -33,7 +33,7 @@ def motor_figures(motor: Motor, checks: Checks, torque, speed) -> dict:
     |speed|, and on the motor's operating points (Motor.delivered_torque: the joint
     torque plus the output friction) the least ratio of the envelope's torque to the demand in
     its quadrant (Motor.torque_margins), the RMS current and the motor's checks
-    (core/checks.motor_checks: each sample against its own quadrant's limit; the margins and
+    (verdicts/checks.motor_checks: each sample against its own quadrant's limit; the margins and
     currents of both motors in one call each)."""
     total = np.abs(torque)
     peak = total.max(0)
@@ -73,9 +73,9 @@ def evaluate_designs(designs: list[Params], path: str = "seed_ellipse",
     seed_safety_factor, peak_speed_rad_s, speed_ok (the
     seed's check), torque_speed_margin, speed_margin, speed_outside_fraction,
     thermal_current_margin, verdict (the worst of the torque, speed and thermal checks,
-    core/checks.motor_checks), deciding_check, torque_verdict; and stride_speed_m_s (2 a f, the
+    verdicts/checks.motor_checks), deciding_check, torque_verdict; and stride_speed_m_s (2 a f, the
     foot's mean ground speed on the stride), and with the motor's thermal model thermal_margin_K
-    and time_to_winding_limit_s (core.thermal.thermal_margin at the RMS current). A design
+    and time_to_winding_limit_s (actuators.thermal.thermal_margin at the RMS current). A design
     whose path leaves the workspace or the leg's limits gets {"error": ...} instead."""
     rows: list[dict | None] = [None] * len(designs)
     groups: dict = {}

@@ -1,5 +1,5 @@
 """Gear-ratio trade for one motor (Stanford Doggo's method): keep the motor (its motor-side data:
-core/motor.with_gear) and change the gear ratio N. At the output the envelope's torque scales by
+actuators/motor.with_gear) and change the gear ratio N. At the output the envelope's torque scales by
 N (times the gearbox efficiency driving, over it braking), its speeds by 1 / N, and the rotor adds
 N^2 J_r q'' to each joint's torque. The safety factor at N is the least ratio, over the cycle and
 the motors, of the torque the envelope gives at the joint speed in the direction of the torque
@@ -12,7 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from fivebar_drake.core.motor import Motor, with_gear
+from fivebar_drake.actuators.motor import Motor, with_gear
 from fivebar_drake.core.validation import ParameterError
 
 

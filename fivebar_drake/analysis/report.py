@@ -10,7 +10,7 @@ from fivebar_drake.analysis.design_report import design_assumptions, design_line
 from fivebar_drake.analysis.torques import Analysis
 from fivebar_drake.core.files import json_ready, write_atomic
 from fivebar_drake.gaits import foot_path
-from fivebar_drake.core.motor import FRICTION_SMOOTHING_RAD_S
+from fivebar_drake.actuators.motor import FRICTION_SMOOTHING_RAD_S
 from fivebar_drake.mechanisms.fivebar import LINK_NAMES, MOTORS, physical_izz
 from fivebar_drake.robots.quadruped.config import sampling_error
 

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from fivebar_drake.analysis.design_metrics import DesignMetrics, design_metrics, sample_at
-from fivebar_drake.core.checks import motor_checks, verdict
+from fivebar_drake.verdicts.checks import motor_checks, verdict
 from fivebar_drake.mechanisms.fivebar import (DynamicsModel, GaitSamples, MODE_NAMES, MOTORS,
                                               SingularityMeasures, TorqueBreakdown, sample_gait,
                                               singularity_measures)

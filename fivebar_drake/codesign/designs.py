@@ -2,9 +2,9 @@
 dotted path, as the parameters the rest of the toolkit runs with, and as a parameter file.
 
 A design is a plain mapping {"motor": NAME, "gearbox": TYPE, "motor.gear_ratio": N, PATH:
-value, ...}. Its parameters are the base's with the catalogue actuator (core/actuators.py:
+value, ...}. Its parameters are the base's with the catalogue actuator (actuators/catalog.py:
 k_t, resistance, bus, currents, rotor and gears' inertia, efficiency) in place of the base's
-motor with its own thermal model (core/actuators.bldc_motor: the entry's winding limit and time
+motor with its own thermal model (actuators/catalog.bldc_motor: the entry's winding limit and time
 constant or the catalogue's stated assumptions, its continuous current at that limit) at the
 base's ambient, the base's friction kept (the catalogue has none), and the robot's motor mass
 robot.motors_kg set to the legs' actuators' mass (so a heavier actuator loads every maneuver).
@@ -16,7 +16,7 @@ import dataclasses
 import json
 from pathlib import Path
 
-from fivebar_drake.core.actuators import (BUILT_IN, actuator_mass_kg, bldc_motor, catalog,
+from fivebar_drake.actuators.catalog import (BUILT_IN, actuator_mass_kg, bldc_motor, catalog,
                                           gearboxes)
 from fivebar_drake.core.files import write_atomic
 from fivebar_drake.core.parameter_files import packaged, read_toml

@@ -47,7 +47,7 @@ from pathlib import Path
 
 from fivebar_drake.codesign.designs import (GEARBOX, LINKED, MOTOR, RATIO, actuator_mass,
                                            design_of, design_params, gearing)
-from fivebar_drake.core.actuators import catalog, gearboxes
+from fivebar_drake.actuators.catalog import catalog, gearboxes
 from fivebar_drake.core.files import read_input_text
 from fivebar_drake.core.validation import MAX_MASS_KG, ParameterError, check_number, require
 from fivebar_drake.core.yaml_files import load_spec_file

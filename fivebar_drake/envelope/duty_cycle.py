@@ -3,11 +3,11 @@ its time, every winding driven by its maneuver's instantaneous copper loss.
 
 Each step repeats its maneuver's motor currents (the rows of its verdict: whole gait cycles,
 so the repetition is seamless) for the step's duration; the copper loss 1.5 R i^2 of every
-sample drives the first-order winding model of core/thermal.py, solved exactly for a loss held
+sample drives the first-order winding model of actuators/thermal.py, solved exactly for a loss held
 over each interval (thermal.winding_rise). A long cycle is solved over bins of whole samples
 (at most MAX_BINS over the cycle) holding each bin's mean loss: the energy is exact, and what
 the bins smooth is the temperature ripple within a bin, a fraction ~ bin / tau_th of the rise
-(module docstring of core/thermal.py). The cycle starts at ambient."""
+(module docstring of actuators/thermal.py). The cycle starts at ambient."""
 
 from __future__ import annotations
 
@@ -16,9 +16,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fivebar_drake.core.checks import SEVERITY, Checks, thermal_check
-from fivebar_drake.core.motor import BldcMotor
-from fivebar_drake.core.thermal import winding_rise
+from fivebar_drake.verdicts.checks import SEVERITY, Checks, thermal_check
+from fivebar_drake.actuators.motor import BldcMotor
+from fivebar_drake.actuators.thermal import winding_rise
 
 MAX_BINS = 20_000
 
@@ -74,7 +74,7 @@ def duty_temperature(motor: BldcMotor, steps, currents: dict[str, tuple[np.ndarr
 def duty_verdict(motor: BldcMotor, checks: Checks, duty: DutyTemperature, legs,
                  motors) -> dict:
     """Per motor (A, B), the hottest winding of the duty cycle: its peak temperature (deg C),
-    leg, time (s), and the thermal check (core/checks.thermal_check) of the constant current
+    leg, time (s), and the thermal check (verdicts/checks.thermal_check) of the constant current
     that would hold the winding at that peak for ever (equivalent_current_A) against the
     motor's one continuous rating (Motor.rated_continuous_current_A, never above the thermal
     model's: a winding above its limit always fails): margin = sqrt(allowed rise / peak rise), fail below 1 (beyond the

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-from fivebar_drake.core.summary_schema import Summary
+from fivebar_drake.verdicts.summary_schema import Summary
 from fivebar_drake.envelope.spec import Maneuver
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.pipeline import (run_contact_check, run_simulation, run_step_check,

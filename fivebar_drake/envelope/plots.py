@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from fivebar_drake.core.files import save_figure
-from fivebar_drake.core.motor import Motor
+from fivebar_drake.actuators.motor import Motor
 from fivebar_drake.envelope.duty_cycle import DutyTemperature
 from fivebar_drake.mechanisms.fivebar import MOTORS
 
@@ -20,7 +20,7 @@ MOTOR_COLOURS = {"A": "tab:blue", "B": "tab:orange"}
 def plot_operating_points(motor: Motor, points: dict, path: Path) -> Path:
     """One panel per motor (A, B; every leg): the demand (N*m) at the joint speed (rad/s) of
     each maneuver (points: name -> (speed (2, n), demand (2, n)); one colour each) over the
-    actuator's envelope in all four quadrants (core/motor.torque_limits: driving and braking)
+    actuator's envelope in all four quadrants (actuators/motor.torque_limits: driving and braking)
     and the continuous torque."""
     import matplotlib.pyplot as plt
 

@@ -7,7 +7,7 @@ factor; the largest share beyond the envelope, then the least speed margin; the 
 margin; not achieved, then the most time at the torque limit): its verdict is the worst of its
 checks, as summary.json's verdict is the worst over the motors, and not_achieved where the
 motion was not achieved. The maneuver that sizes a motor is its worst row in summary.json's
-order (core/verdicts.badness: the verdict, then the deciding check and its figure)."""
+order (verdicts/rules.badness: the verdict, then the deciding check and its figure)."""
 
 from __future__ import annotations
 
@@ -15,12 +15,12 @@ import json
 import math
 from pathlib import Path
 
-from fivebar_drake.core.checks import (CHECK_ORDER, SEVERITY, limit_shares_text, thresholds_text,
+from fivebar_drake.verdicts.checks import (CHECK_ORDER, SEVERITY, limit_shares_text, thresholds_text,
                                         worst_check)
 from fivebar_drake.core.text import figure, verdict_word
 from fivebar_drake.core.files import json_ready, write_atomic
-from fivebar_drake.core.summary_schema import MotorSummary, Summary
-from fivebar_drake.core.verdicts import badness
+from fivebar_drake.verdicts.summary_schema import MotorSummary, Summary
+from fivebar_drake.verdicts.rules import badness
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.simulation.summary_text import check_text
 
@@ -239,7 +239,7 @@ def _achieved(check: dict) -> str:
 
 def _at_limit(check: dict) -> str:
     """', at its braking torque limit (the peak current) X% of the time, ...' for a check that
-    failed at the motor's limits (core/checks.at_limit), each limit with its quadrant: its
+    failed at the motor's limits (verdicts/checks.at_limit), each limit with its quadrant: its
     demand was not met, and is not a need."""
     return "" if "limits" not in check else f", at {limit_shares_text(check['limits'])}"
 

@@ -35,7 +35,7 @@ from typing import ClassVar, NamedTuple, Optional
 
 import numpy as np
 
-from fivebar_drake.core.checks import Checks
+from fivebar_drake.verdicts.checks import Checks
 from fivebar_drake.core.compiled import jit, jit_uncached
 from fivebar_drake.core.validation import (check_lengths, check_number, MAX_GAIT_FREQUENCY_HZ,
                                            MAX_GRAVITY_M_S2, MAX_LENGTH_M, MAX_SAMPLES)
@@ -129,7 +129,7 @@ class FootPath(Variant):
         return self.title
 
     def shortfalls(self, gait: Gait, outcome: Outcome, checks: Checks) -> list[str]:
-        """Why a run did not do this path's motion (none if it did; core/verdicts.achievement
+        """Why a run did not do this path's motion (none if it did; verdicts/rules.achievement
         adds what every run is held to): a gait walks at least checks.achieved_speed_fraction
         of its stance speed (none asked: nothing to miss)."""
         asked = self.stance_speed(gait)

@@ -6,7 +6,7 @@ import math
 from dataclasses import dataclass
 from typing import ClassVar
 
-from fivebar_drake.core.checks import Checks
+from fivebar_drake.verdicts.checks import Checks
 from fivebar_drake.core.validation import check_number, MAX_LENGTH_M
 from fivebar_drake.gaits.base import (Events, EXTENSION_STOP_S, Gait, Outcome, PUSH_SHARES,
                                       REACH_SPEED_M_S, register_path)

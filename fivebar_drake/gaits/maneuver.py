@@ -9,7 +9,7 @@ from typing import ClassVar, NamedTuple
 
 import numpy as np
 
-from fivebar_drake.core.checks import Checks
+from fivebar_drake.verdicts.checks import Checks
 from fivebar_drake.core.compiled import jit
 from fivebar_drake.core.validation import check_number, MAX_LENGTH_M, unit_of, UNIT_SUFFIXES
 from fivebar_drake.gaits.base import FootPath, Gait, MAX_MANEUVER_S, Outcome

@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from fivebar_drake.core.files import json_ready, save_figure, write_atomic
-from fivebar_drake.core.verdicts import beyond_limit
+from fivebar_drake.verdicts.rules import beyond_limit
 from fivebar_drake.gaits import (EXTENSION_STOP_S, PUSH_SHARES, Drop, Jump as JumpPath,
                                          StandUp)
 from fivebar_drake.core.validation import ParameterError, check_number
@@ -449,7 +449,7 @@ def max_jump_plan(params: Params, ceiling: Jump, payload_kg: float = 0.0) -> Jum
 
 def beyond_motor(params: Params, floor_Nm: float) -> bool:
     """Whether a driving floor is beyond the motors for any controller: its floor less the
-    model margin (checks.floor_margin) beyond their peak (core.verdicts.fails_for's rule)."""
+    model margin (checks.floor_margin) beyond their peak (verdicts.rules.fails_for's rule)."""
     return beyond_limit(floor_Nm, params.motor.peak_torque_Nm, params.checks.floor_margin)
 
 

@@ -41,7 +41,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from fivebar_drake.gaits import Jump as JumpPath, Landing
-from fivebar_drake.core.motor import Motor
+from fivebar_drake.actuators.motor import Motor
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.mechanisms.fivebar import (KNEES_OUT, LINK_NAMES, held_force, limit_tests,
                                               link_coms, past_any)

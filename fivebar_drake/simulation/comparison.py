@@ -8,9 +8,9 @@ import json
 from pathlib import Path
 
 from fivebar_drake.core import text as words
-from fivebar_drake.core.checks import Checks, thresholds_text
+from fivebar_drake.verdicts.checks import Checks, thresholds_text
 from fivebar_drake.core.files import read_input_text, save_figure, write_atomic
-from fivebar_drake.core.summary_schema import MotorSummary, Summary
+from fivebar_drake.verdicts.summary_schema import MotorSummary, Summary
 from fivebar_drake.core.validation import ParameterError, require
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.robots.quadruped.config import load_params

@@ -1,4 +1,4 @@
-"""The motor model block: the geared actuator's law (core/motor.py) between a controller's torque
+"""The motor model block: the geared actuator's law (actuators/motor.py) between a controller's torque
 command and the plant's actuation, at every plant step."""
 
 from __future__ import annotations
@@ -8,7 +8,7 @@ from pydrake.systems.framework import Diagram, DiagramBuilder, LeafSystem
 from pydrake.systems.primitives import (Demultiplexer, DiscreteTimeDelay, MatrixGain,
                                         ZeroOrderHold)
 
-from fivebar_drake.core.motor import MEMORY, Motor, motor_step
+from fivebar_drake.actuators.motor import MEMORY, Motor, motor_step
 
 
 class MotorModel(Diagram):
@@ -37,7 +37,7 @@ class MotorModel(Diagram):
     Output ports: "applied_torque" (n) N*m at the joints (delivered - friction, within
     +-Motor.max_applied_torque_Nm, the plant's effort limit); "motor_record" (3 n): the held
     command, the delivered torque and the applied torque (N*m) of the plant step that starts
-    now (core.motor.clip_flags classifies the clipping). A recorder sampling it every period_s
+    now (actuators.motor.clip_flags classifies the clipping). A recorder sampling it every period_s
     sees each motor period's first plant step. The rotor's reflected inertia N^2 J_rotor is in
     the plant (<drake:rotor_inertia>, <drake:gear_ratio>), not here.
 
@@ -73,7 +73,7 @@ class MotorModel(Diagram):
 
 
 class MotorStep(LeafSystem):
-    """The motor law over the plant step that starts now (core.motor.motor_step). Input ports:
+    """The motor law over the plant step that starts now (actuators.motor.motor_step). Input ports:
     "held_command" (n) N*m, "plant_state" (nx), "memory" (MEMORY n + 2: what the step before
     left, then 1 once kept; all zero before the first step). Output port "motor_step" (3 n +
     MEMORY n + 2): the held command, the delivered and the applied torque (N*m), then what the

@@ -19,7 +19,7 @@ from matplotlib.ticker import MaxNLocator
 import numpy as np
 
 from fivebar_drake.core.files import save_figure
-from fivebar_drake.core.summary_schema import Summary
+from fivebar_drake.verdicts.summary_schema import Summary
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.simulation.maneuver_figures import capability_along

@@ -32,11 +32,11 @@ import numpy as np
 import rerun as rr
 import rerun.blueprint as rrb
 
-from fivebar_drake.core.checks import thresholds_text
+from fivebar_drake.verdicts.checks import thresholds_text
 from fivebar_drake.core.text import verdict_word
 from fivebar_drake.core.rerun_files import TIMELINE, pose_frames, recording_file, scalars
 from fivebar_drake.core.rotation import body_rotations
-from fivebar_drake.core.summary_schema import Summary
+from fivebar_drake.verdicts.summary_schema import Summary
 from fivebar_drake.mechanisms.fivebar import MOTORS, forward_points
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.plant import RobotLayout

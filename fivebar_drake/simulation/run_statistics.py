@@ -4,7 +4,7 @@ maneuver: its span after standing), per leg and motor the torques, speeds and th
 torque's parts over it against the static estimates (motor_summary, with the motor's checks:
 checks.motor_checks), the body's motion and the swing feet (motion_statistics), the delivered
 vertical support, and the leg's limits over the whole run (limit_report: which leg reached which
-limit, when first, for how long, how far). No verdict and no prose: core/verdicts.py judges
+limit, when first, for how long, how far). No verdict and no prose: verdicts/rules.py judges
 these figures, simulation/summary_text.py words them."""
 
 from __future__ import annotations
@@ -14,8 +14,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from fivebar_drake.core.checks import at_limit, limit_shares, motor_checks
-from fivebar_drake.core.summary_schema import LimitReport, MotorSummary, VerticalSupport
+from fivebar_drake.verdicts.checks import at_limit, limit_shares, motor_checks
+from fivebar_drake.verdicts.summary_schema import LimitReport, MotorSummary, VerticalSupport
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.simulation.runner import SimulationRecord

@@ -15,7 +15,7 @@ from pydrake.systems.analysis import ApplySimulatorConfig, Simulator
 
 from fivebar_drake.core.files import say
 from fivebar_drake.core.progress import Progress
-from fivebar_drake.core.motor import clip_flags
+from fivebar_drake.actuators.motor import clip_flags
 from fivebar_drake.core.rotation import tilt_deg
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.robots.quadruped.control_law import ControlGains

@@ -1,10 +1,10 @@
 """The summary of a simulated run (summary.json's dictionary, SI units; its schema:
-core/summary_schema.Summary), composed from three concerns kept apart:
+verdicts/summary_schema.Summary), composed from three concerns kept apart:
 
 - what was measured: simulation/run_statistics.py (the statistics window, per leg and motor the
   torques against the static estimates and the checks, the motion, the limits reached) and a
   maneuver's own figures beside their plan (simulation/maneuver_figures.py);
-- what it means: core/verdicts.py (achieved or not, the worst motor's verdict, the step check);
+- what it means: verdicts/rules.py (achieved or not, the worst motor's verdict, the step check);
 - what it says: simulation/summary_text.py (the answer in one sentence, summary.md, the writer of
   summary.md and summary.json);
 
@@ -22,8 +22,8 @@ import numpy as np
 
 from fivebar_drake.gaits import Outcome
 from fivebar_drake.core import plugins
-from fivebar_drake.core.summary_schema import ContactCheck, StepCheck, Summary
-from fivebar_drake.core.verdicts import (achievement, contact_check, contact_checked_verdict,
+from fivebar_drake.verdicts.summary_schema import ContactCheck, StepCheck, Summary
+from fivebar_drake.verdicts.rules import (achievement, contact_check, contact_checked_verdict,
                                          judge, run_verdict, step_check, step_checked_verdict)
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.robots.quadruped.params import Params
@@ -161,11 +161,11 @@ def maneuver_summary(maneuver: dict | None) -> dict:
 
 def in_schema_order(parts: dict) -> Summary:
     """The summary's parts in summary.json's order (Summary's); KeyError naming a key the
-    schema does not have (add it to core/summary_schema.py)."""
+    schema does not have (add it to verdicts/summary_schema.py)."""
     order = {key: i for i, key in enumerate(Summary.__annotations__)}
     unknown = sorted(set(parts) - set(order))
     if unknown:
-        raise KeyError(f"not in core/summary_schema.Summary: {unknown}")
+        raise KeyError(f"not in verdicts/summary_schema.Summary: {unknown}")
     return dict(sorted(parts.items(), key=lambda item: order[item[0]]))
 
 

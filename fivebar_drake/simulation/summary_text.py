@@ -3,8 +3,8 @@ the motion needs, naming the check that decided the verdict), each check in a ph
 (check_text), the limits reached (limits_text), summary.md (markdown: what ran, the motion, the
 maneuver's figures beside their plan, the limits, the per-motor tables) and the writer of
 summary.md and summary.json (write_summary). The figures are the summary's
-(core/summary_schema.Summary): statistics from simulation/run_statistics.py, the verdict from
-core/verdicts.py; nothing here computes one."""
+(verdicts/summary_schema.Summary): statistics from simulation/run_statistics.py, the verdict from
+verdicts/rules.py; nothing here computes one."""
 
 from __future__ import annotations
 
@@ -12,10 +12,10 @@ import json
 import math
 from pathlib import Path
 
-from fivebar_drake.core.checks import CHECK_ORDER, demand_unmet, limit_shares_text, thresholds_text
+from fivebar_drake.verdicts.checks import CHECK_ORDER, demand_unmet, limit_shares_text, thresholds_text
 from fivebar_drake.core.files import json_ready, write_atomic
 from fivebar_drake.core.text import figure, verdict_word
-from fivebar_drake.core.summary_schema import (AnyController, ContactCheck, JumpFigures, LandingFigures, LimitReport,
+from fivebar_drake.verdicts.summary_schema import (AnyController, ContactCheck, JumpFigures, LandingFigures, LimitReport,
                                                MotorSummary, Ran, SpeedCheck, Summary,
                                                ThermalCheck, TorqueCheck)
 from fivebar_drake.robots.quadruped.params import Params
@@ -287,7 +287,7 @@ BLAME = {
 
 def any_controller_text(a: AnyController, sf_warn: float | None = None) -> str:
     """What any controller would need for the maneuver, in a sentence (pipeline.any_controller;
-    whom a failing verdict blames: core.verdicts.fails_for); sf_warn: the warn threshold a need's
+    whom a failing verdict blames: verdicts.rules.fails_for); sf_warn: the warn threshold a need's
     safety factor is set against."""
     parts = []
     for p, v in a["phases"].items():

@@ -352,7 +352,7 @@ def sweep(spec: SweepSpec, out: str | Path, workers: int | None = None,
     """run_sweep, then the plots and sweep.md. Returns (SweepResult, summary dict, the paths
     written: table, plots, report)."""
     from fivebar_drake.sweep.plots import write_sweep_plots
-    from fivebar_drake.core.checks import thresholds_text
+    from fivebar_drake.verdicts.checks import thresholds_text
     from fivebar_drake.sweep.report import summarize_sweep, write_sweep_report
 
     result = run_sweep(spec, out, workers, scheduler, progress, client)

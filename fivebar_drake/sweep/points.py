@@ -4,12 +4,12 @@
 Columns: `point` (its index in the spec's order), one per varied parameter (its dotted path),
 `status` (ok; failed: no result, `error` says why; stopped: the simulation ended early, `error`
 says why, the figures are of what it recorded), `worst_motor`, `worst_verdict` (the worst of the
-torque, speed and thermal checks, core/checks.motor_checks; simulation: also not_achieved,
+torque, speed and thermal checks, verdicts/checks.motor_checks; simulation: also not_achieved,
 marginal, insufficient), `worst_deciding_check`, `worst_safety_factor`, `worst_demand_Nm`
 (analysis: the peak torque of the worst motor under the spec's load model; simulation: its
 demand p99), `speed_m_s` (analysis: the stride speed 2 a f; simulation: the mean forward
 speed), `worst_thermal_margin_K` (the least margin of a winding's steady temperature below its
-limit at the RMS current, core.thermal.thermal_margin; negative: it overheats), for analysis
+limit at the RMS current, actuators.thermal.thermal_margin; negative: it overheats), for analysis
 points `worst_torque_speed_margin` (the least ratio of the envelope's torque to the demand over
 both motors) and `speed_ok` (the seed's check: no motor beyond its no-load speed), then per
 motor (analysis: A, B; simulation: FL_A ... RR_B) its figures (speed_margin,
@@ -22,10 +22,10 @@ from __future__ import annotations
 import dataclasses
 
 from fivebar_drake.analysis.design_points import evaluate_designs
-from fivebar_drake.core.thermal import thermal_margin
+from fivebar_drake.actuators.thermal import thermal_margin
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.mechanisms.fivebar import MOTORS
-from fivebar_drake.core.checks import SEVERITY
+from fivebar_drake.verdicts.checks import SEVERITY
 from fivebar_drake.pipeline import run_simulation, run_step_check, summarize_run
 from fivebar_drake.robots.quadruped.config import with_changes
 from fivebar_drake.robots.quadruped.legs import LEGS

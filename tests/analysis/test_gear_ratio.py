@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from fivebar_drake.analysis.gear_ratio import gear_trade, safety_factors
-from fivebar_drake.core.motor import LineMotor
+from fivebar_drake.actuators.motor import LineMotor
 
 
 @pytest.fixture()

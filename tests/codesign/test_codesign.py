@@ -18,7 +18,7 @@ from fivebar_drake.codesign import search as search_module
 from fivebar_drake.codesign.designs import design_params
 from fivebar_drake.codesign.run import corrections, next_finalist
 from fivebar_drake.codesign.spec import load_codesign_spec
-from fivebar_drake.core.actuators import actuator_mass_kg, catalog
+from fivebar_drake.actuators.catalog import actuator_mass_kg, catalog
 from fivebar_drake.robots.quadruped.config import load_params
 from style_rules import report_violations
 

@@ -12,7 +12,7 @@ from fivebar_drake.codesign.designs import design_of, design_params
 from fivebar_drake.codesign.predict import predict
 from fivebar_drake.codesign.report import markdown, max_jumps
 from fivebar_drake.codesign.spec import MASS, load_codesign_spec
-from fivebar_drake.core.actuators import catalog, gearboxes
+from fivebar_drake.actuators.catalog import catalog, gearboxes
 from fivebar_drake.core.parameter_files import packaged
 
 MOTOR = "tmotor_mn5212_kv340"

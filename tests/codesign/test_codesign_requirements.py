@@ -15,7 +15,7 @@ from fivebar_drake.codesign.designs import design_of
 from fivebar_drake.codesign.predict import predict
 from fivebar_drake.codesign.run import power_figures, simulated
 from fivebar_drake.codesign.spec import load_codesign_spec
-from fivebar_drake.core.actuators import bldc_motor
+from fivebar_drake.actuators.catalog import bldc_motor
 from fivebar_drake.envelope.maneuver import ManeuverResult, run_maneuver
 from fivebar_drake.optimal.gait_floor import whole_body
 

@@ -1,4 +1,4 @@
-"""The actuator catalogue (core/actuators.py; data/actuators.yaml, data/gearboxes.yaml): every
+"""The actuator catalogue (actuators/catalog.py; data/actuators.yaml, data/gearboxes.yaml): every
 entry loads with a source beside every figure, the default robot's entry is the seed's motor
 through the package's own BldcMotor, a torque constant converted from a KV keeps ODrive's relation
 and the KV's meaning (no-load speed = KV x V), published output figures of real actuators are
@@ -11,7 +11,7 @@ import math
 import pytest
 import yaml
 
-from fivebar_drake.core.actuators import (BUILT_IN, actuator_mass_kg, bldc_motor, catalog,
+from fivebar_drake.actuators.catalog import (BUILT_IN, actuator_mass_kg, bldc_motor, catalog,
                                           gearboxes, load_catalog, load_gearboxes)
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.robots.quadruped.config import load_params

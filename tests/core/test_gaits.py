@@ -216,7 +216,7 @@ def test_doggo_path_through_the_seams(tmp_path):
 def test_a_jump_is_achieved_only_near_the_height_asked():
     """Issue 33's first class: a jump that left the ground but rose 1.8 mm of the 60 mm asked
     is not the jump asked for (its shortfall names both heights); 55 mm of 60 (92 %) is."""
-    from fivebar_drake.core.checks import Checks
+    from fivebar_drake.verdicts.checks import Checks
     from fivebar_drake.gaits import Jump, Outcome
     from fivebar_drake.robots.quadruped.config import load_params
 

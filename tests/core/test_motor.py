@@ -1,4 +1,4 @@
-"""The actuator (core/motor.py): the envelope against hand-computed points of the voltage and
+"""The actuator (actuators/motor.py): the envelope against hand-computed points of the voltage and
 current limits (both quadrants, beyond the no-load speed too), the Drake MotorModel against them
 and against the voltage equation on a joint that moves, the gear ratio's one meaning, the seed's
 figures from the default motor-side data, the torque-current table and the plain line."""
@@ -14,7 +14,7 @@ from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import ConstantVectorSource, VectorLogSink
 
-from fivebar_drake.core.motor import (BldcMotor, LineMotor, build_motor, clip_flags,
+from fivebar_drake.actuators.motor import (BldcMotor, LineMotor, build_motor, clip_flags,
                                       with_gear)
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.simulation.motor_model import MotorModel

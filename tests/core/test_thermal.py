@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from fivebar_drake.core.thermal import thermal_margin, winding_temperature
+from fivebar_drake.actuators.thermal import thermal_margin, winding_temperature
 
 
 @pytest.fixture()

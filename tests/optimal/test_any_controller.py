@@ -6,7 +6,7 @@ import dataclasses
 import pytest
 
 from fivebar_drake.gaits import Jump as JumpPath
-from fivebar_drake.core.verdicts import fails_for
+from fivebar_drake.verdicts.rules import fails_for
 from fivebar_drake.optimal.vertical_jump import jump_need
 from fivebar_drake.pipeline import run_simulation, summarize_run
 from fivebar_drake.simulation.scenario import load_scenario

@@ -1,11 +1,11 @@
-"""The contact check (pipeline.run_contact_check, core.verdicts.contact_check): the run again
+"""The contact check (pipeline.run_contact_check, verdicts.rules.contact_check): the run again
 with the foot contact softer and stiffer, the band of the worst safety factor and of every
 event figure, a verdict the contact decides marginal."""
 
 import pytest
 
-from fivebar_drake.core.checks import Checks
-from fivebar_drake.core.verdicts import contact_check, contact_checked_verdict
+from fivebar_drake.verdicts.checks import Checks
+from fivebar_drake.verdicts.rules import contact_check, contact_checked_verdict
 from fivebar_drake.pipeline import (CONTACT_FACTORS, run_contact_check, run_simulation,
                                     summarize_run)
 from fivebar_drake.simulation.scenario import load_scenario

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from fivebar_drake.cli import main
-from fivebar_drake.core.checks import CHECK_ORDER
+from fivebar_drake.verdicts.checks import CHECK_ORDER
 from fivebar_drake.gaits import PATHS, evaluate
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.mechanisms.fivebar import forward, static_torques

@@ -1,4 +1,4 @@
-"""summary.json's schema (core/summary_schema.py) holds what a run writes: a short trot and a jump,
+"""summary.json's schema (verdicts/summary_schema.py) holds what a run writes: a short trot and a jump,
 each with its step check, through the pipeline's writer; their summaries, and summary.json read
 back, have exactly the keys the typed dictionaries declare, at every depth (NotRequired keys may
 be absent), with values of the declared types (a non-finite float is null in the file). The
@@ -12,7 +12,7 @@ from typing import Union, get_args, get_origin, get_type_hints, is_typeddict
 
 import pytest
 
-from fivebar_drake.core.summary_schema import Summary
+from fivebar_drake.verdicts.summary_schema import Summary
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.pipeline import run_step_check, write_simulation
 

@@ -10,13 +10,13 @@ import pytest
 
 from fivebar_drake.robots.quadruped.config import with_changes
 from fivebar_drake.cli import main
-from fivebar_drake.core.checks import (Checks, at_limit, demand_unmet, limit_shares,
+from fivebar_drake.verdicts.checks import (Checks, at_limit, demand_unmet, limit_shares,
                                        limit_shares_text, motor_checks, speed_check, thermal_check,
                                        torque_check, worst_check)
 from fivebar_drake.pipeline import run_simulation, run_step_check, summarize_run
 from fivebar_drake.simulation.scenario import load_scenario
 from fivebar_drake.simulation.signals import signals
-from fivebar_drake.core.verdicts import extrapolated
+from fivebar_drake.verdicts.rules import extrapolated
 from fivebar_drake.simulation.run_statistics import cycle_window
 from fivebar_drake.simulation.summary import apply_step_check
 

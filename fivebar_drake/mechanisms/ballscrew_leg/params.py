@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from fivebar_drake.core.parameter_files import build_section, load_parameter_file, packaged
-from fivebar_drake.core.motor import LineMotor, build_motor
+from fivebar_drake.actuators.motor import LineMotor, build_motor
 from fivebar_drake.core.validation import (MIN_PLANT_STEP_S, MAX_GEAR_RATIO, MAX_GRAVITY_M_S2, MAX_LENGTH_M,
                                            MAX_MASS_KG, MAX_SAMPLES, check_lengths, check_number, require)
 from fivebar_drake.mechanisms.ballscrew_leg.leg import BallScrewLeg

@@ -9,9 +9,9 @@ import dataclasses
 from pathlib import Path
 import numpy as np
 
-from fivebar_drake.core.checks import Checks
+from fivebar_drake.verdicts.checks import Checks
 from fivebar_drake.gaits import FootPath, Gait, evaluate, foot_path
-from fivebar_drake.core.motor import build_motor
+from fivebar_drake.actuators.motor import build_motor
 from fivebar_drake.core.parameter_files import build_section, load_parameter_file, packaged
 from fivebar_drake.core.validation import MAX_SAMPLES, ParameterError, require
 from fivebar_drake.mechanisms.fivebar import (KNEES_OUT, LegGeometry, LegLimits, LinkInertia,
@@ -132,7 +132,7 @@ def with_changes(params: Params, changes: dict) -> Params:
     """The parameters with fields changed by dotted path (section.field, or links.NAME.field),
     validated as a parameter file is (ParameterError naming the field). The motor is given by
     its motor-side data, so changing motor.gear_ratio keeps the motor and changes the gearbox
-    (core/motor.py): the same physics as a parameter file with that ratio."""
+    (actuators/motor.py): the same physics as a parameter file with that ratio."""
     sections = {}
     for path, value in changes.items():
         parts = path.split(".")

@@ -5,9 +5,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from fivebar_drake.core.checks import Checks
+from fivebar_drake.verdicts.checks import Checks
 from fivebar_drake.gaits import Gait
-from fivebar_drake.core.motor import THERMAL_FIELDS, BldcMotor
+from fivebar_drake.actuators.motor import THERMAL_FIELDS, BldcMotor
 from fivebar_drake.core.validation import (MAX_CONTACT_STIFFNESS_N_M, MAX_FRICTION_COEFFICIENT,
                                            MAX_GRAVITY_M_S2, MAX_LENGTH_M, MAX_MASS_KG,
                                            MAX_RELAXATION_TIME_S, check_lengths, check_number,

@@ -31,7 +31,7 @@ def leg_sdf(params: Params, leg: str, parent: str, hip_xyz, closure,
                       element("drake:relaxation_time", fmt(b.foot_relaxation_time_s)))
     foot = (element("collision", "{pose}", pad, contact, name="foot")
             + visual("foot", sphere(b.foot_radius_m), "0.1 0.1 0.1 1", "{pose}"))
-    # The plant clamps actuation at the effort limit; the motor model (core.motor.MotorModel)
+    # The plant clamps actuation at the effort limit; the motor model (actuators.motor.MotorModel)
     # is the authority on saturation, and its output includes friction, which can add to it.
     drive = (element("drake:rotor_inertia", fmt(m.rotor_inertia_kg_m2))
              + element("drake:gear_ratio", fmt(m.gear_ratio)))

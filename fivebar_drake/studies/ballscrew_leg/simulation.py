@@ -24,7 +24,7 @@ from pydrake.trajectories import PiecewisePolynomial
 
 from fivebar_drake.core.interrupts import advance
 from fivebar_drake.studies.base import duration_limits as base_limits
-from fivebar_drake.core.motor import clip_flags
+from fivebar_drake.actuators.motor import clip_flags
 from fivebar_drake.simulation.motor_model import MotorModel
 from fivebar_drake.mechanisms.ballscrew_leg import TREE_JOINTS, Params, ball_screw_leg
 from fivebar_drake.studies.ballscrew_leg.model import LegModel, build_model

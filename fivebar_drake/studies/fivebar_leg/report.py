@@ -7,7 +7,7 @@ import shlex
 import sys
 from pathlib import Path
 
-from fivebar_drake.core.summary_schema import Summary
+from fivebar_drake.verdicts.summary_schema import Summary
 from fivebar_drake.pipeline import AnalysisRecord
 from fivebar_drake.robots.quadruped.config import sampling_error
 from fivebar_drake.robots.quadruped.params import Params

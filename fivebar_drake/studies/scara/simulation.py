@@ -19,7 +19,7 @@ from pydrake.trajectories import PiecewisePolynomial
 from fivebar_drake.core.files import say
 from fivebar_drake.core.interrupts import advance
 from fivebar_drake.studies.base import duration_limits as base_limits
-from fivebar_drake.core.motor import LineMotor, clip_flags
+from fivebar_drake.actuators.motor import LineMotor, clip_flags
 from fivebar_drake.simulation.motor_model import MotorModel
 from fivebar_drake.mechanisms.scara import Dynamics, Scara, ScaraParams, seed_inertia
 from fivebar_drake.mechanisms.scara.params import MAX_DURATION_S

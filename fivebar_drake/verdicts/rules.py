@@ -9,9 +9,9 @@ from __future__ import annotations
 
 import math
 
-from fivebar_drake.core.checks import (CHECK_ORDER, SEVERITY, Checks, limit_shares_text,
+from fivebar_drake.verdicts.checks import (CHECK_ORDER, SEVERITY, Checks, limit_shares_text,
                                        verdict)
-from fivebar_drake.core.summary_schema import (AchievedCheck, ContactCheck, MotorSummary,
+from fivebar_drake.verdicts.summary_schema import (AchievedCheck, ContactCheck, MotorSummary,
                                                StepCheck, StepCheckMotor, Summary)
 
 STEP_ORDER = 1   # the discrete plant's time stepping is first order in the step: a figure's

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fivebar_drake.core.motor import Motor
+from fivebar_drake.actuators.motor import Motor
 from fivebar_drake.core.validation import MAX_LENGTH_M, MAX_SAFETY_FACTOR, check_number, require
 
 SEVERITY = {"pass": 0, "warn": 1, "fail": 2}

@@ -1,6 +1,6 @@
 """The catalogue of real actuators (data/actuators.yaml) and the gearbox model by type
 (data/gearboxes.yaml), read as untrusted data (core/yaml_files.py) and turned into the package's
-BldcMotor (core/motor.py).
+BldcMotor (actuators/motor.py).
 
 A catalogue motor (CatalogMotor) holds motor-side figures in BldcMotor's conventions: k_t per A
 of q-axis current (amplitude-invariant), the phase resistance, the rated bus voltage, the peak
@@ -28,7 +28,7 @@ from types import MappingProxyType
 from typing import Mapping
 
 from fivebar_drake.core.files import read_input_text
-from fivebar_drake.core.motor import (DQ_POWER, MAX_BUS_VOLTAGE_V, MAX_CURRENT_A,
+from fivebar_drake.actuators.motor import (DQ_POWER, MAX_BUS_VOLTAGE_V, MAX_CURRENT_A,
                                       MAX_RESISTANCE_OHM, MAX_THERMAL_TIME_CONSTANT_S,
                                       MAX_TORQUE_CONSTANT_NM_A, MAX_WINDING_LIMIT_C,
                                       MIN_RESISTANCE_OHM, PHASE_VOLTAGE_OF_BUS, BldcMotor)

@@ -340,7 +340,7 @@ class Timing(TypedDict):
 
 
 class PhaseFloor(TypedDict):
-    """One phase's need for any controller (core.verdicts.fails_for): status (verdicts.NEEDS:
+    """One phase's need for any controller (verdicts.rules.fails_for): status (verdicts.NEEDS:
     "floor", "undecided" between the model's optimum and its bound, "beyond bound",
     "unknown": no floor for this task), the floor (the least peak motor torque any controller
     needs for it, N*m; None without one), the motors' limit in the quadrant the phase acts
@@ -452,7 +452,7 @@ def schema_markdown() -> str:
     classes.sort(key=lambda c: (c is not Summary, inspect.getsourcelines(c)[1]))
     out = ["# summary.json", "",
            "Every simulation writes `summary.json` with these keys (SI units). Generated from "
-           "`fivebar_drake/core/summary_schema.py` by `tools/gen_docs.py`; a test keeps it "
+           "`fivebar_drake/verdicts/summary_schema.py` by `tools/gen_docs.py`; a test keeps it "
            "current.", ""]
     for cls in classes:
         doc = " ".join(inspect.getdoc(cls).split()) if cls.__doc__ else ""

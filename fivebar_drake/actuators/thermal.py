@@ -1,5 +1,5 @@
 """First-order winding temperature of a motor held at an RMS current (Minitaur's "thermal cost
-of force"): the copper loss P = 1.5 R i_rms^2 (core/motor.py) heats the winding towards
+of force"): the copper loss P = 1.5 R i_rms^2 (actuators/motor.py) heats the winding towards
 T_ambient + P R_th with the time constant tau_th,
 T(t) = T_ambient + P R_th (1 - exp(-t / tau_th)),
 which reaches the limit T_limit at t = -tau_th ln(1 - (T_limit - T_ambient) / (P R_th)) if
@@ -13,7 +13,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 import numpy as np
 
-from fivebar_drake.core.motor import BldcMotor
+from fivebar_drake.actuators.motor import BldcMotor
 
 
 @dataclass(frozen=True)
