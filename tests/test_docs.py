@@ -73,6 +73,20 @@ def test_the_site_builds_with_warnings_as_errors(tmp_path):
     assert (tmp_path / "site" / "reference" / "summary" / "index.html").exists()
 
 
+def test_every_command_of_the_readme_runs_in_make_demo():
+    """The README's tour is what `make demo` runs (CI runs it on every submission): each of its
+    commands is a line of the Makefile's demo recipe ($(BIN) = .venv/bin, $(OUT) = out,
+    $(DEMO_S) = 4.5)."""
+    makefile = (ROOT / "Makefile").read_text()
+    recipe = makefile.split("\ndemo:", 1)[1].split("\n\n", 1)[0].replace("\\\n", " ")
+    recipe = re.sub(r"\s+", " ", recipe.replace("$(BIN)", ".venv/bin").replace("$(OUT)", "out")
+                    .replace("$(DEMO_S)", "4.5"))
+    commands = re.findall(r"^\.venv/bin/fivebar-drake .+$", README, re.M)
+    assert len(commands) >= 4
+    for command in commands:
+        assert re.sub(r"\s+", " ", command.split("  #")[0].strip()) in recipe, command
+
+
 def test_every_command_in_the_manual_parses():
     """Every command line the README and the site give in a code block (not a usage synopsis
     with [OPTIONS], not an output block) is a valid command: the command line's own parser takes
