@@ -87,6 +87,40 @@ def test_every_command_of_the_readme_runs_in_make_demo():
         assert re.sub(r"\s+", " ", command.split("  #")[0].strip()) in recipe, command
 
 
+def site_commands() -> list[tuple[str, str]]:
+    """(page, command line) of every runnable command in the site's code blocks (not a usage
+    synopsis with [OPTIONS] or ..., not a continued line)."""
+    out = []
+    for page in sorted(DOCS.rglob("*.md")):
+        for lang, block in re.findall(r"^```(\w*)\n(.*?)^```", page.read_text(), re.S | re.M):
+            if lang not in ("", "console", "bash", "sh"):
+                continue
+            for line in block.splitlines():
+                line = line.split("  #")[0].strip()
+                if (re.match(r"^(?:\.venv/bin/)?fivebar-drake .+$", line) and "[" not in line
+                        and "..." not in line and not line.endswith("\\")):
+                    out.append((page.name, line))
+    return out
+
+
+@pytest.mark.parametrize("page, command", site_commands())
+def test_every_command_of_the_site_runs(page, command, tmp_path, monkeypatch):
+    """Each runnable command the site gives runs as written (from the repository's root, its
+    output folder moved to a temporary one) and exits 0."""
+    import shlex
+
+    from fivebar_drake.cli import main
+
+    monkeypatch.chdir(ROOT)
+    args = shlex.split(command.split("fivebar-drake", 1)[1])
+    if args[0] != "--version":
+        args += ["--out", str(tmp_path / "out")]
+    try:
+        assert main(args) == 0, f"{page}: {command}"
+    except SystemExit as err:                          # --version exits 0
+        assert err.code in (0, None), f"{page}: {command}"
+
+
 def test_every_command_in_the_manual_parses():
     """Every command line the README and the site give in a code block (not a usage synopsis
     with [OPTIONS], not an output block) is a valid command: the command line's own parser takes
