@@ -201,11 +201,12 @@ def _objectives(value, envelope: EnvelopeSpec) -> list[str]:
             require(maneuver in SPEED_GAITS, f"objectives[{i}]", o,
                     f"{name} is on a gait: {name}:GAIT, GAIT one of {list(SPEED_GAITS)}")
             continue
+        which = (f"one of the envelope's gait maneuvers {gaits}" if gaits else
+                 "and the envelope has no gait maneuver (trot, walk, bound, pronk)")
         require(not maneuver or name in ON_MANEUVER and maneuver in gaits, f"objectives[{i}]",
-                o, f"only {', '.join(ON_MANEUVER)} take a maneuver, one of the envelope's gaits "
-                f"{gaits}")
+                o, f"only {', '.join(ON_MANEUVER)} take a maneuver, {which}")
         require(name != "cost_of_transport" or maneuver, f"objectives[{i}]", o,
-                f"cost_of_transport is on a maneuver: cost_of_transport:NAME, NAME one of {gaits}")
+                f"cost_of_transport is on a maneuver: cost_of_transport:NAME, {which}")
         require(name != "peak_electrical_power_W" or maneuver or gaits, f"objectives[{i}]", o,
                 "the envelope has no gait (trot, walk, bound, pronk) to predict it on")
     return [str(o) for o in value]

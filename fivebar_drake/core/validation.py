@@ -74,6 +74,12 @@ def _echo(text: str, most: int) -> str:
     return text if len(text) <= most else f"{text[:most]}... ({len(text)} characters)"
 
 
+def _bound(value: float, integer: bool) -> str:
+    """A bound as an error message gives it: an integer field's whole (2147483647, not
+    2.14748e+09), else 6 significant digits."""
+    return str(int(value)) if integer and float(value).is_integer() else f"{value:g}"
+
+
 def check_number(field: str, value, low=-math.inf, high=math.inf, *, low_open=False,
                  high_open=False, integer=False, why: str = ""):
     """value as a float (an int if integer) if it is a finite number within low .. high (the
@@ -91,14 +97,14 @@ def check_number(field: str, value, low=-math.inf, high=math.inf, *, low_open=Fa
     if not inside:
         kind = "an integer " if integer else "" if finite else "a finite number "
         if low == high:
-            kind, allowed = "", f"{low:g}"
+            kind, allowed = "", _bound(low, integer)
         elif math.isfinite(low) and math.isfinite(high):
-            allowed = (f"in {'(' if low_open else '['}{low:g}, {high:g}"
-                       f"{')' if high_open else ']'}")
+            allowed = (f"in {'(' if low_open else '['}{_bound(low, integer)}, "
+                       f"{_bound(high, integer)}{')' if high_open else ']'}")
         elif math.isfinite(low):
-            allowed = f"{'>' if low_open else '>='} {low:g}"
+            allowed = f"{'>' if low_open else '>='} {_bound(low, integer)}"
         elif math.isfinite(high):
-            allowed = f"{'<' if high_open else '<='} {high:g}"
+            allowed = f"{'<' if high_open else '<='} {_bound(high, integer)}"
         else:
             kind, allowed = "a finite number", ""
         require(False, field, value, f"must be {kind}{allowed}".rstrip()

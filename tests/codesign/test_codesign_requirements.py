@@ -61,7 +61,7 @@ def test_the_spec_holds_the_step_check_the_limits_the_compared_designs_and_objec
     (("objectives: [actuator_mass_kg, \"cost_of_transport:bound\"]",
       "objectives: [cost_of_transport]"), ["objectives[0]", "cost_of_transport:NAME"]),
     (("\"cost_of_transport:bound\"", "\"peak_electrical_power_W:drop\""),
-     ["objectives[1]", "gaits"]),
+     ["objectives[1]", "gait maneuvers ['trot', 'bound']"]),
     (("\"cost_of_transport:bound\"", "\"actuator_mass_kg:bound\""), ["objectives[1]"]),
     (("\"cost_of_transport:bound\"", "\"top_speed_m_s\""), ["objectives[1]", "top_speed_m_s:GAIT"]),
     (("\"cost_of_transport:bound\"", "\"top_speed_m_s:gallop\""), ["objectives[1]", "pronk"]),
@@ -69,6 +69,10 @@ def test_the_spec_holds_the_step_check_the_limits_the_compared_designs_and_objec
      ["requirements.top_speed_m_s", "least top speed"]),
     (("never_at_limit: true", "never_at_limit: true\n  top_speed_m_s: {bound: -1}"),
      ["requirements.top_speed_m_s.bound"]),
+    (("budget: {trials: 4, finalists: 1}", "budget: {trials: 4, finalists: 1, seed: 5000000000}"),
+     ["budget.seed", "[0, 2147483647]"]),               # an integer's bound written whole
+    (("      - {name: trot, gait: trot, duration_s: 2.0}\n      - {name: bound, gait: bound, "
+      "duration_s: 2.0}\n", ""), ["objectives[1]", "has no gait maneuver"]),
     (("step_check: true", "step_check: yes please"), ["requirements.step_check"]),
     (("motor: odrive_d5065_270kv, motor", "motor: odrive, motor"), ["compare[0].motor"]),
     (("motor.gear_ratio: 8.0}", "motor.gear_ratio: 80.0}"), ["compare[0]"]),
@@ -82,6 +86,7 @@ def test_bad_requirements_objectives_and_compared_designs_are_refused(tmp_path, 
     assert main(["codesign", str(spec), "--out", str(tmp_path / "out")]) == 2
     err = capsys.readouterr().err
     assert all(w in err for w in words), err
+    assert "[]" not in err and "e+0" not in err, err         # no empty list, no 2.1e+09
     assert not (tmp_path / "out").exists()
 
 
