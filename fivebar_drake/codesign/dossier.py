@@ -18,11 +18,12 @@ import math
 from pathlib import Path
 
 from fivebar_drake.codesign.designs import design_params
+from fivebar_drake.codesign.predict import ceiling
 from fivebar_drake.codesign.spec import CodesignSpec
 from fivebar_drake.core.files import write_atomic
+from fivebar_drake.core.text import figure as _f
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.optimal.top_speed import GAITS, top_speed
-from fivebar_drake.optimal.vertical_jump import push, reach, stroke
 from fivebar_drake.robots.quadruped.closure import ExplicitBushing
 from fivebar_drake.robots.quadruped.mjcf import MJCF_FILE, quadruped_mjcf
 from fivebar_drake.robots.quadruped.params import Params
@@ -65,8 +66,7 @@ def capabilities(params: Params) -> dict:
     """What the design's legs allow for any controller: the highest jump (m above standing,
     vertical_jump's ceiling; None where none) and each SHEET_GAITS gait's top speed (m/s, nan
     where none) with what limits it."""
-    low, high = reach(params)
-    jump = push(stroke(params, low, high), -params.gait.y_home_m)
+    jump = ceiling(params)
     speeds = {kind: top_speed(params, kind) for kind in SHEET_GAITS}
     return {"jump_m": None if jump is None else jump.body_apex_above_standing_m,
             "top_speed": {k: {"speed_m_s": t.speed_m_s, "limited_by": t.limited_by,
@@ -122,11 +122,6 @@ def sheet(report: dict, params: Params, needs: dict, allows: dict) -> str:
                   "(the parameter file: `fivebar-drake optimal --config ../design.toml`, "
                   "`simulate --config ../design.toml`)."]
     return "\n".join(lines) + "\n"
-
-
-def _f(x, pattern: str = "{:.2f}") -> str:
-    return "—" if x is None or (isinstance(x, float) and not math.isfinite(x)) else \
-        pattern.format(x)
 
 
 def write_dossier(spec: CodesignSpec, report: dict, out: Path, finalists: Path) -> list[Path]:
