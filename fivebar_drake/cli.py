@@ -342,12 +342,12 @@ def _track_top_speed(params, kind: str, payload_kg: float, out, signals) -> tupl
 
     found = top_speed(params, kind, payload_kg)                   # cached by jump_limits
     folder = prepare_output_dir(out / f"top_speed_{kind}", "--out", SIMULATION_FILES)
+    stop = (lambda: signals.name)
     try:
-        scenario, design = top_speed_scenario(params, found, payload_kg)
+        record = run_simulation(top_speed_scenario(kind, payload_kg), params, progress=True,
+                                stop=stop)
     except ParameterError as err:
         return {"folder": folder.name, "why_none": err.message}, []
-    stop = (lambda: signals.name)
-    record = run_simulation(scenario, design, progress=True, stop=stop)
     half = run_step_check(record, progress=True, stop=stop)
     summary, files = write_simulation(record, folder, half=half)
     asked = max(m["demand_peak_Nm"] for leg in summary["legs"].values() for m in leg.values())

@@ -33,8 +33,7 @@ from fivebar_drake.optimal import vertical_jump
 from fivebar_drake.optimal.needs import needs_of
 from fivebar_drake.optimal.vertical_jump import Need
 from fivebar_drake.optimal.report import max_jump_plan
-from fivebar_drake.robots.quadruped.config import (load_params, sampling_error, with_changes,
-                                                   with_path_defaults)
+from fivebar_drake.robots.quadruped.config import load_params, sampling_error, with_changes
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.simulation.plots import CAPABILITY_FILE, SIM_PLOT_FILES, write_sim_plots
 from fivebar_drake.simulation.recording import RECORDING_FILE, write_recording
@@ -122,27 +121,16 @@ def max_jump_scenario(params: Params, ceiling: vertical_jump.Jump,
 
 
 TOP_SPEED_RUN_S = 3.0     # a top speed's tracked run: this long after the stand and the ramp
-LOG_INTERVALS = 100       # the recording's least intervals per gait cycle (Scenario's rule)
 
 
-def top_speed_scenario(params: Params, found, payload_kg: float = 0.0
-                       ) -> tuple[Scenario, Params]:
-    """The scenario of a gait's top speed tracked (`optimal --simulate`) and the design it runs
-    on: the optimum's path (its duty factor and swing shape) at its stride and frequency with
-    the tracking controller, TOP_SPEED_RUN_S of gait after the stand and the ramp; the load
-    transfer at most a quarter of the stance and the recording's interval at most a hundredth
-    of the period (1 ms at the least: ParameterError beyond 10 Hz)."""
-    period = 1.0 / found.frequency_hz
+def top_speed_scenario(kind: str, payload_kg: float = 0.0) -> Scenario:
+    """The scenario of a gait's top speed tracked (`optimal --simulate`): the gait at its top
+    speed (gait: {kind: KIND, speed_m_s: max}, runner.at_top_speed) with the tracking
+    controller, TOP_SPEED_RUN_S of gait after the stand and the ramp."""
     default = Scenario()
-    gait = {"a_m": found.stride_m / 2.0, "frequency_hz": found.frequency_hz}
-    scenario = load_scenario(
-        gait=found.path, **{f"gait_{k}": v for k, v in gait.items()}, payload_kg=payload_kg,
-        controller={"kind": "tracking"},
-        load_transfer_s=min(default.load_transfer_s, 0.25 * found.duty_factor * period),
-        log_period_s=max(0.001, min(default.log_period_s,
-                                    math.floor(period / LOG_INTERVALS * 1e3) / 1e3)),
-        duration_s=round(default.stand_s + default.ramp_s + TOP_SPEED_RUN_S, 3))
-    return scenario, with_path_defaults(params, found.path, **gait)
+    return load_scenario(gait={"kind": kind, "speed_m_s": "max"}, payload_kg=payload_kg,
+                         controller={"kind": "tracking"},
+                         duration_s=round(default.stand_s + default.ramp_s + TOP_SPEED_RUN_S, 3))
 
 
 def run_step_check(record: SimulationRecord, progress: bool = True,

@@ -18,7 +18,9 @@ from fivebar_drake.core.progress import Progress
 from fivebar_drake.actuators.motor import clip_flags
 from fivebar_drake.core.rotation import tilt_deg
 from fivebar_drake.core.validation import ParameterError
+from fivebar_drake.optimal.top_speed import top_speed
 from fivebar_drake.robots.quadruped.control_law import ControlGains
+from fivebar_drake.robots.quadruped.config import with_path_defaults
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.plant import ClosureDesign, RobotLayout, set_standing_pose
 from fivebar_drake.simulation.builder import Setup, build_diagram, check_run
@@ -32,7 +34,7 @@ def load_run(path: "str | Path | None" = None, **overrides) -> tuple[Scenario, P
     scenario = load_scenario(path, **overrides)
     given = {k: v for k, v in overrides.items() if v is not None}
     try:
-        params = scenario.load_params()
+        scenario, params = at_top_speed(scenario, scenario.load_params())
         check_run(scenario, params)
     except ParameterError as err:
         if path and scenario.params_file and "params_file" not in given \
@@ -41,6 +43,34 @@ def load_run(path: "str | Path | None" = None, **overrides) -> tuple[Scenario, P
                                  err.source)
         raise err.located(source_of(err, path, given)) from None
     return scenario, params
+
+LOG_INTERVALS = 100       # a top speed's recording: at least this many intervals per cycle
+
+
+def at_top_speed(scenario: Scenario, params: Params) -> tuple[Scenario, Params]:
+    """A scenario whose gait runs at its top speed (Scenario.top_speed) as the optimum's path
+    (optimal/top_speed.py on params and the scenario's payload: its duty factor and swing
+    shape at its stride and frequency), its load transfer at most a quarter of the stance and
+    its recording's interval at most 1/LOG_INTERVALS of the period (1 ms at the least: beyond
+    10 Hz ParameterError); with the design at that gait. Any other scenario as it is.
+    ParameterError where no speed of the gait passes, naming why."""
+    if not scenario.top_speed:
+        return scenario, params
+    found = top_speed(params, scenario.gait.kind, scenario.payload_kg)
+    if not math.isfinite(found.speed_m_s):
+        raise ParameterError(f"no {found.kind} at any speed: {found.limited_by}",
+                             "scenario.gait.speed_m_s")
+    period = 1.0 / found.frequency_hz
+    gait = {"a_m": found.stride_m / 2.0, "frequency_hz": found.frequency_hz}
+    resolved = scenario.replaced(
+        gait=found.path, top_speed=False,
+        load_transfer_s=min(scenario.load_transfer_s, 0.25 * found.duty_factor * period),
+        log_period_s=max(0.001, min(scenario.log_period_s,
+                                    math.floor(period / LOG_INTERVALS * 1e3) / 1e3)),
+        **{f"gait_{k}": v for k, v in gait.items()})
+    resolved.validate()
+    return resolved, with_path_defaults(params, found.path, **gait)
+
 
 FALL_TILT_DEG = 45.0   # a body tilted further has fallen: the run stops
 SLICE_S = 0.01         # simulated time between checks for divergence and a stop request
@@ -136,6 +166,7 @@ def simulate(scenario: Scenario, params: Params, progress=True, log_actuation=Fa
     divergence with its likely cause). stop: polled every SLICE_S of simulated time; a non-empty
     answer (the name of a signal) ends the run there (SimulationRecord.interrupted).
     log_actuation: see build_diagram."""
+    scenario, params = at_top_speed(scenario, params)
     design = check_run(scenario, params)
     diagram, setup = build_diagram(scenario, params, design, log_actuation)
     simulator = Simulator(diagram)

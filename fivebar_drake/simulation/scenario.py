@@ -29,6 +29,7 @@ from fivebar_drake.gaits import PATHS, FootPath, Trot
 from fivebar_drake.core.validation import (MAX_LENGTH_M, MAX_MASS_KG, ParameterError,
                                            check_number, require)
 from fivebar_drake.core.yaml_files import load_yaml
+from fivebar_drake.optimal.top_speed import GAITS as SPEED_GAITS
 from fivebar_drake.robots.quadruped.config import load_params, with_path_defaults
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.closure import CLOSURES, Closure, CompliantBushing
@@ -77,7 +78,12 @@ class Scenario:
     duration_s: float = _doc(8.0, "simulated time from t = 0")
     gait: FootPath = _doc(None, f"foot path, one of {', '.join(PATHS)} (gaits/), by "
                                 "kind (its defaults) or as {kind: KIND, FIELD: value, ...} (trot: "
-                                "duty_factor, null = the parameter file's)", factory=Trot)
+                                "duty_factor, null = the parameter file's); {kind: trot, bound "
+                                "or pronk, speed_m_s: max}: the gait at its top speed for any "
+                                "controller (top_speed)", factory=Trot)
+    top_speed: bool = _doc(False, "run the gait at its top speed for any controller "
+                                  "(optimal/top_speed.py: its duty factor, stride, frequency and "
+                                  "swing shape; written gait: {kind: KIND, speed_m_s: max})")
     closure: Closure = _doc(None, f"loop closure, one of {', '.join(CLOSURES)} "
                                   "(robots/quadruped/closure.py)", factory=CompliantBushing)
     time_step_s: float = _doc(0.0, "plant step; 0 = derived (bushing, ball: 1 ms; bushing_rpy: "
@@ -138,6 +144,17 @@ class Scenario:
         """A copy with fields changed (not validated); today's flat controller fields (ALIASES)
         change the controller's (ParameterError if a controller mapping gives one too)."""
         flat = {k: changes.pop(k) for k in list(changes) if k in ALIASES}
+        gait = changes.get("gait")
+        if isinstance(gait, dict) and "speed_m_s" in gait:
+            speed = gait["speed_m_s"]
+            require(speed == "max", "scenario.gait.speed_m_s", speed,
+                    "max (the gait's top speed for any controller) is the one speed a gait takes "
+                    "by name; set a speed by gait_a_m and gait_frequency_hz")
+            others = sorted(set(gait) - {"kind", "speed_m_s"})
+            require(not others, "scenario.gait", gait, f"at its top speed the optimum sets the "
+                    f"path's shape: no {', '.join(others)} beside speed_m_s: max")
+            changes["gait"] = {"kind": gait.get("kind")}
+            changes["top_speed"] = True
         scenario = dataclasses.replace(self, **changes)
         if flat:
             controller = scenario.controller
@@ -180,6 +197,14 @@ class Scenario:
                self.controller.control_period_s, why="the motor model samples every command of "
                                                      "the controller (scenario.control_period_s)")
         number("scenario.load_transfer_s", self.load_transfer_s, 0.0)
+        if self.top_speed:
+            require(self.gait.kind in SPEED_GAITS, "scenario.gait.kind", self.gait.kind,
+                    f"speed_m_s: max is searched for {', '.join(SPEED_GAITS)}")
+            for f in dataclasses.fields(self):
+                if f.name.startswith("gait_"):
+                    require(getattr(self, f.name) is None, f"scenario.{f.name}",
+                            getattr(self, f.name), "at its top speed (gait speed_m_s: max) the "
+                            "optimum sets the gait's stride, frequency and duty factor")
         used = self.gait.gait_fields()
         for f in dataclasses.fields(self):      # an override the path never reads does nothing
             name = f.name[len("gait_"):]

@@ -66,7 +66,8 @@ def answer(s: Summary, params: Params) -> str:
     leg, name = s["worst_motor"].split()
     m = s["legs"][leg][name]
     c = m["checks"]
-    head = (f"At {s['gait_frequency_hz']:g} Hz with the {s['gait']} gait" if s["periodic"] else
+    hz = figure(s["gait_frequency_hz"], "{:.3g}")
+    head = (f"At {hz} Hz with the {s['gait']} gait" if s["periodic"] else
             f"For the {s['gait']} maneuver")
     seed = (f"Separately, {seed_analysis_load(params)}, gives {s['seed_peak_torque_Nm']:.2f} N·m "
             "(its peak)." if s["periodic"] else "")

@@ -133,22 +133,50 @@ def test_the_pronk_flies_the_rest_of_its_period(params):
     assert 2 * lift_off_speed / gait.gravity_m_s2 == pytest.approx(0.6 * gait.period_s)
 
 
-def test_the_tracked_run_is_the_optimums_gait(trot, params):
-    """optimal --simulate's scenario of a top speed: the optimum's path (duty factor, swing
-    shape) at its stride and frequency on the tracking controller, the load transfer within a
-    quarter of the stance and at least a hundred recorded intervals a period; a gait beyond
-    10 Hz cannot be recorded so and is refused (ParameterError), not run."""
+def test_the_tracked_run_is_the_optimums_gait(trot, params, monkeypatch):
+    """A gait at its top speed (gait: {kind, speed_m_s: max}, optimal --simulate's scenario):
+    the optimum's path (duty factor, swing shape) at its stride and frequency on the tracking
+    controller, the load transfer within a quarter of the stance and at least a hundred
+    recorded intervals a period; a gait beyond 10 Hz cannot be recorded so and is refused
+    (ParameterError), not run. (The optimum is the one-cell grid's, handed in.)"""
     from fivebar_drake.core.validation import ParameterError
     from fivebar_drake.pipeline import top_speed_scenario
+    from fivebar_drake.simulation import runner
 
     found, _ = trot
-    scenario, design = top_speed_scenario(params, found)
-    assert scenario.gait == found.path and scenario.controller.kind == "tracking"
+    monkeypatch.setattr(runner, "top_speed", lambda p, kind, payload: found)
+    asked = top_speed_scenario("trot")
+    assert asked.top_speed and asked.controller.kind == "tracking"
+    scenario, design = runner.at_top_speed(asked, params)
+    assert scenario.gait == found.path and not scenario.top_speed
     assert design.gait.a_m == pytest.approx(found.stride_m / 2)
     assert design.gait.frequency_hz == pytest.approx(found.frequency_hz)
     assert found.path.stance_speed(design.gait) == pytest.approx(found.speed_m_s)
     period = 1.0 / found.frequency_hz
     assert scenario.load_transfer_s <= 0.25 * found.duty_factor * period + 1e-12
     assert scenario.log_period_s <= period / 100
+    monkeypatch.setattr(runner, "top_speed",
+                        lambda p, kind, payload: dataclasses.replace(found, frequency_hz=12.0))
     with pytest.raises(ParameterError, match=r"frequency_hz = 12.0: must be in \(0, 10\]"):
-        top_speed_scenario(params, dataclasses.replace(found, frequency_hz=12.0))
+        runner.at_top_speed(asked, params)
+    monkeypatch.setattr(runner, "top_speed", lambda p, kind, payload: dataclasses.replace(
+        found, speed_m_s=math.nan, limited_by="the motors' torque (5 of 5 checks)"))
+    with pytest.raises(ParameterError, match=r"no trot at any speed: the motors' torque"):
+        runner.at_top_speed(asked, params)
+
+
+@pytest.mark.parametrize("gait, extra, why", [
+    ({"kind": "trot", "speed_m_s": 1.0}, {}, r"speed_m_s = 1.0: max \(the gait's top speed"),
+    ({"kind": "walk", "speed_m_s": "max"}, {}, r"gait.kind = 'walk': speed_m_s: max is searched "
+                                                r"for trot, bound, pronk"),
+    ({"kind": "bound", "speed_m_s": "max", "swing_reach_m": 0.01}, {},
+     r"no swing_reach_m beside speed_m_s: max"),
+    ({"kind": "bound", "speed_m_s": "max"}, {"gait_frequency_hz": 2.0},
+     r"gait_frequency_hz = 2.0: at its top speed"),
+])
+def test_a_top_speed_request_the_search_cannot_honour_is_refused(gait, extra, why):
+    from fivebar_drake.core.validation import ParameterError
+    from fivebar_drake.simulation.scenario import load_scenario
+
+    with pytest.raises(ParameterError, match=why):
+        load_scenario(gait=gait, **extra)
