@@ -41,6 +41,7 @@ demo: $(STAMP)
 			--out $(OUT)/robots/$$r || exit 1; \
 		$(BIN)/fivebar-drake optimal --config fivebar_drake/data/$$r.toml \
 			--out $(OUT)/robots/$$r/optimal || exit 1; done
+	$(BIN)/fivebar-drake index $(OUT)
 
 test: $(STAMP)
 	$(BIN)/pytest
@@ -61,9 +62,11 @@ bench: $(STAMP)
 
 # the pictures of a trot's and a jump's recordings in the README (docs/recording_trot.png,
 # docs/recording_jump.png): the Rerun web viewer, served locally, in headless Chromium at the
-# recording's default layout (Debian: apt-get install chromium)
+# recording's default layout; and the demo's entry page (docs/index_page.png, after make demo),
+# every picture on it loaded (Debian: apt-get install chromium)
 screenshot: $(STAMP)
 	$(BIN)/python tools/recording_screenshot.py --out docs
+	$(BIN)/python tools/page_screenshot.py $(OUT)/index.html --out docs/index_page.png
 
 clean:
 	rm -rf $(VENV) $(OUT)

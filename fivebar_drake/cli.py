@@ -405,6 +405,17 @@ def _models(args, signals) -> int:
     return 0
 
 
+def _index(args, signals) -> int:
+    from pathlib import Path
+
+    from fivebar_drake.entry.page import INDEX_FILES, write_index
+
+    for path in write_index(args.folder):
+        say(f"wrote {path}")
+    say(f"open it: {(Path(args.folder) / INDEX_FILES[1]).resolve().as_uri()}")
+    return 0
+
+
 def parser() -> argparse.ArgumentParser:
     """The command line, every option with its choices and default in --help: the choices of
     this package and of the plugins (core/plugins.py), loaded first."""
@@ -542,6 +553,12 @@ def parser() -> argparse.ArgumentParser:
                                   "scenario's params_file"})
     m.add_argument("--out", default="sdf", metavar="DIR",
                    help="output folder (default: %(default)s)")
+    i = command("index", _index, "the entry page of an output folder: the design's answer, the "
+                "fix, the spec sheet, the maneuvers, the pictures and a link to every report and "
+                "recording (DIR/index.md and DIR/index.html, read from what the other commands "
+                "wrote there)")
+    i.add_argument("folder", nargs="?", default="out", metavar="DIR",
+                   help="the output folder (default: %(default)s, make demo's)")
     return top
 
 

@@ -11,7 +11,7 @@ PACKAGE = Path(fivebar_drake.__file__).parent
 # optimal are side by side and do not import each other; the studies wrap the pipeline (the 5-bar's study)
 LAYERS = {"core": 0, "actuators": 0.2, "verdicts": 0.3, "gaits": 0.5, "mechanisms": 1, "robots": 2, "analysis": 3, "optimal": 3, "simulation": 4,
           "pipeline": 5, "studies": 6, "catalog": 7, "sweep": 7, "envelope": 8, "codesign": 9,
-          "cli": 10, "__main__": 11}
+          "entry": 9.5, "cli": 10, "__main__": 11}
 
 
 def module_name(path: Path) -> str:

@@ -54,8 +54,10 @@ def wait_for(url: str, seconds: float) -> bytes:
             time.sleep(0.2)
 
 
-def capture(page_url: str, size: tuple[int, int], wait_s: float) -> bytes:
-    """PNG of page_url in headless Chromium after wait_s seconds."""
+def capture(page_url: str, size: tuple[int, int], wait_s: float,
+            expression: str | None = None) -> tuple[bytes, object]:
+    """PNG of page_url in headless Chromium after wait_s seconds, and the value of the
+    JavaScript expression evaluated in the page then (None without one)."""
     from tornado.ioloop import IOLoop
     from tornado.websocket import websocket_connect
 
@@ -85,6 +87,10 @@ def capture(page_url: str, size: tuple[int, int], wait_s: float) -> bytes:
                        deviceScaleFactor=1, mobile=False)
             await call("Page.navigate", url=page_url)
             await asyncio.sleep(wait_s)
+            value = None
+            if expression is not None:
+                value = (await call("Runtime.evaluate", expression=expression,
+                                    returnByValue=True))["result"].get("value")
             # until two screenshots STABLE_S apart are the same: the file is loaded and drawn
             shots = [None]
             while len(shots) * STABLE_S < MAX_WAIT_S:
@@ -93,7 +99,7 @@ def capture(page_url: str, size: tuple[int, int], wait_s: float) -> bytes:
                     break
                 await asyncio.sleep(STABLE_S)
             ws.close()
-            return base64.b64decode(shots[-1])
+            return base64.b64decode(shots[-1]), value
 
         return IOLoop.current().run_sync(drive)
     finally:
@@ -116,7 +122,7 @@ def screenshot(rrd: Path, out: Path, size=(1600, 1000), wait_s: float = 10.0) ->
     try:
         wait_for(f"http://127.0.0.1:{web}", 30)
         source = urllib.parse.quote(f"rerun+http://127.0.0.1:{grpc}/proxy", safe="")
-        png = capture(f"http://127.0.0.1:{web}/?url={source}", size, wait_s)
+        png, _ = capture(f"http://127.0.0.1:{web}/?url={source}", size, wait_s)
     finally:
         os.killpg(viewer.pid, signal.SIGTERM)
         viewer.wait(10)

@@ -13,6 +13,7 @@ from fivebar_drake.codesign.designs import actuator_mass, design_name, write_par
 from fivebar_drake.codesign.search import JOURNAL_FILE, corrected, ranked
 from fivebar_drake.codesign.spec import CodesignSpec
 from fivebar_drake.core.files import json_ready, save_figure, write_atomic
+from fivebar_drake.core.text import ANSWER_CHARS
 from fivebar_drake.mechanisms.fivebar import MOTORS
 
 FILES = ("design.md", "design.toml", "pareto.png", "design.json")   # design.json last
@@ -79,9 +80,9 @@ def nobody_meets(spec: CodesignSpec, entries: list[dict], finalists: list[dict])
     unmet = sorted((v, k) for k, v in best.items() if v[0] < 1.0)
     if unmet:
         (margin, name, level), key = unmet[0]
-        return (f"no candidate meets {key} (requirement of {spec.envelope.source or 'the'} "
-                f"envelope, accepted {'/'.join(spec.accept)}): the best, {name}, reaches a "
-                f"{level} margin of {margin:.2f} (1 meets it)")
+        return (f"no candidate meets {key}: the best, {name}, reaches a {level} margin of "
+                f"{margin:.2f} (1 meets it; the requirement of {spec.envelope.source or 'the'} "
+                f"envelope, accepted {'/'.join(spec.accept)})")
     level = pool[0][2]
 
     def overall(result):
@@ -124,7 +125,7 @@ def codesign_report(spec: CodesignSpec, entries: list[dict], chosen: list[dict],
     report["pareto_verified"] = ([f["key"] for f in verified_front(spec, finalists)]
                                  if len(spec.objectives) > 1 else [])
     report["max_jumps"] = max_jumps(report, verified) if spec.simulate_max_jump else []
-    report["answer"] = answer(spec, report)
+    report["answer"], report["why"] = answer(spec, report)
     return report
 
 
@@ -146,43 +147,50 @@ def _jump_text(row: dict) -> str:
             + ("" if row["landed"] else "; its landing not verified") + ")")
 
 
-def answer(spec: CodesignSpec, report: dict) -> str:
-    """design.md's first line: the recommended design and why, or that there is none."""
+def answer(spec: CodesignSpec, report: dict) -> tuple[str, list[str]]:
+    """design.md's first line (at most ANSWER_CHARS where the design's name allows): the
+    recommended design, its simulated outcome and mass, or that there is none; and the reasons,
+    one item each."""
     r = report["recommended"]
     if r is None:
-        return f"No design recommended: {report['failure']}."
+        head = f"No design recommended: {report['failure']}."
+        if len(head) > ANSWER_CHARS:
+            head = f"No design recommended: {report['failure'].split(' (')[0]}."
+        return head, [f"{report['failure'][0].upper()}{report['failure'][1:]}."]
     margin, where = least(r["simulated"], spec.accept)
     mass = r["objectives"]["actuator_mass_kg"]
+    default = report["default"]["actuator_mass_kg"]
     duty = " and the duty cycle" if r["simulated"]["duty_cycle"] else ""
+    head = (f"Recommended: {r['name']}: passes every maneuver{duty} in simulation, least "
+            f"margin {margin:.2f}; actuator {mass:.3f} kg (default {default:.3f} kg).")
+    if len(head) > ANSWER_CHARS:
+        head = f"Recommended: {r['name']} (finalists/{r['key']}): passes in simulation."
     passing = [f for f in report["finalists"] if f["simulated"]["passes"]]
-    better = [f for f in report["finalists"] if not f["simulated"]["passes"] and
-              f["objectives"]["actuator_mass_kg"] < mass]
-    decided = ("; decided by " + ", ".join(
-        f"{least(f['simulated'], spec.accept)[1]}, where the lighter {f['name']} fails in "
-        "simulation" for f in better) if better else "")
-    compared = "".join(
-        f" and {c['name']}'s {c['actuator_mass_kg']:.3f} kg "
-        f"({_outcome(c['simulated'], spec.accept)})"
-        for c in report["compared"])
+    why = [f"The best by {spec.objectives[0]} of the finalists that pass every maneuver{duty} "
+           f"of the requirements in full Drake simulation ({len(passing)} of "
+           f"{len(report['finalists'])}; every check of every motor, accepted "
+           f"{'/'.join(spec.accept)}{_strictness(spec)}).",
+           f"Actuator mass {mass:.3f} kg{_band(spec)}; the default design's {default:.3f} kg "
+           f"({_outcome(report['default']['simulated'], spec.accept)})"
+           + "".join(f"; {c['name']}'s {c['actuator_mass_kg']:.3f} kg "
+                     f"({_outcome(c['simulated'], spec.accept)})" for c in report["compared"])
+           + "."]
+    why += [f"Decided by {least(f['simulated'], spec.accept)[1]}, where the lighter {f['name']} "
+            "fails in simulation." for f in report["finalists"]
+            if not f["simulated"]["passes"] and f["objectives"]["actuator_mass_kg"] < mass]
     jumps = {j["key"]: j for j in report["max_jumps"]}
     if r["key"] in jumps:
         others = "; ".join(f"{j['name']}'s {_jump_text(j)}" for k, j in jumps.items()
                            if k != r["key"])
-        decided = (f"; its max-effort jump rises {_jump_text(jumps[r['key']])}"
-                   + (f", against {others}" if others else "") + decided)
-    return (f"Recommended design: {r['name']} — the best by {spec.objectives[0]} of the "
-            f"finalists that pass every maneuver{duty} of the requirements in full Drake "
-            f"simulation ({len(passing)} of {len(report['finalists'])}; every check of every "
-            f"motor, accepted {'/'.join(spec.accept)}{_strictness(spec)}): actuator mass "
-            f"{mass:.3f} kg{_band(spec)} against the default design's "
-            f"{report['default']['actuator_mass_kg']:.3f} kg"
-            f" ({_outcome(report['default']['simulated'], spec.accept)}){compared}{decided}; "
-            f"its least margin {margin:.2f} ({where}); verified by simulating the whole "
-            f"envelope in finalists/{r['key']}"
-            + (f"; {len(report['not_simulated'])} better candidates (of each motor the nearest: "
-               + ", ".join(c["name"] for c in report["not_simulated"])
-               + ") were kept out by the corrected predictions, not simulated"
-               if report["not_simulated"] else "") + ".")
+        why.append(f"Its max-effort jump rises {_jump_text(jumps[r['key']])}"
+                   + (f", against {others}" if others else "") + ".")
+    why.append(f"Its least margin {margin:.2f} ({where}); verified by simulating the whole "
+               f"envelope in finalists/{r['key']}.")
+    if report["not_simulated"]:
+        why.append(f"{len(report['not_simulated'])} better candidates (of each motor the "
+                   "nearest: " + ", ".join(c["name"] for c in report["not_simulated"])
+                   + ") were kept out by the corrected predictions, not simulated.")
+    return head, why
 
 
 def _band(spec: CodesignSpec) -> str:
@@ -290,7 +298,7 @@ def _f(x, pattern: str = "{:.2f}") -> str:
 
 def markdown(spec: CodesignSpec, report: dict) -> str:
     """design.md."""
-    lines = [report["answer"], ""]
+    lines = [report["answer"], ""] + [f"- {item}" for item in report["why"]] + [""]
     r, default = report["recommended"], report["default"]["simulated"]
     if default is None:
         default = {"maneuvers": {}}

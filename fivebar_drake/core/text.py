@@ -7,6 +7,7 @@ import math
 import re
 
 DASH = "—"
+ANSWER_CHARS = 200   # a report's answer, its first line, in at most this many characters
 _NEGATIVE_ZERO = re.compile(r"^[-−](0(?:\.0*)?)(\D*)$")
 
 

@@ -15,8 +15,9 @@ import json
 import math
 from pathlib import Path
 
-from fivebar_drake.verdicts.checks import (CHECK_ORDER, SEVERITY, limit_shares_text, thresholds_text,
-                                        worst_check)
+from fivebar_drake.verdicts.checks import (CHECK_ORDER, SEVERITY, limit_shares_text,
+                                           thresholds_text, worst_check)
+from fivebar_drake.verdicts.checks import verdict as check_verdict
 from fivebar_drake.core.text import figure, verdict_word
 from fivebar_drake.core.files import json_ready, write_atomic
 from fivebar_drake.verdicts.summary_schema import MotorSummary, Summary
@@ -204,6 +205,67 @@ def answer(maneuvers: dict, sized: dict, duty: dict | None) -> tuple[str, str]:
     return verdict, f"Worst verdict {label}: {reason}.{tail}"
 
 
+def design_answer(verdict: str, maneuvers: dict, floor: dict | None, duty: dict | None,
+                  checks) -> dict:
+    """The design's one answer over the envelope (every output that gives it reads this):
+    kind "carries" (every maneuver and the duty cycle pass or warn with this controller),
+    "this controller" (it fails a maneuver on a check no need for any controller bounds: speed,
+    thermal), "better controller" (this controller fails some on torque or achievement, and the
+    least need found for any controller leaves the motors a passing or warning safety factor on
+    every maneuver), "short
+    of margin" (that need leaves a failing safety factor, though within the motors), "beyond"
+    (a maneuver beyond the motors for any controller: fails_for "any controller", or beyond a
+    bound by another method), "no verdict"; with its sentence (text, at most core.text.ANSWER_CHARS),
+    the maneuvers this controller fails, and the need that decides (maneuver, N*m, SF, its
+    verdict on the checks' thresholds)."""
+    decided = {n: e["deciding_check"] for n, e in maneuvers.items()
+               if e["verdict"] in ("fail", "not_achieved")}
+    if duty and duty["verdict"] == "fail":
+        decided["the duty cycle"] = "thermal"
+    failed = list(decided)
+    unbounded = sorted({c for c in decided.values() if c not in ("torque", "achieved")})
+    need = dict(maneuver=None, need_Nm=None, need_sf=None, need_verdict=None)
+    if floor is not None and floor["safety_factor"] is not None:
+        need = dict(maneuver=floor["maneuver"], need_Nm=floor["floor_Nm"],
+                    need_sf=floor["safety_factor"],
+                    need_verdict=check_verdict(checks, floor["safety_factor"]))
+    beyond = [n for n, e in maneuvers.items()
+              if (e.get("any_controller") or {}).get("fails_for") == "any controller"]
+    if floor is not None and floor["safety_factor"] == 0.0 and floor["maneuver"] not in beyond:
+        beyond.append(floor["maneuver"])
+    named = ", ".join(failed)
+    if verdict == "insufficient":
+        kind, text = "no verdict", "No answer yet: a maneuver has no verdict (see its entry)."
+    elif beyond:
+        kind, text = "beyond", (f"No: {', '.join(beyond)} is beyond these motors for any "
+                                "controller.")
+    elif not failed:
+        sfs = {n: min((m["checks"]["torque"]["sf"] for m in (e.get("motors") or {}).values()
+                       if m.get("checks")), default=math.inf) for n, e in maneuvers.items()}
+        least = min(sfs, key=sfs.get)
+        kind, text = "carries", (f"Yes: the motors carry the robot through the envelope with "
+                                 f"this controller ({verdict_word(verdict)}; least SF "
+                                 f"{figure(sfs[least])}, {least}).")
+    elif unbounded:
+        kind, text = "this controller", (
+            f"Not with this controller: it fails {named}; no need for any controller bounds "
+            f"the {' or '.join(unbounded)} check.")
+    elif need["need_verdict"] in ("pass", "warn"):
+        kind, text = "better controller", (
+            f"Only with a better controller: this one fails {named}; the least found for any "
+            f"controller leaves SF {need['need_sf']:.2f} ({need['maneuver']}, "
+            f"{verdict_word(need['need_verdict'])}).")
+    elif need["need_verdict"] == "fail":
+        kind, text = "short of margin", (
+            f"No, not with margin: {need['maneuver']} needs at least {need['need_Nm']:.2f} N·m "
+            f"for the best motion found, SF {need['need_sf']:.2f} (fail below "
+            f"{checks.sf_warn:g}).")
+    else:
+        kind, text = "undecided", (f"Undecided: this controller fails {named}, and no need for "
+                                   "any controller decides it (see For any controller).")
+    return {"kind": kind, "text": text, "fails": failed, **need}
+
+
 def envelope_report(spec, results: dict, duty: dict | None, duty_why: str,
                     params) -> dict:
     """envelope.json's dictionary: the spec, the motor, every maneuver (spec order), the
@@ -212,16 +274,18 @@ def envelope_report(spec, results: dict, duty: dict | None, duty_why: str,
     maneuvers = {m.name: maneuver_entry(m, results.get(m.name)) for m in spec.maneuvers}
     sized = sizing(maneuvers)
     verdict, sentence = answer(maneuvers, sized, duty)
+    floor = sized_by_floor(maneuvers)
     motor = params.motor
     return {
         "spec": spec.source, "complete": all(m.name in results for m in spec.maneuvers),
+        "design_answer": design_answer(verdict, maneuvers, floor, duty, params.checks),
         "verdict": verdict, "answer": sentence, "thresholds": thresholds_text(params.checks),
         "motor": {"peak_torque_Nm": motor.peak_torque_Nm,
                   "braking_peak_torque_Nm": motor.braking_peak_torque_Nm,
                   "no_load_speed_rad_s": motor.no_load_speed_rad_s,
                   "continuous_torque_Nm": motor.continuous_torque_Nm},
         "sized_by": sized,
-        "sized_by_floor": sized_by_floor(maneuvers),
+        "sized_by_floor": floor,
         "maneuvers": maneuvers,
         "duty_cycle": None if duty is None else {
             "steps": [{"maneuver": s.maneuver, "duration_s": s.duration_s}
@@ -250,7 +314,8 @@ def _sf(check: dict) -> str:
 
 
 def markdown(report: dict) -> str:
-    lines = ["# Duty envelope of the hip motors", "", report["answer"], "",
+    lines = ["# Duty envelope of the hip motors", "", report["design_answer"]["text"], "",
+             f"This controller: {report['answer']}", "",
              report.get("thresholds", ""), ""]
     if not report["complete"]:
         lines += ["**Incomplete:** the envelope was interrupted; the maneuvers marked missing "

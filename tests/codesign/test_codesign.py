@@ -93,7 +93,7 @@ def test_the_recommended_design_passes_in_simulation_and_is_the_lightest_that_do
     code, out, report = codesign
     assert code == 0 and report["recommended"] is not None
     first = (out / "design.md").read_text().splitlines()[0]
-    assert first.startswith(f"Recommended design: {report['recommended']['name']} — ")
+    assert first.startswith(f"Recommended: {report['recommended']['name']}: ")
     mass = {f["key"]: actuator_mass_kg(f["design"]["motor"], f["design"]["motor.gear_ratio"],
                                        f["design"]["gearbox"]) for f in report["finalists"]}
     passing = {key for key in mass if all(v in ACCEPT for _, v in envelope_sfs(
@@ -235,7 +235,7 @@ def test_a_spec_no_candidate_meets_names_the_requirement_and_the_best_margin(tmp
     out = tmp_path / "out"
     assert main(["codesign", str(write(tmp_path, NOBODY)), "--out", str(out)]) == 1
     err = capsys.readouterr().err
-    found = re.search(r"no candidate meets trot (\w+) .*the best, (.+), reaches a predicted "
+    found = re.search(r"no candidate meets trot (\w+): the best, (.+), reaches a predicted "
                       r"margin of ([\d.]+)", err)
     assert found, err
     report = json.loads((out / "design.json").read_text())
@@ -357,3 +357,47 @@ def test_an_unreachable_scheduler_is_refused_before_any_folder(tmp_path, capsys)
                  "tcp://127.0.0.1:9"]) == 2
     assert "--scheduler" in capsys.readouterr().err
     assert not (tmp_path / "new").exists()
+
+
+def test_the_entry_page_gives_one_answer_and_links_every_output(codesign, tmp_path):
+    """`fivebar-drake index` over a folder holding the co-design: the default design's answer
+    (its simulated envelope's design_answer) first, the fix as design.md's first line, both at
+    most 200 characters; the maneuver table's worst SF and need as envelope.json has them; every
+    link and picture of index.html a file in the folder, and every report and recording in the
+    folder linked. An empty folder is refused (exit 2), nothing written."""
+    import shutil
+    from html.parser import HTMLParser
+
+    _, out, report = codesign
+    root = tmp_path / "out"
+    shutil.copytree(out, root / "codesign")
+    assert main(["index", str(root)]) == 0
+    text = (root / "index.md").read_text()
+    envelope = json.loads((root / "codesign/finalists/default/envelope.json").read_text())
+    answer = envelope["design_answer"]["text"]
+    assert len(answer) <= 200 and len(report["answer"]) <= 200
+    assert answer in text.splitlines()[2]
+    assert (out / "design.md").read_text().splitlines()[0] == report["answer"]
+    assert f"**Fix:** {report['answer']}" in text
+    for name, e in envelope["maneuvers"].items():
+        row = next(line for line in text.splitlines() if line.startswith(f"| {name} |"))
+        sf = min(m["checks"]["torque"]["sf"] for m in e["motors"].values())
+        assert f"| {sf:.2f} |" in row
+        assert f"| {e['any_controller']['floor_Nm']:.2f} |" in row
+
+    class Targets(HTMLParser):
+        found = []
+
+        def handle_starttag(self, tag, attrs):
+            self.found += [v for k, v in attrs if k in ("href", "src")]
+
+    page = Targets()
+    page.feed((root / "index.html").read_text())
+    assert page.found and all((root / t).is_file() for t in page.found), page.found
+    outputs = {p.relative_to(root).as_posix() for p in root.rglob("*")
+               if p.suffix in (".md", ".rrd") and p.name != "index.md"}
+    assert outputs <= set(page.found)
+    assert any(t.endswith(".png") for t in page.found)
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    assert main(["index", str(empty)]) == 2 and list(empty.iterdir()) == []

@@ -122,7 +122,7 @@ def test_design_md_sets_each_simulated_max_jump_beside_the_default(spec, tmp_pat
     rows = max_jumps(report, {"default": jump(0.7, True), "trial_3": jump(0.9, False)})
     assert [(r["key"], r["height_m"], r["landed"]) for r in rows] == [
         ("default", 0.7, True), ("trial_3", 0.9, False)]
-    text = markdown(spec, {**report, "finalists": [], "answer": "", "recommended": None,
+    text = markdown(spec, {**report, "finalists": [], "answer": "", "why": [], "recommended": None,
                            "default": {"actuator_mass_kg": 0.24, "simulated": None},
                            "max_jumps": rows, "not_simulated": [], "corrections": {},
                            "candidates": [], "trials": 0, "predicted_meeting": 0})

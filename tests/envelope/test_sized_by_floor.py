@@ -41,3 +41,49 @@ def test_a_maneuver_beyond_a_bound_sizes_them_and_an_undecided_one_does_not():
 
 def test_without_any_floor_there_is_no_sizing():
     assert sized_by_floor({"walk": entry("none")}) is None
+
+
+def answer_of(maneuvers, duty=None):
+    """design_answer over maneuvers given as name -> (verdict, deciding check, entry(...)),
+    the worst verdict as envelope_report takes it, on the packaged thresholds."""
+    from fivebar_drake.envelope.report import design_answer
+    from fivebar_drake.robots.quadruped.config import load_params
+    from fivebar_drake.verdicts.checks import SEVERITY
+
+    table = {}
+    for name, (verdict, check, need) in maneuvers.items():
+        need = dict(need)
+        if need["any_controller"] and verdict == "fail" and check == "achieved":
+            need["any_controller"]["fails_for"] = "any controller"
+        table[name] = {"verdict": verdict, "deciding_check": check, **need}
+    worst = max((v for v, _, _ in maneuvers.values()),
+                key=lambda v: SEVERITY.get(v, 3))
+    return design_answer(worst, table, sized_by_floor(table), duty, load_params().checks)
+
+
+def test_the_designs_answer_names_who_can_do_it_in_one_short_sentence():
+    """Each kind of answer from its own case: every maneuver passing carries; a torque failure
+    whose need leaves a warning SF asks for a better controller; a need that leaves a failing
+    SF is short of margin; a thermal failure is bounded by no need; a maneuver beyond a bound
+    is beyond the motors. Each sentence at most 200 characters."""
+    ok = ("pass", "torque", entry(("floor", 2.0, 5.0)))
+    cases = {
+        "carries": {"trot": ok, "jump": ("warn", "torque", entry(("floor", 2.0, 6.17)))},
+        "better controller": {"trot": ("fail", "torque", entry(("floor", 3.0, 5.0))),
+                              "jump": ok},
+        "short of margin": {"trot": ("fail", "torque", entry(("floor", 4.0, 5.0)))},
+        "this controller": {"trot": ("fail", "thermal", entry(("floor", 2.0, 5.0)))},
+        "beyond": {"trot": ok, "jump": ("fail", "torque",
+                                        entry(("beyond bound", None, 5.0)))},
+    }
+    for kind, maneuvers in cases.items():
+        a = answer_of(maneuvers)
+        assert a["kind"] == kind, (kind, a)
+        assert len(a["text"]) <= 200
+    a = answer_of(cases["better controller"])
+    assert a["fails"] == ["trot"] and "SF 1.67" in a["text"] and "WARN" in a["text"]
+    a = answer_of(cases["short of margin"])
+    assert "4.00 N·m" in a["text"] and "SF 1.25" in a["text"]
+    assert answer_of(cases["beyond"])["text"].startswith("No: jump is beyond these motors")
+    hot = {"verdict": "fail", "motors": {}}
+    assert answer_of({"trot": ok}, duty=hot)["kind"] == "this controller"
