@@ -15,6 +15,8 @@ $(STAMP): pyproject.toml
 
 # demo runs: 0.5 s standing, 1 s ramp, 3 whole gait cycles
 DEMO_S ?= 4.5
+# the walk's standing and ramp (2.5 s) and 3 whole cycles at 0.5 Hz
+WALK_S ?= 8.5
 
 # simulate exits 1 when a run stops early, has no verdict or did not achieve its motion (it
 # still writes its summary): the seed's ellipse does that (it falls over), and the comparison reports it; any
@@ -24,7 +26,8 @@ demo: $(STAMP)
 	$(BIN)/fivebar-drake simulate --gait trot --duration $(DEMO_S) --out $(OUT)/simulation/trot
 	$(BIN)/fivebar-drake simulate --gait seed_ellipse --duration $(DEMO_S) \
 		--out $(OUT)/simulation/seed_ellipse || [ $$? -eq 1 ]
-	$(BIN)/fivebar-drake compare $(OUT)/simulation/trot $(OUT)/simulation/seed_ellipse \
+	$(BIN)/fivebar-drake simulate --gait walk --duration $(WALK_S) --out $(OUT)/simulation/walk
+	$(BIN)/fivebar-drake compare $(OUT)/simulation/trot $(OUT)/simulation/walk \
 		--out $(OUT)/gait_comparison.md
 	$(BIN)/fivebar-drake simulate --gait trot --duration $(DEMO_S) --set motor.gear_ratio=11.5 \
 		--step-check --out $(OUT)/simulation/trot_gear_11.5

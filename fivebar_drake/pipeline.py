@@ -41,9 +41,8 @@ from fivebar_drake.simulation.runner import SimulationRecord, simulate
 from fivebar_drake.simulation.scenario import Scenario, load_scenario
 from fivebar_drake.simulation.signals import signals, step_signals
 from fivebar_drake.simulation.summary import (apply_contact_check, apply_step_check,
-                                              in_schema_order, summarize)
-from fivebar_drake.simulation.summary_text import (SUMMARY_FILES, any_controller_text,
-                                                   write_summary)
+                                              in_schema_order, set_answer, summarize)
+from fivebar_drake.simulation.summary_text import SUMMARY_FILES, write_summary
 
 
 SIMULATION_FILES = (SIM_PLOT_FILES + (CAPABILITY_FILE, RECORDING_FILE)
@@ -246,17 +245,13 @@ def _review(record: SimulationRecord, half: SimulationRecord | None = None,
     reference = seed_results(record.params)
     summary = summarize(sig, record, reference, steps)
     verdict = summary["verdict"]
-    floor = any_controller(record, summary)
-    if floor is not None:
-        summary["answer"] += " " + any_controller_text(floor, record.params.checks.sf_warn)
-    summary = in_schema_order({**summary, "any_controller": floor})
+    summary = in_schema_order({**summary, "any_controller": any_controller(record, summary)})
     if half is not None and half.interrupted:    # a step check cut short is none, and says so
         summary["step_check_interrupted"] = (
             f"{half.interrupted} stopped the run at half the plant step at t = "
             f"{half.table['t'][-1] if len(half.table['t']) else 0.0:.2f} s")
-        summary["answer"] += (f" No step check: {summary['step_check_interrupted']} "
-                              "(the verdict above is the plant step's alone).")
-    elif half is not None:
+    set_answer(summary, record.params)
+    if half is not None and not half.interrupted:
         apply_step_check(summary, _variant(half, reference), record.params)
     if contacts and not any(r.interrupted for r in contacts.values()):
         apply_contact_check(summary, verdict, {label: _variant(r, reference)

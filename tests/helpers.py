@@ -39,3 +39,8 @@ def random_poses(params, rng, n=200):
     base = sample_gait(params.leg, params.gait).pose.q
     q = base[rng.integers(0, len(base), n)] + rng.uniform(-0.15, 0.15, (n, 2))
     return q
+
+
+def told(summary) -> str:
+    """What a run's summary says of its answer: its one line and its reasons, joined."""
+    return " ".join([summary["answer"], *summary["answer_details"]])

@@ -14,6 +14,8 @@ GUIDE = Path(__file__).resolve().parents[1] / "docs" / "output_style.md"
 # rule 1: the answer names a verdict (or, for a design search or a seed check, its outcome)
 ANSWER_WORDS = re.compile(r"\b(PASS|WARN|FAIL|INSUFFICIENT|NOT ACHIEVED|No verdict|"
                           r"No design recommended|Recommended|reproduce[sd]?|allow)\b")
+ANSWER_CHARS = 200     # the answer's line at most (fivebar_drake.core.text.ANSWER_CHARS)
+PARAGRAPH_WORDS = 80   # a paragraph of prose at most; longer: a list or a table
 # ... and a figure: a number with its unit, a safety factor or a count
 FIGURE = re.compile(r"\bSF \d|\d+ of \d+|"
                     r"\d(?:\.\d+)? ?(?:N·m|N\b|%|°C|m/s|mm|m\b|rad/s|A\b|kg|W\b|deg\b|s\b)")
@@ -96,6 +98,12 @@ def violations(path: Path) -> list[str]:
         k, first = body[0]
         if not ANSWER_WORDS.search(first) or not FIGURE.search(first):
             breach(k, "the first line is not the answer (a verdict and a figure)", first)
+        if len(first) > ANSWER_CHARS:
+            breach(k, f"the first line is longer than {ANSWER_CHARS} characters", first)
+    for k, words in paragraphs(lines):
+        if words > PARAGRAPH_WORDS:
+            breach(k, f"a paragraph of {words} words, more than {PARAGRAPH_WORDS} (a list or a "
+                      "table instead)", lines[k])
     if TORQUE_VERDICT.search(text) and "SF" in text and not THRESHOLDS.search(text):
         breach(0, "a verdict without its thresholds (SF ≥ 2 pass, ≥ 1.5 warn)", "")
     terms = glossary()
@@ -117,6 +125,25 @@ def violations(path: Path) -> list[str]:
                     breach(k, f"header term not in the glossary: {' '.join(unknown)}",
                            cell)
     return found
+
+
+def paragraphs(lines: list[str]) -> list[tuple[int, int]]:
+    """(first line's index, words) of each paragraph of prose: consecutive lines that are not
+    blank, a heading, a table row or in a code block; each list item is its own paragraph."""
+    out, start, words, code = [], None, 0, False
+    for k, line in enumerate(lines + [""]):
+        if line.startswith("```"):
+            code = not code
+        item = line.lstrip().startswith(("- ", "* ")) or re.match(r"\s*\d+\. ", line)
+        prose = line.strip() and not code and not line.startswith(("#", "|", "```"))
+        if start is not None and (not prose or item):
+            out.append((start, words))
+            start = None
+        if prose:
+            if start is None:
+                start, words = k, 0
+            words += len(line.split())
+    return out
 
 
 def report_violations(root: Path) -> list[str]:

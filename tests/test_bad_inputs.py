@@ -710,12 +710,11 @@ def test_compare_answers_first_and_says_when_the_deciding_check_moves(tmp_path):
             "speed": {"least_margin": 0.8, "outside_fraction": 0.04}, "thermal": {"margin": 1.3}}
         (folder / "summary.json").write_text(json_.dumps(data))
         runs.append(str(folder))
-    first = markdown(load_summaries(runs)).split("\n\n")[1]
-    assert first.startswith("**Answer:** gear8: FAIL by the torque check")
-    assert "gear11.5: FAIL by the speed check" in first
-    assert "SF 1.41: 3.55 N·m of its 5.00 N·m driving limit" in first      # the figure, its limit
-    assert "4.0 % of the time beyond the torque–speed envelope" in first
-    assert "torque check's fail became a fail of the speed check" in first
+    text = markdown(load_summaries(runs))
+    first = text.split("\n\n")[1]
+    assert first.startswith("**Answer:** gear8 FAIL (torque, SF 1.41)")
+    assert "gear11.5 FAIL (speed, 4.0 % beyond the envelope)" in first
+    assert "moved the limit from the torque check to the speed check" in first
     from style_rules import report_violations
 
     (tmp_path / "gear_comparison.md").write_text(markdown(load_summaries(runs)))

@@ -152,3 +152,18 @@ def test_every_command_in_the_manual_parses():
                         assert (ROOT / arg).exists(), f"{page.name}: {arg}"
                 checked += 1
     assert checked >= 8
+
+
+def test_the_style_guides_verdict_bands_are_the_packaged_checks():
+    """docs/output_style.md's table of the verdict's bands gives the packaged [checks]."""
+    from fivebar_drake.robots.quadruped.config import load_params
+
+    c = load_params().checks
+    text = (DOCS / "output_style.md").read_text().split("The verdict's bands")[1]
+    table = text.split("\n\n")[1]
+    rows = {line.split("|")[1].strip().split(":")[0]: line for line in table.splitlines()}
+    assert f"≥ {c.sf_pass:g} | ≥ {c.sf_warn:g} | below {c.sf_warn:g}" in rows["torque"]
+    assert (f"at most {c.speed_outside_fail * 100:g} %, margin ≥ {c.speed_margin_warn:g}"
+            in rows["speed"])
+    assert f"≥ {c.thermal_margin_warn:g} | ≥ 1 | below 1" in rows["thermal"]
+    assert f"at most {c.achieved_max_limit_fraction * 100:g} %" in rows["achieved"]

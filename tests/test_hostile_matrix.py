@@ -146,3 +146,34 @@ def test_bad_values_of_optimal(option, value, tmp_path, capsys):
     err = capsys.readouterr().err
     assert option in err or "set" in err, err
     assert "Traceback" not in err and not out.exists()
+
+
+@pytest.mark.parametrize("kind, words", [
+    ("missing folder", "is not a folder"), ("a file", "is not a folder"),
+    ("empty folder", "holds no envelope"), ("binary json", "cannot be read"),
+    ("not json", "cannot be read"), ("older envelope", "has no 'design_answer'"),
+    ("a list", "has no 'design_answer'"), ("fifo json", "holds no envelope")])
+def test_index_of_a_hostile_folder(kind, words, tmp_path, capsys):
+    """`index DIR` over a folder that holds no outputs, or broken or older ones: exit 2 naming
+    the folder or the file, no page written (a FIFO is never opened: it is not an output)."""
+    root = tmp_path / "out"
+    if kind == "a file":
+        root.write_text("keep me")
+    elif kind != "missing folder":
+        (root / "envelope").mkdir(parents=True)
+        target = root / "envelope" / "envelope.json"
+        contents = {"binary json": b"\xff\xfe{", "not json": b"{\"verdict\": ",
+                    "older envelope": b"{\"verdict\": \"fail\"}", "a list": b"[1, 2]"}
+        if kind == "fifo json":
+            os.mkfifo(target)
+        elif kind in contents:
+            target.write_bytes(contents[kind])
+    assert main(["index", str(root)]) == 2
+    err = capsys.readouterr().err
+    assert words in err and str(root) in err, err
+    if kind == "missing folder":
+        assert not root.exists()
+    elif kind == "a file":
+        assert root.read_text() == "keep me"
+    else:
+        assert not (root / "index.html").exists() and not (root / "index.md").exists()

@@ -215,7 +215,8 @@ def gear_ratio(an: Analysis) -> plt.Figure:
         ax.axhline(level, color=color, ls="--", lw=0.8)
     ax.set(xscale="log", xlabel="gear ratio N", ylabel="safety factor",
            ylim=(0, 1.3 * max(g.best_safety, 1.0)),
-           title="Gear-ratio trade: the same motor, peak tau_m N, no-load w_m0 / N, rotor N² J_r")
+           title=f"Gear-ratio trade on the {GEAR_MODEL} model (the answer's): the same motor, "
+                 "peak tau_m N, no-load w_m0 / N, rotor N² J_r")
     ax.title.set_fontsize(9)
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=8)

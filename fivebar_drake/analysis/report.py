@@ -9,6 +9,7 @@ from pathlib import Path
 from fivebar_drake.analysis.design_report import design_assumptions, design_lines
 from fivebar_drake.analysis.torques import Analysis
 from fivebar_drake.core.files import json_ready, write_atomic
+from fivebar_drake.core.text import ANSWER_CHARS, figure
 from fivebar_drake.gaits import foot_path
 from fivebar_drake.actuators.motor import FRICTION_SMOOTHING_RAD_S
 from fivebar_drake.mechanisms.fivebar import LINK_NAMES, MOTORS, physical_izz
@@ -35,7 +36,7 @@ def assumptions(analysis: Analysis) -> list[str]:
         f"Izz values are about each link's COM, axis along the hinges. The seed's '~0' for AC is "
         f"0 in the `seed` model and the thin-rod estimate m L^2/12 = {izz['AC']:.3g} kg m^2 in "
         "the `full` models.",
-        motor_assumption(p.motor),
+        " ".join(motor_assumption(p.motor)),
         f"The motor's operating points are the joint's torque plus the output friction it "
         f"overcomes (Coulomb {p.motor.coulomb_friction_Nm:g} N·m, regularised over "
         f"{FRICTION_SMOOTHING_RAD_S:g} rad/s, and viscous {p.motor.viscous_friction_Nm_s:g} N·m "
@@ -57,32 +58,36 @@ def assumptions(analysis: Analysis) -> list[str]:
     ]
 
 
-def motor_assumption(motor) -> str:
-    """The actuator model in one sentence, with its output figures."""
+def motor_assumption(motor) -> list[str]:
+    """The actuator model, with its output figures: its opening sentence, then (a brushless
+    motor) each part of its envelope; report.md lists the parts under the opening, report.json
+    joins them into one assumption."""
     if motor.model != "bldc":
-        return (f"The {motor.peak_torque_Nm:g} N·m motor torque is taken at the gearbox output "
+        return [f"The {motor.peak_torque_Nm:g} N·m motor torque is taken at the gearbox output "
                 f"(gear {motor.gear_ratio:g}:1, model = \"{motor.model}\"): a linear "
                 f"torque-speed line from it to the no-load speed {motor.no_load_speed_rad_s:.2f} "
                 f"rad/s ({motor.no_load_speed_rad_s * 60 / (2 * math.pi):.0f} RPM), braking held "
                 f"at {motor.braking_peak_torque_Nm:.3g} N·m up to it; beyond it the line goes on "
-                "into braking (as a DC motor's).")
+                "into braking (as a DC motor's)."]
     law = motor.law
     corner = (law.phase_voltage - law.resistance * law.peak_current) / (law.back_emf * law.gear)
-    return (f"The actuator is a brushless motor behind a {motor.gear_ratio:g}:1 gearbox "
-            f"(efficiency {motor.gear_efficiency:g}), from motor-side data ([motor]: k_t = "
-            f"{motor.torque_constant_Nm_per_A:.4g} N·m per A of q-axis current, R = "
-            f"{motor.winding_resistance_ohm:g} ohm, V_bus = {motor.bus_voltage_V:g} V, I_peak = "
-            f"{motor.peak_current_A:.4g} A), the winding's inductance neglected: |i| <= I_peak "
-            "and the voltage equation R i + (k_t / 1.5) N w within +-V_bus / sqrt(3) (the phase "
-            "amplitude of space-vector modulation), output torque N eta k_t i driving and "
-            f"N k_t i / eta braking. Driving: flat at {motor.peak_torque_Nm:.3g} N·m up to the "
-            f"corner {corner:.2f} rad/s, then falling to zero at the no-load speed "
-            f"{motor.no_load_speed_rad_s:.2f} rad/s "
-            f"({motor.no_load_speed_rad_s * 60 / (2 * math.pi):.0f} RPM); braking "
-            f"{motor.braking_peak_torque_Nm:.3g} N·m; beyond the no-load speed the back-EMF "
-            "exceeds the phase voltage and forces regenerative braking ((k_t / 1.5) N w - "
-            "V_bus / sqrt(3)) / R amperes at least: the motor cannot coast there (README \"The "
-            "actuator\").")
+    return [
+        f"The actuator is a brushless motor behind a {motor.gear_ratio:g}:1 gearbox "
+        f"(efficiency {motor.gear_efficiency:g}), from motor-side data ([motor]: k_t = "
+        f"{motor.torque_constant_Nm_per_A:.4g} N·m per A of q-axis current, R = "
+        f"{motor.winding_resistance_ohm:g} ohm, V_bus = {motor.bus_voltage_V:g} V, I_peak = "
+        f"{motor.peak_current_A:.4g} A), the winding's inductance neglected:",
+        "|i| <= I_peak and the voltage equation R i + (k_t / 1.5) N w within +-V_bus / sqrt(3) "
+        "(the phase amplitude of space-vector modulation);",
+        "output torque N eta k_t i driving and N k_t i / eta braking;",
+        f"driving: flat at {motor.peak_torque_Nm:.3g} N·m up to the corner {corner:.2f} rad/s, "
+        f"then falling to zero at the no-load speed {motor.no_load_speed_rad_s:.2f} rad/s "
+        f"({motor.no_load_speed_rad_s * 60 / (2 * math.pi):.0f} RPM); braking "
+        f"{motor.braking_peak_torque_Nm:.3g} N·m;",
+        "beyond the no-load speed the back-EMF exceeds the phase voltage and forces regenerative "
+        "braking ((k_t / 1.5) N w - V_bus / sqrt(3)) / R amperes at least: the motor cannot coast "
+        "there (README \"The actuator\").",
+    ]
 
 
 def _where(at: dict) -> str:
@@ -90,23 +95,61 @@ def _where(at: dict) -> str:
     return f"t = {at['time_s']:.3f} s (sample {at['sample']}), F = ({x:.1f}, {y:.1f}) mm"
 
 
+ANSWER_MODELS = (("full_trot", "the physically consistent model with the trot's loading"),
+                 ("seed", "the seed's model as written"))
+
+
 def answer(analysis: Analysis) -> str:
-    """report.md's first line: each motor's verdict with the check that decided it and its
-    figure against the thresholds, for the physically consistent model under the trot's loading
-    (what the robot's legs carry) and for the seed's model as written."""
+    """report.md's first line (at most ANSWER_CHARS): each motor's verdict and its torque
+    check's safety factor, for the physically consistent model under the trot's loading (what
+    the robot's legs carry) and for the seed's model as written. The check that decided a
+    verdict is named at the first motor and wherever it changes; if that runs over
+    ANSWER_CHARS, only where it is not the torque check (the SF is the torque check's), then in
+    one word, then nowhere: answer_details names every one."""
+    r = analysis.results["results"]
+
+    def line(name) -> str:
+        groups, last = [], None
+        for model, label in ANSWER_MODELS:
+            parts = []
+            for m in MOTORS:
+                c = r[model][m]["checks"]
+                by = name(c["deciding_check"], last)
+                last = c["deciding_check"]
+                parts.append(f"{m} {c['verdict'].upper()}{by} (SF {figure(c['torque']['sf'])})")
+            groups.append(f"{label}: {', '.join(parts)}")
+        return f"**Answer:** {'; '.join(groups)}."
+
+    namings = (lambda check, last: f" by the {check} check" if check != last else "",
+               lambda check, last: f" by the {check} check" if check != "torque" else "",
+               lambda check, last: f" by {check}" if check != "torque" else "",
+               lambda check, last: "")
+    lines = [line(name) for name in namings]
+    return next((text for text in lines if len(text) <= ANSWER_CHARS), lines[-1])
+
+
+def answer_details(analysis: Analysis) -> list[str]:
+    """The list under the answer: what the figures are (the seed's estimate, against which
+    motors), the models' names, the check that decided each verdict and the thresholds."""
     r, c, motor = analysis.results["results"], analysis.params.checks, analysis.params.motor
-
-    def verdicts(model: str) -> str:
-        return ", ".join(
-            f"{m} {r[model][m]['checks']['verdict'].upper()} by the "
-            f"{r[model][m]['checks']['deciding_check']} check (SF "
-            f"{r[model][m]['checks']['torque']['sf']:.2f})" for m in MOTORS)
-
-    return (f"**Answer:** against the {motor.peak_torque_Nm:.2f} N·m, "
-            f"{motor.no_load_speed_rad_s:.2f} rad/s motors, the physically consistent model "
-            f"with the trot's loading (full_trot): {verdicts('full_trot')}; the seed's model as "
-            f"written: {verdicts('seed')}. Thresholds: SF ≥ {c.sf_pass:g} pass, ≥ {c.sf_warn:g} "
-            f"warn, else fail; the speed and thermal checks below.")
+    decided = {(model, m): r[model][m]["checks"]["deciding_check"]
+               for model, _ in ANSWER_MODELS for m in MOTORS}
+    if len(set(decided.values())) == 1:
+        checks = (f"each verdict above is the {next(iter(decided.values()))} check's (the worst "
+                  "check decides)")
+    else:
+        checks = "the check that decided each verdict above: " + "; ".join(
+            f"`{model}` " + ", ".join(f"{m} {decided[model, m]}" for m in MOTORS)
+            for model, _ in ANSWER_MODELS)
+    return [
+        "- The seed's estimate (a model on the prescribed foot path, not a verdict on the "
+        f"simulated robot), against the {motor.peak_torque_Nm:.2f} N·m, "
+        f"{motor.no_load_speed_rad_s:.2f} rad/s motors.",
+        "- Models: " + ", ".join(f"{label} is `{model}`" for model, label in ANSWER_MODELS)
+        + " (both defined below).",
+        f"- Checks: {checks}; the speed and thermal checks below.",
+        f"- Thresholds: SF ≥ {c.sf_pass:g} pass, ≥ {c.sf_warn:g} warn, else fail.",
+    ]
 
 
 def markdown(analysis: Analysis, sampled: dict | None = None) -> str:
@@ -120,6 +163,8 @@ def markdown(analysis: Analysis, sampled: dict | None = None) -> str:
         f"# 5-bar leg: dynamic torque analysis over the {path.title}",
         "",
         answer(analysis),
+        "",
+        *answer_details(analysis),
         "",
         f"Foot path: {path.text(g)}, f = {g.frequency_hz:g} Hz, N = {g.samples} samples "
         f"(central differences: peak joint speed within {sampled['speed']:.1%}, peak "
@@ -174,17 +219,20 @@ def markdown(analysis: Analysis, sampled: dict | None = None) -> str:
                          f"{m['peak_acceleration_rad_s2']:.2f} | "
                          f"{_maybe(c['least_margin'], '.3f')} | {c['outside_fraction']:.1%} | "
                          f"{m['torque_speed_margin']:.2f}x | {c['verdict'].upper()} |")
-    lines += ["", "Operating points: the torque the motor delivers (joint torque + output "
-              "friction) at the joint speed, each in its own quadrant. Least speed margin: the "
-              "largest speed at which the envelope still gives a sample's torque in its quadrant "
-              "over its speed (driving: the back-EMF may reach the phase voltage less R i; "
-              "braking: exceed it by R i at most, beyond which it forces more braking than "
-              "asked). Beyond the envelope: the share of the cycle's samples outside it (the "
-              f"check fails above {p.checks.speed_outside_fail:.0%}, warns for any or a margin "
-              f"below {p.checks.speed_margin_warn:g}). Torque-speed margin: the least ratio of "
-              "the torque the envelope gives at a sample's speed in the direction of its torque "
-              "to that torque (below 1 exactly outside). A joint beyond the no-load speed lies "
-              "within the envelope only while it brakes at least as much as the back-EMF forces.",
+    lines += ["", "- Operating points: the torque the motor delivers (joint torque + output "
+              "friction) at the joint speed, each in its own quadrant.",
+              "- Least speed margin: the largest speed at which the envelope still gives a "
+              "sample's torque in its quadrant over its speed (driving: the back-EMF may reach "
+              "the phase voltage less R i; braking: exceed it by R i at most, beyond which it "
+              "forces more braking than asked).",
+              "- Beyond the envelope: the share of the cycle's samples outside it (the check "
+              f"fails above {p.checks.speed_outside_fail:.0%}, warns for any or a margin below "
+              f"{p.checks.speed_margin_warn:g}).",
+              "- Torque-speed margin: the least ratio of the torque the envelope gives at a "
+              "sample's speed in the direction of its torque to that torque (below 1 exactly "
+              "outside).",
+              "- A joint beyond the no-load speed lies within the envelope only while it brakes "
+              "at least as much as the back-EMF forces.",
               "", "## Trot loading (the other reading of the weight share)", "",
               "The torque check's safety factor and the verdict of the actuator's checks (below), "
               "the one figure every output gives for this reading.", "",
@@ -202,13 +250,15 @@ def markdown(analysis: Analysis, sampled: dict | None = None) -> str:
               f"{mo['braking_peak_torque_Nm']:.3g} braking), no-load "
               f"{mo['no_load_speed_rad_s']:.2f} rad/s, continuous "
               f"{_maybe(mo['continuous_torque_Nm'], '.3g')} N·m at the output "
-              "(report.json: motor.envelope). Operating points: the joint torque plus the output "
-              "friction, at the joint speed. Torque: the safety factor, 1 / the largest ratio of "
-              "a sample's torque to the peak-current torque of its own quadrant (driving: torque "
-              "and speed of one sign; braking: opposite signs), with the quadrant of that sample; "
-              "speed: the least ratio of the speed at which the envelope still gives a sample's "
-              "torque to its speed, and the share of the cycle beyond the envelope; thermal: "
-              "continuous / RMS current. The worst check decides.", "",
+              "(report.json: motor.envelope). The worst check decides.", "",
+              "- Operating points: the joint torque plus the output friction, at the joint "
+              "speed.",
+              "- Torque: the safety factor, 1 / the largest ratio of a sample's torque to the "
+              "peak-current torque of its own quadrant (driving: torque and speed of one sign; "
+              "braking: opposite signs), with the quadrant of that sample.",
+              "- Speed: the least ratio of the speed at which the envelope still gives a "
+              "sample's torque to its speed, and the share of the cycle beyond the envelope.",
+              "- Thermal: continuous / RMS current.", "",
               "| motor | model | verdict | decided by | SF | quadrant | speed margin | "
               "beyond envelope | current margin |", "|---|---|---|---|---|---|---|---|---|"]
     for motor in MOTORS:
@@ -229,7 +279,12 @@ def markdown(analysis: Analysis, sampled: dict | None = None) -> str:
     lines += design_lines(analysis.results, p)
     lines += published_lines(analysis.results["published"])
     lines += ["", "## Assumptions", ""]
-    lines += [f"- {a}" for a in assumptions(analysis)]
+    motor = motor_assumption(p.motor)
+    for a in assumptions(analysis):
+        if a == " ".join(motor):                  # the actuator's: its parts listed under it
+            lines += [f"- {motor[0]}", *(f"  - {part}" for part in motor[1:])]
+        else:
+            lines.append(f"- {a}")
     lines += ["", "## Plots", ""]
     lines += [f"![{name}]({name}.png)" for name in FIGURE_NAMES]
     return "\n".join(lines) + "\n"

@@ -13,14 +13,19 @@
 
 from __future__ import annotations
 
+import csv
+import io
 import json
 import math
 from pathlib import Path
 
+import numpy as np
+
 from fivebar_drake.codesign.designs import design_params
 from fivebar_drake.codesign.predict import ceiling
 from fivebar_drake.codesign.spec import CodesignSpec
-from fivebar_drake.core.files import write_atomic
+from fivebar_drake.core.files import save_figure, write_atomic
+from fivebar_drake.core.text import ANSWER_CHARS
 from fivebar_drake.core.text import figure as _f
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.optimal.top_speed import GAITS, top_speed
@@ -33,8 +38,16 @@ from fivebar_drake.simulation.scenario import load_scenario
 
 DOSSIER_DIR = "dossier"
 SHEET_FILE = "spec_sheet.md"
+MARGINS_FILE = "margins.png"
+REQUIREMENTS_FILE = "requirements.csv"
 SHEET_GAITS = GAITS           # the gaits whose top speed the sheet gives
-DOSSIER_FILES = ("quadruped.sdf", MJCF_FILE, SHEET_FILE)
+DOSSIER_FILES = ("quadruped.sdf", MJCF_FILE, REQUIREMENTS_FILE, MARGINS_FILE, SHEET_FILE)
+# the simulated figures the margins picture sets side by side: (key, label, where it fails
+# below, and where it warns below or passes from: a Checks field or a number)
+MARGIN_CHECKS = (("torque", "torque: SF", "sf_warn", ("pass from", "sf_pass")),
+                 ("speed", "speed: least margin", 1.0, ("warn below", "speed_margin_warn")),
+                 ("thermal", "thermal: continuous / RMS current", 1.0,
+                  ("warn below", "thermal_margin_warn")))
 
 
 def requirements(envelope: dict) -> dict[str, dict]:
@@ -73,6 +86,17 @@ def capabilities(params: Params) -> dict:
                               "bound_m_s": t.bound_m_s} for k, t in speeds.items()}}
 
 
+def _sheet_answer(r: dict, asked: dict, allows: dict, fastest, speeds: dict) -> str:
+    """The spec sheet's first line (at most ANSWER_CHARS where the design's name allows)."""
+    head = (f"**Answer:** Recommended: {r['name']}: PASS on its simulated envelope, at most "
+            f"{asked['torque_Nm']:.2f} of {asked['limit_Nm']:.2f} N·m asked")
+    legs = ("; for any controller its legs allow "
+            + ("no jump" if allows["jump_m"] is None else
+               f"a {allows['jump_m'] * 1e3:.0f} mm jump")
+            + ("" if fastest is None else f" and a {fastest} at {speeds[fastest]:.2f} m/s"))
+    return head + (legs if len(head + legs) < ANSWER_CHARS else "") + "."
+
+
 def sheet(report: dict, params: Params, needs: dict, allows: dict) -> str:
     """spec_sheet.md of the recommended design (design.json's recommended entry)."""
     r, m = report["recommended"], params.motor
@@ -82,14 +106,10 @@ def sheet(report: dict, params: Params, needs: dict, allows: dict) -> str:
     fastest = max(speeds, key=speeds.get) if speeds else None
     asked = max(needs.values(), key=lambda n: n["torque_Nm"] / n["limit_Nm"])
     lines = [f"# Spec sheet: {r['name']}", "",
-             f"**Answer:** Recommended: {r['name']} ({r['key']}), PASS on every maneuver of its "
-             f"simulated envelope, no motor asked more than {asked['torque_Nm']:.2f} N·m of its "
-             f"{asked['limit_Nm']:.2f} N·m; for any controller its legs allow "
-             + ("no jump" if allows["jump_m"] is None else
-                f"a {allows['jump_m'] * 1e3:.0f} mm jump")
-             + ("" if fastest is None else f" and a {fastest} at {speeds[fastest]:.2f} m/s")
-             + ". Below: its actuator, what its legs allow, and per motor what its maneuvers "
-               "asked (the requirements to send to a vendor).", "",
+             _sheet_answer(r, asked, allows, fastest, speeds), "",
+             "Below: its actuator, what its legs allow, and per motor what its maneuvers asked "
+             f"(the requirements to send to a vendor, also as `{REQUIREMENTS_FILE}`).", "",
+             f"![Simulated figures: default and recommended]({MARGINS_FILE})", "",
              "## Actuator", "",
              "| figure | value |", "|---|---|",
              f"| motor | {design['motor']} |",
@@ -124,6 +144,66 @@ def sheet(report: dict, params: Params, needs: dict, allows: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
+def requirements_csv(needs: dict, params: Params, allows: dict) -> str:
+    """requirements.csv: one row per motor for a vendor (requirements' figures), with the
+    continuous torque the rating gives (N*m at the output) and the fastest top speed the legs
+    allow (m/s, for any controller)."""
+    m = params.motor
+    speeds = [t["speed_m_s"] for t in allows["top_speed"].values()
+              if math.isfinite(t["speed_m_s"])]
+    columns = ("motor", "peak_torque_asked_Nm", "quadrant", "in_maneuver", "peak_torque_limit_Nm",
+               "least_speed_margin", "largest_rms_current_A", "duty_cycle_rms_current_A",
+               "continuous_current_A", "continuous_torque_Nm", "no_load_speed_rad_s",
+               "top_speed_m_s")
+    buffer = io.StringIO()
+    writer = csv.writer(buffer, lineterminator="\n")
+    writer.writerow(columns)
+    for motor, n in needs.items():
+        writer.writerow([motor, f"{n['torque_Nm']:.4g}", n["quadrant"], n["torque_maneuver"],
+                         f"{n['limit_Nm']:.4g}", _g(n["speed_margin"]), _g(n["rms_current_A"]),
+                         _g(n["duty_cycle_current_A"]), _g(n["continuous_current_A"]),
+                         _g(m.continuous_torque_Nm), f"{m.no_load_speed_rad_s:.4g}",
+                         _g(max(speeds) if speeds else None)])
+    return buffer.getvalue()
+
+
+def _g(x) -> str:
+    """A CSV figure to 4 significant digits; empty where there is none."""
+    return "" if x is None or not math.isfinite(x) else f"{x:.4g}"
+
+
+def plot_margins(report: dict, checks, path: Path) -> Path:
+    """margins.png: per check (MARGIN_CHECKS) and maneuver, the default design's simulated
+    figure beside the recommended design's (design.json's, the worst motor's), with the
+    thresholds where the check warns and fails."""
+    import matplotlib.pyplot as plt
+
+    designs = {"default design": report["default"]["simulated"],
+               "recommended": report["recommended"]["simulated"]}
+    names = [n for n in designs["recommended"]["maneuvers"]
+             if designs["recommended"]["maneuvers"][n].get("figures")]
+    fig, axes = plt.subplots(1, len(MARGIN_CHECKS), figsize=(13, 4.2))
+    x = np.arange(len(names))
+    for ax, (key, label, fails, turns) in zip(axes, MARGIN_CHECKS):
+        for k, (design, colour) in enumerate(zip(designs, ("0.6", "tab:blue"))):
+            runs = (designs[design] or {}).get("maneuvers") or {}
+            values = [((runs.get(n) or {}).get("figures") or {}).get(key) for n in names]
+            values = [np.nan if v is None else v for v in values]
+            bars = ax.bar(x + (k - 0.5) * 0.38, values, 0.38, color=colour, label=design)
+            ax.bar_label(bars, fmt="%.2f", fontsize=7)
+        fail = getattr(checks, fails) if isinstance(fails, str) else fails
+        word, other = turns
+        ax.axhline(fail, color="tab:red", ls="--", lw=1, label=f"fail below {fail:g}")
+        ax.axhline(getattr(checks, other), color="tab:orange" if word.startswith("warn") else
+                   "tab:green", ls=":", lw=1.2, label=f"{word} {getattr(checks, other):g}")
+        ax.set(title=label, xticks=x, xticklabels=names)
+        ax.grid(axis="y", alpha=0.3)
+        ax.legend(fontsize=7, loc="upper left")
+    fig.suptitle("Simulated figures, the worst motor per maneuver: default and recommended")
+    fig.tight_layout()
+    return save_figure(fig, path)
+
+
 def write_dossier(spec: CodesignSpec, report: dict, out: Path, finalists: Path) -> list[Path]:
     """Write OUT/dossier/ for the recommended design (module docstring; its envelope in
     finalists/KEY/); [] without one, and an earlier run's dossier removed."""
@@ -137,8 +217,10 @@ def write_dossier(spec: CodesignSpec, report: dict, out: Path, finalists: Path) 
     envelope = json.loads((finalists / r["key"] / "envelope.json").read_text())
     folder.mkdir(parents=True, exist_ok=True)
     bushing = closure_design(load_scenario(closure="bushing_rpy"), params).bushing
+    needs, allows = requirements(envelope), capabilities(params)
     return [write_atomic(folder / DOSSIER_FILES[0], quadruped_sdf(params, ExplicitBushing(),
                                                                  bushing)),
             write_atomic(folder / MJCF_FILE, quadruped_mjcf(params)),
-            write_atomic(folder / SHEET_FILE, sheet(report, params, requirements(envelope),
-                                                    capabilities(params)))]
+            write_atomic(folder / REQUIREMENTS_FILE, requirements_csv(needs, params, allows)),
+            plot_margins(report, params.checks, folder / MARGINS_FILE),
+            write_atomic(folder / SHEET_FILE, sheet(report, params, needs, allows))]

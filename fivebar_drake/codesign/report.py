@@ -401,25 +401,27 @@ def markdown(spec: CodesignSpec, report: dict) -> str:
     unpredicted = [m.name for m in spec.envelope.maneuvers
                    if not any(m.name in e["maneuvers"] for e in report["candidates"])]
     lines += ["", "## Search", "",
-              f"{report['trials']} trials (Optuna TPE, seed {spec.seed}, journal "
+              f"- {report['trials']} trials (Optuna TPE, seed {spec.seed}, journal "
               f"{JOURNAL_FILE}), {report['predicted_meeting']} predicted to meet every "
               f"predicted requirement; {len(report['finalists'])} finalists simulated, and the "
               "default design.",
-              "Judged by simulation only (no closed form or floor here): "
+              "- Judged by simulation only (no closed form or floor here): "
               + (", ".join(unpredicted) or "none") + ".",
-              "Assumptions: a catalogue motor keeps the base parameter file's friction and "
+              "- Assumptions: a catalogue motor keeps the base parameter file's friction and "
               "thermal model (the catalogue gives neither); robot.motors_kg is the 8 "
-              "actuators' mass. "
-              + ("Every run was step-checked (run again at half the plant step; a marginal "
-                 "verdict fails)." if spec.step_check else "The envelope's runs have no step "
-                 "check.")
-              + (" A run at a limit fails: a motor at its torque or voltage limit in any "
-                 "sample, or a leg at a joint or extension limit." if spec.never_at_limit
-                 else "")
-              + (f" Actuator mass held equal: every design's within ±{spec.mass_band[1]:.1%} "
-                 f"of {spec.mass_band[0]:.4f} kg (motor and gearbox as the catalogue models "
-                 "them; margin: the band's half-width over the design's distance from it, at "
-                 "most 10)." if spec.mass_band else ""), ""]
+              "actuators' mass.",
+              "- " + ("Every run was step-checked (run again at half the plant step; a marginal "
+                      "verdict fails)." if spec.step_check else "The envelope's runs have no "
+                      "step check.")]
+    if spec.never_at_limit:
+        lines.append("- A run at a limit fails: a motor at its torque or voltage limit in any "
+                     "sample, or a leg at a joint or extension limit.")
+    if spec.mass_band:
+        lines.append(f"- Actuator mass held equal: every design's within "
+                     f"±{spec.mass_band[1]:.1%} of {spec.mass_band[0]:.4f} kg (motor and gearbox "
+                     "as the catalogue models them; margin: the band's half-width over the "
+                     "design's distance from it, at most 10).")
+    lines.append("")
     return "\n".join(lines)
 
 
@@ -473,9 +475,12 @@ def pareto_figure(spec: CodesignSpec, report: dict):
                            label=f"{j['key']}: max jump simulated")
     r = report["recommended"]
     if r is not None:
+        x = r["objectives"][first]
+        left = first == "actuator_mass_kg" and report["default"]["actuator_mass_kg"] > x
         ax.annotate("recommended\n" + r["name"].replace(", ", "\n").replace(" at ", "\nat "),
-                    (r["objectives"][first], y(r)), xytext=(15, -60), textcoords="offset points",
-                    fontsize=8,
+                    (x, y(r)), xytext=(-15 if left else 15, -60), textcoords="offset points",
+                    fontsize=8, ha="right" if left else "left",       # away from the default's
+                    bbox=dict(boxstyle="round", fc="white", ec="0.7", alpha=0.9),      # line
                     arrowprops=dict(arrowstyle="->"))
     if first == "actuator_mass_kg":
         ax.axvline(report["default"]["actuator_mass_kg"], color="k", ls="--",

@@ -34,7 +34,7 @@ PICTURES = (
     ("optimal/optimal_jump.png", "The highest jump for any controller"),
     ("simulation/trot/sim_torques.png", "The default trot's motor torques"),
     ("gear_comparison.png", "The default trot against the 11.5:1 gear"),
-    ("gait_comparison.png", "The default trot against the seed's ellipse"),
+    ("gait_comparison.png", "The default trot against the walk"),
 )
 STATIC = "the seed's static estimate (a model, not a verdict on the robot)"
 STYLE = """body{font:16px/1.5 system-ui,sans-serif;max-width:60rem;margin:2rem auto;padding:0 1rem;
@@ -45,15 +45,20 @@ border:1px solid #eee}.answer{font-size:1.2rem;padding:.75rem 1rem;background:#f
 border-left:4px solid #555}code{background:#f4f4f4;padding:0 .2rem}"""
 
 
-def _read(path: Path) -> dict | None:
-    """A JSON output, None where it is missing; ParameterError naming a broken one."""
+def _read(path: Path, needs: str) -> dict | None:
+    """A JSON output, None where it is missing; ParameterError naming one that is broken or
+    lacks the key needs (written by an older version: the command is to be run again)."""
     if not path.is_file():
         return None
     try:
-        return json.loads(path.read_text(encoding="utf-8"))
+        data = json.loads(path.read_text(encoding="utf-8"))
     except (OSError, ValueError) as err:
         raise ParameterError(f"cannot be read as an output of fivebar-drake ({err})",
                              source=str(path)) from None
+    if not isinstance(data, dict) or needs not in data:
+        raise ParameterError(f"has no {needs!r}: written by another version of fivebar-drake "
+                             "or not by it; run its command again", source=str(path))
+    return data
 
 
 def _title(path: Path) -> str:
@@ -63,6 +68,11 @@ def _title(path: Path) -> str:
             text = line.lstrip("# ").strip()
             return text if len(text) <= 90 else text[:87] + "..."
     return path.name
+
+
+def _plain(text: str) -> str:
+    """Text from an output made safe in the page: HTML escaped, a table's bar escaped."""
+    return html.escape(str(text), quote=False).replace("|", "\\|")
 
 
 def _maneuver_rows(envelope: dict, where: str) -> list[str]:
@@ -77,6 +87,7 @@ def _maneuver_rows(envelope: dict, where: str) -> list[str]:
                if motors.get(m) and motors[m].get("checks")]
         need = e.get("any_controller") or {}
         folder = f"{where}/{e['folder']}"
+        name = _plain(name)
         rows.append(
             f"| {name} | {verdict_word(e['verdict'])} | {e.get('deciding_check') or '—'} | "
             f"{figure(min(sfs) if sfs else None)} | {figure(need.get('floor_Nm'))} | "
@@ -106,7 +117,7 @@ def _links(root: Path) -> list[str]:
         if path.suffix == ".rrd":
             text = f"recording (open with `rerun {rel.as_posix()}`)"
         else:
-            text = _title(path)
+            text = _plain(_title(path))
             if rel.name == "report.md" and (rel.parts[0] in ("analysis", "robots")):
                 text += f": {STATIC}"
         lines.append(f"- [{rel.as_posix()}]({rel.as_posix()}): {text}")
@@ -116,9 +127,9 @@ def _links(root: Path) -> list[str]:
 def index_markdown(root: Path) -> str:
     """index.md of the output folder root (module docstring); ParameterError where root holds
     neither an envelope nor a co-design."""
-    found = [(where, _read(root / where)) for where in ENVELOPES]
+    found = [(where, _read(root / where, "design_answer")) for where in ENVELOPES]
     envelope_at, envelope = next(((w, e) for w, e in found if e is not None), (None, None))
-    design = _read(root / DESIGN)
+    design = _read(root / DESIGN, "why")
     if envelope is None and design is None:
         raise ParameterError(f"holds no envelope ({' or '.join(ENVELOPES)}) and no co-design "
                              f"({DESIGN}): run `fivebar-drake envelope` or `codesign` into it "
@@ -128,11 +139,11 @@ def index_markdown(root: Path) -> str:
         answer = envelope["design_answer"]
         lines += [f'<p class="answer">{html.escape(answer["text"])}</p>', "",
                   f"From the envelope in `{Path(envelope_at).parent.as_posix()}/` "
-                  f"({envelope['spec']}). This controller's worst: "
+                  f"({_plain(envelope['spec'])}). This controller's worst: "
                   f"{verdict_word(envelope['verdict'])}.", ""]
     if design is not None:
-        lines += [f"**Fix:** {design['answer']}", ""]
-        lines += [f"- {item}" for item in design.get("why", [])] + [""]
+        lines += [f"**Fix:** {_plain(design['answer'])}", ""]
+        lines += [f"- {_plain(item)}" for item in design["why"]] + [""]
     if envelope is not None:
         where = Path(envelope_at).parent.as_posix()
         lines += ["## Maneuvers", "", envelope["thresholds"], ""]

@@ -52,10 +52,24 @@ def plot_operating_points(motor: Motor, points: dict, path: Path) -> Path:
     return save_figure(fig, path)
 
 
-def plot_duty_cycle(motor, duty: DutyTemperature, steps, legs, path: Path) -> Path:
+def verdict_temperatures(motor, checks) -> dict[str, float]:
+    """The winding temperatures (deg C) where the duty cycle's thermal check turns (its margin
+    sqrt(allowed rise / rise) at 1 and at checks.thermal_margin_warn, envelope.duty_cycle's
+    duty_verdict): "fail" above the steady temperature of the continuous rating, "warn" above
+    that of the rating over thermal_margin_warn; none without a rating or a thermal model."""
+    rated = motor.rated_continuous_current_A
+    if rated is None or not motor.has_thermal_model:
+        return {}
+    rise = motor.copper_loss_W(1.0) * motor.thermal_resistance_K_W
+    return {"fail": motor.ambient_C + rise * rated ** 2,
+            "warn": motor.ambient_C + rise * (rated / checks.thermal_margin_warn) ** 2}
+
+
+def plot_duty_cycle(motor, checks, duty: DutyTemperature, steps, legs, path: Path) -> Path:
     """The winding temperature (deg C) of every motor over the duty cycle (time in min, in s for
     a cycle under 10 min), A and B in their colours (one line per leg), the winding's limit,
-    the steps shaded and named."""
+    the temperatures where the thermal check (checks' thresholds) fails and warns
+    (verdict_temperatures), the steps shaded and named."""
     import matplotlib.pyplot as plt
 
     scale, unit = (60.0, "min") if duty.t[-1] >= 600.0 else (1.0, "s")
@@ -73,6 +87,13 @@ def plot_duty_cycle(motor, duty: DutyTemperature, steps, legs, path: Path) -> Pa
                     alpha=0.85, label=f"motor {name}" if i == 0 else None)
     ax.axhline(motor.winding_limit_C, color="tab:red", ls="--", lw=1.2,
                label=f"winding limit {motor.winding_limit_C:g} °C")
+    turns = verdict_temperatures(motor, checks)
+    for name, colour in (("fail", "tab:red"), ("warn", "tab:orange")):
+        if name in turns:
+            ax.axhline(turns[name], color=colour, ls="-.", lw=1.0,
+                       label=f"thermal check {name.upper()} above {turns[name]:.0f} °C "
+                             "(continuous rating" + ("" if name == "fail" else
+                                                     f" / {checks.thermal_margin_warn:g}") + ")")
     ax.axhline(motor.ambient_C, color="0.5", ls=":", lw=1, label="ambient")
     ax.set(xlabel=f"time ({unit})", ylabel="winding temperature (°C)", xlim=(0, times[-1]))
     ax.grid(alpha=0.3)

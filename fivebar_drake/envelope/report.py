@@ -15,8 +15,8 @@ import json
 import math
 from pathlib import Path
 
-from fivebar_drake.verdicts.checks import (CHECK_ORDER, SEVERITY, limit_shares_text,
-                                           thresholds_text, worst_check)
+from fivebar_drake.verdicts.checks import (CHECK_ORDER, SEVERITY, check_badness,
+                                           limit_shares_text, thresholds_text, worst_check)
 from fivebar_drake.verdicts.checks import verdict as check_verdict
 from fivebar_drake.core.text import figure, verdict_word
 from fivebar_drake.core.files import json_ready, write_atomic
@@ -48,15 +48,10 @@ def motor_row(summary: Summary, motor: str) -> dict:
     if any(ms[motor]["checks"] is None for ms in legs.values()):
         return {"checks": None, "verdict": "insufficient", "deciding_check": None}
     rows = {}
-    leg, m = _worst_leg(legs, motor, lambda m: -_inf(m["checks"]["torque"]["sf"]))
-    rows["torque"] = {**m["checks"]["torque"], "demand_p99_Nm": m["demand_p99_Nm"], "leg": leg}
-    leg, m = _worst_leg(legs, motor, lambda m: (
-        SEVERITY[m["checks"]["speed"]["verdict"]], m["checks"]["speed"]["outside_fraction"],
-        -_inf(m["checks"]["speed"]["least_margin"])))
-    rows["speed"] = {**m["checks"]["speed"], "leg": leg}
-    leg, m = _worst_leg(legs, motor, lambda m: (
-        SEVERITY[m["checks"]["thermal"]["verdict"]], -_inf(m["checks"]["thermal"]["margin"])))
-    rows["thermal"] = {**m["checks"]["thermal"], "leg": leg}
+    for check in CHECK_ORDER:
+        leg, m = _worst_leg(legs, motor, lambda m: check_badness(check, m["checks"][check]))
+        rows[check] = {**m["checks"][check], "leg": leg}
+    rows["torque"]["demand_p99_Nm"] = legs[rows["torque"]["leg"]][motor]["demand_p99_Nm"]
     leg, m = _worst_leg(legs, motor, lambda m: (
         m["checks"]["achieved"]["verdict"] == "not_achieved", m["saturated_fraction"]))
     rows["achieved"] = {**m["checks"]["achieved"], "leg": leg}
@@ -321,18 +316,19 @@ def markdown(report: dict) -> str:
         lines += ["**Incomplete:** the envelope was interrupted; the maneuvers marked missing "
                   "did not run.", ""]
     m = report["motor"]
-    lines += [f"Spec: `{report['spec']}`. Motor: {m['peak_torque_Nm']:.2f} N·m peak driving "
+    lines += [f"- Spec: `{report['spec']}`. Motor: {m['peak_torque_Nm']:.2f} N·m peak driving "
               f"({m['braking_peak_torque_Nm']:.2f} braking), no-load speed "
               f"{m['no_load_speed_rad_s']:.2f} rad/s, continuous "
-              f"{figure(m['continuous_torque_Nm'])} N·m. Each check is from the leg where it is "
-              "worst; the verdict is the worst check (not achieved where the motion was not). "
-              "SF: 1 / the 99th percentile of the demand over the limit of each sample's own "
+              f"{figure(m['continuous_torque_Nm'])} N·m.",
+              "- Each check is from the leg where it is worst; the verdict is the worst check "
+              "(not achieved where the motion was not).",
+              "- SF: 1 / the 99th percentile of the demand over the limit of each sample's own "
               "quadrant (driving: torque and speed of one sign; braking: opposite signs), with "
-              "the quadrant of that percentile. \"At its ... limit\": the motor's commands were "
-              "clipped more than 1 % of the time, at the limits named (quadrant, and torque: the "
-              "peak current, or voltage: the back-EMF at speed), so the SF is on the torque it "
-              "delivered (1 at the limit): the controller's demand beyond it was not met and is "
-              "not a need.",
+              "the quadrant of that percentile.",
+              "- \"At its ... limit\": the motor's commands were clipped more than 1 % of the "
+              "time, at the limits named (quadrant, and torque: the peak current, or voltage: "
+              "the back-EMF at speed), so the SF is on the torque it delivered (1 at the limit): "
+              "the controller's demand beyond it was not met and is not a need.",
               ""]
     for motor in MOTORS:
         lines += [f"## Motor {motor}", "",

@@ -157,8 +157,8 @@ def write_envelope(spec: EnvelopeSpec, results: dict[str, ManeuverResult],
     if points:
         files.append(plot_operating_points(params.motor, points, out / OPERATING_POINTS_FILE))
     if temperature is not None:
-        files.append(plot_duty_cycle(params.motor, temperature, spec.duty_cycle, LEGS,
-                                     out / DUTY_CYCLE_FILE))
+        files.append(plot_duty_cycle(params.motor, params.checks, temperature, spec.duty_cycle,
+                                     LEGS, out / DUTY_CYCLE_FILE))
     report = envelope_report(spec, results, duty, why, params)
     files += write_report(report, out)
     return report, files

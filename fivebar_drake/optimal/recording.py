@@ -1,5 +1,5 @@
 """The optimal motions as a Rerun recording (optimal.rrd; open it beside a simulation's run.rrd):
-each optimal jump's leg drawn in its leg plane as the hip rises, the hip's height and speed, and
+the answer, then each optimal jump's leg drawn in its leg plane as the hip rises, the hip's height and speed, and
 each motor's delivered torque against the envelope's limit at its speed, over the push; each
 gait's floor (one tab per gait) over its period: the body's height and pitch, the feet's
 vertical forces and the stance motors' torques."""
@@ -31,29 +31,62 @@ GAIT_SERIES = (("body_height_m", "body above its mean height (m)"),
                ("torque_Nm", "stance motors' torques (N·m)"))
 
 
-def blueprint(gaits=()) -> rrb.Blueprint:
-    """The vertical jump's tab, then one per gait's floor (gaits: their kinds)."""
-    jump = rrb.Horizontal(
-        rrb.Spatial3DView(origin="world", name="the leg in its plane"),
-        rrb.Vertical(rrb.TimeSeriesView(origin="hip/height_m", name="hip above standing (m)"),
-                     rrb.TimeSeriesView(origin="hip/speed_m_s", name="hip speed (m/s)"),
-                     *[rrb.TimeSeriesView(origin=f"torque/{m}", name=f"motor {m} (N·m)")
-                       for m in MOTORS]), name="vertical jump")
-    tabs = [rrb.Vertical(*[rrb.TimeSeriesView(origin=f"gait/{kind}/{series}", name=title)
-                           for series, title in GAIT_SERIES], name=f"{kind} floor")
-            for kind in gaits]
-    return rrb.Blueprint(rrb.Tabs(jump, *tabs))
+def _view(origin: str, name: str, t_end: float, values) -> rrb.TimeSeriesView:
+    """A time-series view of origin over 0..t_end s, its y axis the values' range with a tenth
+    either side (every curve inside the axes)."""
+    values = np.concatenate([np.ravel(v) for v in values])
+    lo, hi = float(np.nanmin(values)), float(np.nanmax(values))
+    pad = 0.1 * (hi - lo) or 0.1 * abs(hi) or 1.0
+    return rrb.TimeSeriesView(
+        origin=origin, name=name, axis_y=rrb.ScalarAxis(range=(lo - pad, hi + pad)),
+        axis_x=rrb.TimeAxis(view_range=rr.TimeRange(rr.TimeRangeBoundary.absolute(seconds=0.0),
+                                                    rr.TimeRangeBoundary.absolute(seconds=t_end))))
+
+
+def blueprint(jumps: dict[str, Jump], standing: float, gaits: dict[str, GaitFloor]
+              ) -> rrb.Blueprint:
+    """The answer above the vertical jump's tab, then one tab per gait's floor, each plot over
+    its own span (the push, the period); the side panels collapsed."""
+    found = [j for j in jumps.values() if j is not None]
+    push = max((float(j.t[-1]) for j in found), default=1.0)
+    views = [] if not found else [
+        _view("hip/height_m", "hip above standing (m)", push,
+              [j.stroke.u[:j.takeoff + 1] - standing for j in found]),
+        _view("hip/speed_m_s", "hip speed (m/s)", push, [j.w for j in found]),
+        *[_view(f"torque/{m}", f"motor {m} (N·m)", push,
+                [j.delivered_Nm[:, k] for j in found]
+                + [np.concatenate(j.stroke.motor.limits(j.speed_rad_s))[:, k] for j in found])
+          for k, m in enumerate(MOTORS)]]
+    jump = rrb.Vertical(
+        rrb.TextDocumentView(origin="answer", name="answer"),
+        rrb.Horizontal(rrb.Spatial3DView(origin="world", name="the leg in its plane"),
+                       rrb.Vertical(*views)), row_shares=[1, 4], name="vertical jump")
+    tabs = [rrb.Vertical(*[_view(f"gait/{kind}/{series}", title, float(floor.t[-1]),
+                                 [values]) for (series, title), values in
+                           zip(GAIT_SERIES, _gait_series(floor))], name=f"{kind} floor")
+            for kind, floor in gaits.items()]
+    return rrb.Blueprint(rrb.Tabs(jump, *tabs), rrb.BlueprintPanel(state="collapsed"),
+                         rrb.SelectionPanel(state="collapsed"),
+                         rrb.TimePanel(state="collapsed", timeline=TIMELINE))
+
+
+def _gait_series(floor: GaitFloor) -> tuple:
+    """A floor's series in GAIT_SERIES' order: body height about its mean (m), pitch (deg),
+    the feet's vertical forces (legs, knots) N, the stance torques (legs, knots, 2) N*m."""
+    return (floor.z_m - floor.z_m.mean(), np.degrees(floor.pitch_rad), floor.force_N[:, :, 1],
+            floor.torque_Nm)
 
 
 def log_gait(rec, kind: str, floor: GaitFloor) -> None:
     """A gait's floor over its period (time from its start, s) under gait/KIND/."""
     t, root = floor.t, f"gait/{kind}"
-    scalars(rec, f"{root}/body_height_m/z", t, floor.z_m - floor.z_m.mean(), "height")
-    scalars(rec, f"{root}/pitch_deg/pitch", t, np.degrees(floor.pitch_rad), "pitch")
+    height, pitch, force, torque = _gait_series(floor)
+    scalars(rec, f"{root}/body_height_m/z", t, height, "height")
+    scalars(rec, f"{root}/pitch_deg/pitch", t, pitch, "pitch")
     for i, leg in enumerate(LEGS):
-        scalars(rec, f"{root}/force_z_N/{leg}", t, floor.force_N[i, :, 1], leg)
+        scalars(rec, f"{root}/force_z_N/{leg}", t, force[i], leg)
         for m, motor in enumerate(MOTORS):
-            scalars(rec, f"{root}/torque_Nm/{leg}_{motor}", t, floor.torque_Nm[i, :, m],
+            scalars(rec, f"{root}/torque_Nm/{leg}_{motor}", t, torque[i, :, m],
                     f"{leg} {motor}")
 
 
@@ -72,10 +105,12 @@ def leg_strips(params: Params, q, hip_height) -> np.ndarray:
 
 
 def write_recording(path: Path, jumps: dict[str, Jump | None], params: Params,
-                    gaits: dict[str, GaitFloor] | None = None) -> Path:
-    """optimal.rrd of the jumps by name (None: skipped) and the gaits' floors by kind."""
+                    gaits: dict[str, GaitFloor] | None = None, answer: str = "") -> Path:
+    """optimal.rrd of the jumps by name (None: skipped), the gaits' floors by kind and the
+    answer (markdown), which the recording opens on."""
     standing, gaits = -params.gait.y_home_m, gaits or {}
-    with recording_file(path, "fivebar_drake-optimal", blueprint(gaits)) as rec:
+    with recording_file(path, "fivebar_drake-optimal", blueprint(jumps, standing, gaits)) as rec:
+        rec.log("answer", rr.TextDocument(answer, media_type=rr.MediaType.MARKDOWN), static=True)
         for kind, floor in gaits.items():
             log_gait(rec, kind, floor)
         for i, (name, j) in enumerate(jumps.items()):

@@ -136,10 +136,12 @@ def jump_limits(params: Params, height_m: float | None = None, payload_kg: float
     if need.status == "floor":
         jumps["floor"] = need.found
         u = need.found.stroke.u
+        landing = landing_need(params, dataclasses.replace(plan, height_m=height), payload_kg)
         result["floor"] = {"height_m": height, "crouch_m": standing - float(u[0]),
                            "extension_m": float(u[-1]) - standing,
                            "least_peak_torque_Nm": need.floor_Nm, "on": need.why or
                            "the jump maneuver's own stroke",
+                           "landing_peak_torque_Nm": landing.floor_Nm,
                            **_jump_figures(jumps["floor"], params.motor)}
     else:
         result["floor_why_none"] = need.why
@@ -152,6 +154,7 @@ def jump_limits(params: Params, height_m: float | None = None, payload_kg: float
     result["published"] = (published_jump(params, result["ceiling"])
                            + published_speed(params, result["top_speed"]))
     result["answer"] = answer(result, params)
+    result["answer_details"] = answer_details(result, params)
     return result, jumps
 
 
@@ -227,47 +230,62 @@ def stand_up_limits(params: Params, payload_kg: float = 0.0) -> dict:
 
 
 def answer(r: dict, params: Params) -> str:
-    """The result in two sentences: how high the legs can jump, what the packaged jump needs."""
+    """The result in one line: how high the legs can jump for any controller, under the bound
+    no controller exceeds (or why there is no jump); the rest is answer_details'."""
     c = r["ceiling"]
-    first = (f"No jump: {r['ceiling_why_none']}." if c is None else
-             f"In the one-leg model the legs and motors allow a vertical jump of "
-             f"{c['body_apex_above_standing_m'] * 1e3:.0f} mm above standing (the body's apex; "
-             f"the centre of mass rises {c['com_rise_from_crouch_m'] * 1e3:.0f} mm from the crouch, "
-             f"takeoff at {c['takeoff_speed_m_s']:.2f} m/s, agility "
-             f"{c['agility_m_s']:.2f} m/s); no controller exceeds the bound of "
-             f"{r['bound']['hip_apex_above_standing_m'] * 1e3:.0f} mm (a point mass on massless "
-             f"legs with the same motors), and between the two a controller's run decides.")
+    if c is None:
+        return f"No jump: {r['ceiling_why_none']}."
+    return (f"In the one-leg model the legs and motors allow a vertical jump of "
+            f"{c['body_apex_above_standing_m'] * 1e3:.0f} mm above standing; no controller "
+            f"exceeds the bound of {r['bound']['hip_apex_above_standing_m'] * 1e3:.0f} mm.")
+
+
+def answer_details(r: dict, params: Params) -> list[str]:
+    """The answer's figures, one item each: the jump's, the jump maneuver's need, the drop's
+    and the stand-up's, each gait's floor, the package's own paths' fastest and the top
+    speeds."""
+    c = r["ceiling"]
+    out = [] if c is None else [
+        f"The jump: the body's apex; the centre of mass rises "
+        f"{c['com_rise_from_crouch_m'] * 1e3:.0f} mm from the crouch, takeoff at "
+        f"{c['takeoff_speed_m_s']:.2f} m/s, agility {c['agility_m_s']:.2f} m/s. The bound is a "
+        "point mass on massless legs with the same motors; between the two a controller's run "
+        "decides."]
     f = r["floor"]
     whole = "" if f is None or "whole reach" not in f["on"] else " on the leg's whole reach"
-    second = (f" The jump maneuver: {r['floor_why_none']}." if f is None else
-              f" The jump maneuver to {f['height_m'] * 1e3:.0f} mm needs at least "
-              f"{f['least_peak_torque_Nm']:.2f} N·m at its peak{whole} (motor A "
-              f"{f['motors']['A']['peak_torque_Nm']:.2f}, B {f['motors']['B']['peak_torque_Nm']:.2f}"
-              f" N·m) whatever the controller; the motors give "
-              f"{params.motor.peak_torque_Nm:.2f} N·m.")
+    out.append(f"The jump maneuver: {r['floor_why_none']}." if f is None else
+               f"The jump maneuver to {f['height_m'] * 1e3:.0f} mm needs at least "
+               f"{f['least_peak_torque_Nm']:.2f} N·m at its push-off's peak{whole} (motor A "
+               f"{f['motors']['A']['peak_torque_Nm']:.2f}, B "
+               f"{f['motors']['B']['peak_torque_Nm']:.2f} N·m; the motors give "
+               f"{params.motor.peak_torque_Nm:.2f} N·m) and "
+               + ("an undecided landing" if f["landing_peak_torque_Nm"] is None else
+                  f"{f['landing_peak_torque_Nm']:.2f} N·m braking at its landing (of "
+                  f"{params.motor.braking_peak_torque_Nm:.2f})")
+               + " whatever the controller.")
     d = r["drop"]
-    third = (f" The drop maneuver from {d['height_m'] * 1e3:.0f} mm: {d['why_none']}."
-             if d["least_peak_torque_Nm"] is None else
-             f" Landing the {d['height_m'] * 1e3:.0f} mm drop within "
-             f"{d['landing_stroke_m'] * 1e3:.0f} mm needs at least "
-             f"{d['least_peak_torque_Nm']:.2f} N·m (braking); that stroke absorbs a drop of up "
-             f"to {d['highest_drop_m'] * 1e3:.0f} mm.")
+    out.append(f"The drop maneuver from {d['height_m'] * 1e3:.0f} mm: {d['why_none']}."
+               if d["least_peak_torque_Nm"] is None else
+               f"Landing the {d['height_m'] * 1e3:.0f} mm drop within "
+               f"{d['landing_stroke_m'] * 1e3:.0f} mm needs at least "
+               f"{d['least_peak_torque_Nm']:.2f} N·m (braking); that stroke absorbs a drop of "
+               f"up to {d['highest_drop_m'] * 1e3:.0f} mm.")
     u = r["stand_up"]
-    third += (f" Standing up from lying: {u['why_none']}." if u["least_peak_torque_Nm"] is None
-              else f" Standing up from lying needs at least {u['least_peak_torque_Nm']:.2f} N·m "
-                   f"(quasi-static, a level lift balanced about the pitch axis; the front feet "
-                   f"taking the load {u['lift_front_x_m'] * 1e3:.0f} mm and the rear "
-                   f"{u['lift_rear_x_m'] * 1e3:.0f} mm behind their hips; the maneuver's "
-                   f"straight path "
-                   + (u["straight_path_why"].removeprefix("the straight path ")
-                      if u["straight_path_peak_Nm"] is None else
-                      f"asks {u['straight_path_peak_Nm']:.2f} N·m")
-                   + f"; its dynamics add at most {u['dynamic_share']:.0%} in "
-                     f"{u['rise_s']:g} s)"
-                   + (f", beyond the motors' {params.motor.peak_torque_Nm:.2f} N·m for any "
-                      "controller" if u["beyond_motors"] else "") + ".")
-    fourth = "".join(
-        f" The {kind} needs at least {t['floor_Nm']:.2f} N·m in stance"
+    out.append(f"Standing up from lying: {u['why_none']}." if u["least_peak_torque_Nm"] is None
+               else f"Standing up from lying needs at least {u['least_peak_torque_Nm']:.2f} N·m "
+                    f"(quasi-static, a level lift balanced about the pitch axis; the front feet "
+                    f"taking the load {u['lift_front_x_m'] * 1e3:.0f} mm and the rear "
+                    f"{u['lift_rear_x_m'] * 1e3:.0f} mm behind their hips; the maneuver's "
+                    f"straight path "
+                    + (u["straight_path_why"].removeprefix("the straight path ")
+                       if u["straight_path_peak_Nm"] is None else
+                       f"asks {u['straight_path_peak_Nm']:.2f} N·m")
+                    + f"; its dynamics add at most {u['dynamic_share']:.0%} in "
+                      f"{u['rise_s']:g} s)"
+                    + (f", beyond the motors' {params.motor.peak_torque_Nm:.2f} N·m for any "
+                       "controller" if u["beyond_motors"] else "") + ".")
+    out += [
+        f"The {kind} needs at least {t['floor_Nm']:.2f} N·m in stance"
         + (f" (beyond the motors' {params.motor.peak_torque_Nm:.2f} N·m)"
            if t["beyond_motors"] else "") + " at its own height (the "
         f"body heaving {t['height_swing_m'] * 1e3:.0f} mm and pitching through "
@@ -282,38 +300,38 @@ def answer(r: dict, params: Params) -> str:
         + ("" if t["thermal_margin"] is None else
            f"; its thermal floor {t['thermal_floor_rms_current_A']:.2f} A RMS, "
            f"{t['thermal_margin']:.2f} of the continuous {t['continuous_current_A']:.2f} A")
-        + f"; its best speed margin {t['speed_margin']:.2f}"
-        + "." for kind, t in r["gaits"].items())
-    fifth = "".join(
-        f" The package's own {kind} path at its stride and duty factor runs at most "
+        + f"; its best speed margin {t['speed_margin']:.2f}."
+        for kind, t in r["gaits"].items()]
+    out += [
+        f"The package's own {kind} path at its stride and duty factor runs at most "
         + (f"none (its own {f['gait_frequency_hz']:g} Hz does not pass)"
            if f["limited_by"] == "its own frequency" else
            f"{f['speed_m_s']:.3f} m/s ({f['frequency_hz']:.2f} Hz, against its "
            f"{f['gait_speed_m_s']:.3f} m/s), limited by the joints' "
            + ("no-load speed" if f["limited_by"] == "speed" else "torque in stance"))
-        + "." for kind, f in r["fastest"].items())
-    return first + second + third + fourth + fifth + top_speed_text(r["top_speed"])
+        + "." for kind, f in r["fastest"].items()]
+    return out + top_speed_text(r["top_speed"])
 
 
-def top_speed_text(speeds: dict) -> str:
-    """The top speeds in a sentence ("" for none searched)."""
+def top_speed_text(speeds: dict) -> list[str]:
+    """The top speeds, one item each (none for none searched)."""
     if not speeds:
-        return ""
-    parts = [f"the {kind} " + (f"{t['speed_m_s']:.2f} m/s ({t['frequency_hz']:.2f} Hz, duty "
-                               f"factor {t['duty_factor']:.2f}, stride "
-                               f"{t['stride_m'] * 1e3:.0f} mm; limited by {t['limited_by']})"
-                               if t["speed_m_s"] == t["speed_m_s"] else
-                               f"none ({t['limited_by']})")
-             for kind, t in speeds.items()]
+        return []
     bound = next(iter(speeds.values()))["bound_m_s"]
-    return (" Running, for any controller (the fastest a search of stride, frequency, duty "
-            "factor and swing found; no gait is faster than the no-load bound of "
-            f"{bound:.2f} m/s): " + "; ".join(parts) + ".")
+    return [f"The {kind}'s top speed for any controller: "
+            + (f"{t['speed_m_s']:.2f} m/s ({t['frequency_hz']:.2f} Hz, duty factor "
+               f"{t['duty_factor']:.2f}, stride {t['stride_m'] * 1e3:.0f} mm; limited by "
+               f"{t['limited_by']})." if t["speed_m_s"] == t["speed_m_s"] else
+               f"none ({t['limited_by']}).")
+            for kind, t in speeds.items()] + [
+        f"A top speed is the fastest a search of stride, frequency, duty factor and swing "
+        f"found; no gait is faster than the no-load bound of {bound:.2f} m/s."]
 
 
 def markdown(r: dict) -> str:
     """optimal.md: the answer, then a table per jump."""
     lines = ["# What the legs allow: the vertical jump", "", r["answer"], "",
+             *[f"- {item}" for item in r["answer_details"]], "",
              f"Model: {r['model']}. Quarter mass {r['quarter_mass_kg']:.3f} kg.", ""]
     rows = [("ceiling (highest jump)", r["ceiling"]), ("floor (jump maneuver)", r["floor"])]
     lines += ["| | body apex above standing (mm) | COM above standing (mm) | COM from crouch "
@@ -478,7 +496,8 @@ def write(result: dict, jumps: dict[str, Jump], params: Params,
     gaits = {kind: gait_floor(with_path_defaults(params, kind), kind, result["payload_kg"])
              for kind in result["gaits"]}                 # computed by jump_limits: cached
     files = [plot(jumps, params, out / "optimal_jump.png"),
-             write_recording(out / RECORDING_FILE, jumps, params, gaits),
+             write_recording(out / RECORDING_FILE, jumps, params, gaits, "\n".join(
+                 [result["answer"], ""] + [f"- {item}" for item in result["answer_details"]])),
              write_atomic(out / "optimal.md", markdown(result)),
              write_atomic(out / "optimal.json", json.dumps(json_ready(result), indent=2))]
     return files

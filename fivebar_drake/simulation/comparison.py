@@ -133,41 +133,35 @@ def verdict_table(summaries: list[Labelled]) -> list[str]:
 
 
 def answer(summaries: list[Labelled]) -> str:
-    """The comparison in one sentence: each run's verdict and the check that decided it (its
-    worst motor), and, where the deciding check changes from one run to the next, that the
-    change turned one check's failure into another's."""
+    """The comparison in one line: each run's verdict with the check that decided it and its
+    figure, and, where the deciding check changes from one run to the next with the later one
+    failing, that the change moved the limit (each run's full answer is in its item below)."""
     def one(s: Labelled) -> str:
         check = s.get("deciding_check")
-        return (f"{_label(s)}: {words.verdict_word(s['verdict'])}"
-                + (f" by the {check} check (worst motor {s.get('worst_motor')}"
-                   f"{_deciding_figure(s, check)})" if check else ""))
+        return (f"{_label(s)} {words.verdict_word(s['verdict'])}"
+                + (f" ({check}{_short_figure(s, check)})" if check else ""))
 
-    text = "; ".join(one(s) for s in summaries) + "."
+    text = ", ".join(one(s) for s in summaries)
     for a, b in zip(summaries, summaries[1:]):
         ca, cb = a.get("deciding_check"), b.get("deciding_check")
         if ca and cb and ca != cb and b["verdict"] in ("fail", "not_achieved"):
-            text += (f" From {_label(a)} to {_label(b)} the {ca} check's {a['verdict']} became "
-                     f"a {b['verdict']} of the {cb} check: the change moved the limit, it did "
-                     "not remove it.")
-    return text
+            text += (f"; {_label(b)} moved the limit from the {ca} check to the {cb} check, it "
+                     "did not remove it")
+    return text + "."
 
 
-def _deciding_figure(s: Labelled, check: str) -> str:
-    """', SF 1.41: 3.55 N·m of its 5.00 N·m driving limit' — the worst motor's figure of the
-    check that decided its run, against its limit."""
+def _short_figure(s: Labelled, check: str) -> str:
+    """', SF 1.41' — the deciding figure of a run's worst motor in a few characters."""
     leg, _, motor = str(s.get("worst_motor") or "").partition(" ")
-    c = (((s.get("legs") or {}).get(leg) or {}).get(motor) or {}).get("checks") or {}
-    c = c.get(check) or {}
+    c = ((((s.get("legs") or {}).get(leg) or {}).get(motor) or {}).get("checks") or {}).get(
+        check) or {}
     if check == "torque" and c.get("sf") is not None:
-        return (f", SF {words.figure(c['sf'])}: {words.figure(c.get('torque_Nm'))} N·m of its "
-                f"{words.figure(c.get('limit_Nm'))} N·m {c.get('quadrant') or ''} limit").replace(
-                    "  ", " ")
+        return f", SF {words.figure(c['sf'])}"
     if check == "speed" and c:
-        share = words.figure((c.get("outside_fraction") or 0) * 100, "{:.1f}")
-        return (f", {share} % of the time beyond the torque–speed envelope, least margin "
-                f"{words.figure(c.get('least_margin'))}")
+        return (f", {words.figure((c.get('outside_fraction') or 0) * 100, '{:.1f}')} % beyond "
+                "the envelope")
     if check == "thermal" and c:
-        return f", continuous / RMS current {words.figure(c.get('margin'))}"
+        return f", current margin {words.figure(c.get('margin'))}"
     return ""
 
 

@@ -73,6 +73,7 @@ def at_top_speed(scenario: Scenario, params: Params) -> tuple[Scenario, Params]:
 
 
 FALL_TILT_DEG = 45.0   # a body tilted further has fallen: the run stops
+FELL_OVER = "the robot fell over"   # the start of a fallen run's error
 SLICE_S = 0.01         # simulated time between checks for divergence and a stop request
 DIVERGED_GAP_M = 1e-3  # a loop open by more than this (1 % of a link) has come apart
 
@@ -196,7 +197,7 @@ def simulate(scenario: Scenario, params: Params, progress=True, log_actuation=Fa
                 raise RuntimeError("the plant state is not finite")
             tilt = tilt_deg(plant_state[setup.layout.state.body_q:setup.layout.state.body_q + 4])
             if tilt > FALL_TILT_DEG:
-                raise ValueError(f"the robot fell over: tilt {tilt:.0f} deg")
+                raise ValueError(f"{FELL_OVER}: tilt {tilt:.0f} deg")
             interrupted = stop() if stop else ""
             if interrupted:
                 tell(f"{interrupted} received: stopped at t = {t:.2f} s; writing what was "

@@ -33,9 +33,9 @@ from fivebar_drake.simulation.maneuver_figures import maneuver_figures
 from fivebar_drake.simulation.run_statistics import (MIN_CYCLES, Window, end_height,
                                                      leg_statistics, limit_report,
                                                      motion_statistics, statistics_window)
-from fivebar_drake.simulation.runner import DIVERGED_GAP_M, SimulationRecord
+from fivebar_drake.simulation.runner import DIVERGED_GAP_M, FELL_OVER, SimulationRecord
 from fivebar_drake.simulation.signals import Signals, StepSignals
-from fivebar_drake.simulation.summary_text import answer, seed_analysis_load
+from fivebar_drake.simulation.summary_text import answer, answer_details, seed_analysis_load
 
 BODY_SINK_M = 0.01   # the body's box this far into the ground: the contact model has failed
 
@@ -63,8 +63,11 @@ def summarize(sig: Signals, record: SimulationRecord, seed_analysis: dict,
         + broken(sig, params, record.layout.legs), motion["max_tilt_deg"], maneuver))
     sufficient = record.completed and window.cycles >= (MIN_CYCLES if scenario.gait.periodic
                                                         else 1)
+    verdict = run_verdict(legs, sufficient)
+    if record.error.startswith(FELL_OVER):        # a fall is the motion not done, not a lack
+        verdict.update(verdict="not_achieved", deciding_check="achieved")   # of data
     summary = in_schema_order({
-        **what_ran(record, window), **run_verdict(legs, sufficient), **motion,
+        **what_ran(record, window), **verdict, **motion,
         "gait_speed_m_s": gait_speed, **maneuver_summary(maneuver),
         "seed_peak_torque_Nm": max(seed_analysis[m]["peak_torque_Nm"] for m in MOTORS),
         "seed_load_model": seed_analysis_load(params), "step_check": None,
@@ -73,8 +76,15 @@ def summarize(sig: Signals, record: SimulationRecord, seed_analysis: dict,
                     "relaxation_time_s": params.body.foot_relaxation_time_s},
         "contact_check": None,
         "limits": limit_report(sig, params, record.layout.legs), "legs": legs})
-    summary["answer"] = answer(summary, params)
+    set_answer(summary, params)
     return summary
+
+
+def set_answer(summary: Summary, params: Params) -> None:
+    """The summary's answer (its one line) and its reasons (answer_details), from its figures:
+    set again whenever a check or the need for any controller changes them."""
+    summary["answer"] = answer(summary, params)
+    summary["answer_details"] = answer_details(summary, params)
 
 
 def broken(sig: Signals, params: Params, legs) -> list[str]:
@@ -179,7 +189,7 @@ def apply_contact_check(summary: Summary, verdict: str, runs: dict[str, Summary]
     summary["contact_check"] = check
     if summary["verdict"] != "marginal":
         summary["verdict"] = contact_checked_verdict(summary["verdict"], check)
-    summary["answer"] = answer(summary, params)
+    set_answer(summary, params)
     return check
 
 
@@ -190,5 +200,5 @@ def apply_step_check(summary: Summary, half: Summary, params: Params) -> StepChe
     check = step_check(summary, half, params.checks)
     summary["step_check"] = check
     summary["verdict"] = step_checked_verdict(summary["verdict"], check)
-    summary["answer"] = answer(summary, params)
+    set_answer(summary, params)
     return check

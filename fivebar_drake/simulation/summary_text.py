@@ -12,7 +12,8 @@ import json
 import math
 from pathlib import Path
 
-from fivebar_drake.verdicts.checks import CHECK_ORDER, demand_unmet, limit_shares_text, thresholds_text
+from fivebar_drake.verdicts.checks import (CHECK_ORDER, check_badness, demand_unmet,
+                                           limit_shares_text, thresholds_text)
 from fivebar_drake.core.files import json_ready, write_atomic
 from fivebar_drake.core.text import figure, verdict_word
 from fivebar_drake.verdicts.summary_schema import (AnyController, ContactCheck, JumpFigures, LandingFigures, LimitReport,
@@ -43,36 +44,57 @@ def seed_analysis_load(params: Params) -> str:
 
 
 def answer(s: Summary, params: Params) -> str:
-    """The answer to 'how much torque does the gait (or maneuver) need?' for this run, opening
-    (as every report's first line, docs/output_style.md) with the verdict, the check that
-    decided it, the worst motor and its figure against its limit (opening); then the need in
-    words, each check, the static torque on the same poses with the same load schedule beside
-    it, and a gait's seed figure separately with its load model."""
+    """The answer to 'how much torque does the gait (or maneuver) need?' for this run in one
+    line (every report's first line, docs/output_style.md): the verdict, the check that decided
+    it, the worst motor and its figure against its limit (opening); or why the motion was not
+    achieved, or why there is no verdict. Its reasons are answer_details'."""
     if s["verdict"] == "insufficient":
         if not s["completed"] and not s["interrupted"]:
             return (f"No verdict: the run stopped early, at {s['duration_s']:.2f} s of the "
-                    f"{s['requested_duration_s']:g} s asked ({s['error']}): the gait, the "
-                    "controller or the motors could not carry the robot through it.")
+                    f"{s['requested_duration_s']:g} s asked.")
         if not s["periodic"]:
-            why = (f"the run stopped early ({s['error']})" if not s["completed"] else
-                   f"the run ended at {s['duration_s']:g} s, before the maneuver did")
-            return (f"No verdict: {why}; run the whole maneuver: at least "
+            return (f"No verdict: the run ended before the maneuver did; run at least "
                     f"{s['window_s'][1]:.2f} s.")
-        why = (f"the run stopped early ({s['error']})" if not s["completed"] else
-               f"it covered {s['cycles_in_window']} whole gait cycles after the ramp, fewer than "
-               f"{MIN_CYCLES}")
-        return (f"No verdict: {why}; run at least {MIN_CYCLES} whole cycles after the "
-                f"{s['window_s'][0]:g} s of standing and ramp.")
+        return (f"No verdict: {s['cycles_in_window']} whole gait cycles after the "
+                f"{s['window_s'][0]:g} s of standing and ramp, fewer than {MIN_CYCLES}.")
+    leg, name = s["worst_motor"].split()
+    m = s["legs"][leg][name]
+    if s["verdict"] == "not_achieved" and s["error"]:
+        return (f"NOT ACHIEVED, decided by the achieved check: the run stopped at "
+                f"{s['duration_s']:.2f} s of the {s['requested_duration_s']:g} s asked.")
+    if s["verdict"] == "not_achieved":
+        return (f"NOT ACHIEVED, decided by the achieved check: worst motor {leg} {name}, at its "
+                f"limits {m['saturated_fraction']:.1%} of the time.")
+    return opening(s, leg, name, m["checks"]["torque"], m["checks"])
+
+
+def answer_details(s: Summary, params: Params) -> list[str]:
+    """The answer's reasons, one item each (summary.md lists them under the answer): the need
+    in words, each check at the motor where it is worst, the static torque on the same poses,
+    a gait's seed figure with its load model, what any controller needs, and a step check cut
+    short."""
+    interrupted = ([f"No step check: {s['step_check_interrupted']} (the verdict is the plant "
+                    "step's alone)."] if s.get("step_check_interrupted") else [])
+    floor = []
+    if s.get("any_controller"):
+        need, *blame = any_controller_text(s["any_controller"], params.checks.sf_warn)
+        floor = [f"For any controller: {need}", *blame]
+    if s["verdict"] == "insufficient":
+        why = ([f"The run stopped: {s['error']}."] if s["error"] else
+               [] if not s["periodic"] else
+               [f"Run at least {MIN_CYCLES} whole cycles after the standing and the ramp."])
+        return why + floor + interrupted
     leg, name = s["worst_motor"].split()
     m = s["legs"][leg][name]
     c = m["checks"]
     hz = figure(s["gait_frequency_hz"], "{:.3g}")
     head = (f"At {hz} Hz with the {s['gait']} gait" if s["periodic"] else
             f"For the {s['gait']} maneuver")
-    seed = (f"Separately, {seed_analysis_load(params)}, gives {s['seed_peak_torque_Nm']:.2f} N·m "
-            "(its peak)." if s["periodic"] else "")
+    seed = ([f"Separately, {seed_analysis_load(params)}, gives {s['seed_peak_torque_Nm']:.2f} "
+             "N·m (its peak)."] if s["periodic"] else [])
+    if s["verdict"] == "not_achieved" and s["error"]:
+        return [f"The run stopped: {s['error']}."] + seed + floor + interrupted
     if s["verdict"] == "not_achieved":
-        why = c["achieved"]["why"]
         if m["saturated_fraction"] > params.checks.achieved_max_limit_fraction:
             below = m["unsaturated_demand_p99_Nm"]
             need = (f"the motors need more than they give (worst motor {leg} {name}, at "
@@ -83,36 +105,47 @@ def answer(s: Summary, params: Params) -> str:
         else:
             need = (f"its demand p99 of {m['demand_p99_Nm']:.2f} N·m (worst motor {leg} {name}) "
                     "is not a need")
-        return (f"NOT ACHIEVED, decided by the achieved check ({why}). {head} {need}; the "
-                "saturated demand is the controller's error growing, not what the "
-                f"{'gait' if s['periodic'] else 'maneuver'} takes. {seed}").rstrip()
-    checks = "; ".join(check_text(k, c[k]) for k in CHECK_ORDER)
+        return ([f"Not achieved: {c['achieved']['why']}.",
+                 f"{head} {need}; the saturated demand is the controller's error growing, not "
+                 f"what the {'gait' if s['periodic'] else 'maneuver'} takes."]
+                + seed + floor + interrupted)
     static = m["static_trot_Nm"]
     over = f"over {s['cycles_in_window']} cycles" if s["periodic"] else "over the maneuver"
     limited = demand_unmet(c)
     need_Nm = m["p99_torque_Nm"] if limited else m["demand_p99_Nm"]
-    t = c["torque"]
+    others = [f"{lg} {nm} sat at {limit_shares_text(o['limit_shares'])}"
+              for lg, ms in s["legs"].items() for nm, o in ms.items()
+              if o["saturated_fraction"] and (lg, nm) != (leg, name)]
     if limited:
         need = (f"the motors worked at their limits (worst motor {leg} {name}, at "
                 f"{limit_shares_text(limited['limits'])}, {over}): they delivered "
-                f"{m['p99_torque_Nm']:.2f} N·m ({PERCENTILE:g}th percentile), and what the "
+                f"{m['p99_torque_Nm']:.2f} N·m ({PERCENTILE:g}th percentile); what the "
                 "controller asked beyond the limit was not needed: the motion was achieved "
-                "without it (the demand's "
-                f"{PERCENTILE:g}th percentile: {m['demand_p99_Nm']:.2f} N·m)")
+                f"without it (the demand's {PERCENTILE:g}th percentile: "
+                f"{m['demand_p99_Nm']:.2f} N·m)")
     else:
-        others = [f"{lg} {nm} sat at {limit_shares_text(o['limit_shares'])}"
-                  for lg, ms in s["legs"].items() for nm, o in ms.items()
-                  if o["saturated_fraction"] and (lg, nm) != (leg, name)]
         reached = (f"it sat at {limit_shares_text(m['limit_shares'])}"
                    if m["saturated_fraction"] else
-                   "it never reached a limit, but " + "; ".join(others) if others else
-                   "no motor reached a limit")
+                   "it never reached a limit" if others else "no motor reached a limit")
         need = (f"the motors need {m['demand_p99_Nm']:.2f} N·m ({PERCENTILE:g}th percentile "
                 f"of the demand {over}, worst motor {leg} {name}; {reached})")
-    return (f"{opening(s, leg, name, t, c)} {head} {need}. "
-            f"Checks: {checks}. On the same poses with the same load schedule "
-            f"(the robot's weight shared by the feet in stance) the static torque is "
-            f"{static:.2f} N·m: the dynamics add {need_Nm / static - 1:+.0%}. {seed}").rstrip()
+    checks = [f"At the motor where it is worst, {where}: {check_text(k, w)}."
+              for k, (where, w) in worst_checks(s).items()]
+    return ([f"{head} {need}."]
+            + ([f"Other motors at a limit: {'; '.join(others)}."] if others else [])
+            + checks
+            + [f"On the same poses with the same load schedule (the robot's weight shared by "
+               f"the feet in stance) the static torque is {static:.2f} N·m: the dynamics add "
+               f"{need_Nm / static - 1:+.0%}."] + seed + floor + interrupted)
+
+
+def worst_checks(s: Summary) -> dict[str, tuple[str, dict]]:
+    """Per check (torque, speed, thermal) the motor where it is worst over the run's motors
+    ("LEG M") and its check (verdicts.checks.check_badness, as the envelope takes them)."""
+    motors = [(f"{leg} {name}", m["checks"]) for leg, ms in s["legs"].items()
+              for name, m in ms.items() if m["checks"] is not None]
+    return {k: max(((w, c[k]) for w, c in motors), key=lambda x: check_badness(k, x[1]))
+            for k in CHECK_ORDER}
 
 
 def opening(s: Summary, leg: str, name: str, t: TorqueCheck, c) -> str:
@@ -191,7 +224,7 @@ def markdown(s: Summary, params: Params) -> str:
     over = (f"{s['cycles_in_window']} whole gait cycles" if periodic else "the maneuver")
     lines = [
         f"# Simulated {s['gait']} {'gait' if periodic else 'maneuver'}: the motor torque it "
-        "needs", "", s["answer"], "",
+        "needs", "", s["answer"], "", *[f"- {item}" for item in s["answer_details"]], "",
         f"Simulated {s['duration_s']:.2f} s (requested {s['requested_duration_s']:g} s), "
         f"{s['closure']} closure, time step {s['time_step_s'] * 1e3:.3f} ms, "
         f"{s['real_time_factor']:.2f}x real time. Statistics over {over}, "
@@ -247,21 +280,24 @@ def markdown(s: Summary, params: Params) -> str:
             lines.append(f"| {leg} | {name} | " + " | ".join(figure(d[k], "{:.3f}") for k in (
                 "contact", "links", "rotor", "friction", "residual")) + " |")
     motor = params.motor
-    lines += ["", f"Units N·m unless stated. Motor limits at the output: "
-              f"{motor.peak_torque_Nm:.2f} N·m driving (torque and speed of one sign), "
-              f"{motor.braking_peak_torque_Nm:.2f} braking (opposite signs), both at the peak "
-              f"current, the driving torque falling beyond its corner to zero at the no-load speed "
-              f"{motor.no_load_speed_rad_s:.2f} rad/s, beyond which the back-EMF forces braking. "
-              "Demand = the controller's command before saturation; SF = 1 / the "
-              f"{PERCENTILE:g}th percentile of the demand over the limit of each sample's own "
-              "quadrant (the quadrant of that percentile in brackets), or of the applied torque "
-              f"where the motor sat at its limits more than {100 - PERCENTILE:g} % of the time "
-              "(clipped, with the limit it sat at most: its demand p99 was not met, and is not a "
-              "need). Seed's model: the seed's static torque G(q) on the run's poses with "
-              f"{params.robot.weight_share_kg:.3f} kg at every foot all the time; static, same "
-              "loads: the static torque on the same poses with the robot's weight shared by the "
-              "feet in stance; contact peak: the largest -J_Fᵀ F of the measured ground force. "
-              "Per-cycle spreads are in summary.json."]
+    lines += ["", "Units N·m unless stated.", "",
+              f"- Motor limits at the output: {motor.peak_torque_Nm:.2f} N·m driving (torque and "
+              f"speed of one sign), {motor.braking_peak_torque_Nm:.2f} braking (opposite signs), "
+              f"both at the peak current; the driving torque falls beyond its corner to zero at "
+              f"the no-load speed {motor.no_load_speed_rad_s:.2f} rad/s, beyond which the "
+              "back-EMF forces braking.",
+              "- Demand: the controller's command before saturation.",
+              f"- SF: 1 / the {PERCENTILE:g}th percentile of the demand over the limit of each "
+              "sample's own quadrant (the quadrant of that percentile in brackets), or of the "
+              f"applied torque where the motor sat at its limits more than "
+              f"{100 - PERCENTILE:g} % of the time (clipped, with the limit it sat at most: its "
+              "demand p99 was not met, and is not a need).",
+              f"- Seed's model: the seed's static torque G(q) on the run's poses with "
+              f"{params.robot.weight_share_kg:.3f} kg at every foot all the time.",
+              "- Static, same loads: the static torque on the same poses with the robot's weight "
+              "shared by the feet in stance.",
+              "- Contact peak: the largest -J_Fᵀ F of the measured ground force.",
+              "- Per-cycle spreads are in summary.json."]
     return "\n".join(lines) + "\n"
 
 
@@ -276,20 +312,20 @@ def ran_text(ran: Ran) -> str:
 
 
 BLAME = {
-    "any controller": " No controller could do it: its need is beyond the motors (a floor less "
+    "any controller": "No controller could do it: its need is beyond the motors (a floor less "
                       "its {margin:.0%} model margin beyond the motors' limit, or a bound by "
                       "another method).",
-    "this controller": " The motors could do the motion; this controller failed it{sf}.",
-    "undecided": " Whether any controller could do it is undecided: it lies beyond the reduced "
+    "this controller": "The motors could do the motion; this controller failed it{sf}.",
+    "undecided": "Whether any controller could do it is undecided: it lies beyond the reduced "
                  "model's optimum and within the bound; the tracking controller's run decides.",
-    "unknown": " Whether a better controller would pass is unknown: no floor for this task.",
+    "unknown": "Whether a better controller would pass is unknown: no floor for this task.",
     None: ""}
 
 
-def any_controller_text(a: AnyController, sf_warn: float | None = None) -> str:
-    """What any controller would need for the maneuver, in a sentence (pipeline.any_controller;
-    whom a failing verdict blames: verdicts.rules.fails_for); sf_warn: the warn threshold a need's
-    safety factor is set against."""
+def any_controller_text(a: AnyController, sf_warn: float | None = None) -> list[str]:
+    """What any controller would need for the maneuver (pipeline.any_controller), then whom a
+    failing verdict blames (verdicts.rules.fails_for; none where nothing failed), a sentence
+    each; sf_warn: the warn threshold a need's safety factor is set against."""
     parts = []
     for p, v in a["phases"].items():
         asked = "" if v["asked_Nm"] is None else f", asked {v['asked_Nm']:.2f}"
@@ -298,7 +334,8 @@ def any_controller_text(a: AnyController, sf_warn: float | None = None) -> str:
     what = (f"{a['height_m'] * 1e3:.0f} mm {a['maneuver']}" if a["height_m"] else a["maneuver"])
     text = (f"Any controller needs at least {a['floor_Nm']:.2f} N·m at the peak for this {what}"
             if a["floor_Nm"] is not None else f"No floor for this {what}")
-    text += f" ({'; '.join(parts)} N·m)"
+    if any(v["floor_Nm"] is not None for v in a["phases"].values()):
+        text += f" ({'; '.join(parts)} N·m)"
     if "push-off" in a["phases"] or a.get("reached_m") is not None:     # it jumps
         optima = [f"{label} {a[key] * 1e3:.1f} mm" for key, label in (
             ("reached_m", "this run reached"), ("ceiling_m", "its stroke's optimum"),
@@ -314,11 +351,12 @@ def any_controller_text(a: AnyController, sf_warn: float | None = None) -> str:
     sf = ""
     if (a["fails_for"] == "this controller" and sf_warn is not None
             and a["floor_safety_factor"] is not None and a["floor_safety_factor"] < sf_warn):
-        sf = (f", though no controller would pass its safety-factor check (the need's SF "
-              f"{a['floor_safety_factor']:.2f} < {sf_warn:g})")
+        sf = (f", though the least need found leaves SF {a['floor_safety_factor']:.2f} < "
+              f"{sf_warn:g} (a lower need may exist)")
     elif a["fails_for"] == "this controller":
         sf = ": a better controller would pass"
-    return text + "." + BLAME[a["fails_for"]].format(margin=a["floor_margin"], sf=sf)
+    blame = BLAME[a["fails_for"]].format(margin=a["floor_margin"], sf=sf).strip()
+    return [text + "."] + ([blame] if blame else [])
 
 
 def maneuver_lines(s: Summary, sf_warn: float) -> list[str]:
@@ -342,9 +380,6 @@ def maneuver_lines(s: Summary, sf_warn: float) -> list[str]:
                      f"{ld['peak_force_N']:.0f} N, peak motor torque {ld['peak_torque_Nm']:.2f} "
                      f"N·m{band}, body drop {ld['compression_m'] * 1e3:.1f} mm over "
                      f"{ld['duration_s'] * 1e3:.0f} ms")
-    if s.get("any_controller"):
-        lines.append(f"- for any controller: "
-                     f"{any_controller_text(s['any_controller'], sf_warn)}")
     return lines
 
 

@@ -362,5 +362,6 @@ def sweep(spec: SweepSpec, out: str | Path, workers: int | None = None,
                                                 checks.sf_pass, Path(out), spec.names,
                                                 checks.sf_warn),
                write_sweep_report(summary, spec.names, spec.fidelity, Path(out),
-                                  thresholds_text(checks))]
+                                  thresholds_text(checks),
+                                  spec.gait if spec.fidelity == "analysis" else "")]
     return result, summary, written

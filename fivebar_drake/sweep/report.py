@@ -40,27 +40,35 @@ def summarize_sweep(rows: list[dict], varied: list[str], sf_pass: float) -> dict
             "fastest_passing": fastest}
 
 
-def answer(summary: dict, varied: list[str]) -> str:
+def answer(summary: dict, varied: list[str], path: str = "") -> str:
     """sweep.md's first line: how many points pass, warn and fail (the worst motor's verdict)
-    and the fastest point where every motor passes, with its worst safety factor."""
+    and the fastest point where every motor passes, with its worst safety factor, on the path
+    the points ran (path: its name, "" for a simulated sweep's scenario)."""
     counts = summary["outcomes"]
     told = ", ".join(f"{counts[k]} {k.upper()}" for k in ("pass", "warn", "fail", "failed")
                      if k in counts)
     best = summary["fastest_passing"]
     fastest = ("no point passes" if best is None else
-               f"the fastest where every motor passes: point {best['point']} ("
-               + ", ".join(f"{k} = {best[k]}" for k in varied)
-               + f"), {best['speed_m_s']:.3f} m/s, worst SF {best['worst_safety_factor']:.2f}")
-    return (f"**Answer:** of {summary['points']} design points {told} (the worst motor's "
-            f"verdict); {fastest}.")
+               f"the fastest passing: point {best['point']}, {best['speed_m_s']:.3f} m/s, worst "
+               f"SF {best['worst_safety_factor']:.2f}")
+    on = f" on the {path} path" if path else ""
+    return f"**Answer:** of {summary['points']} design points{on} {told}; {fastest}."
+
+
+def fastest_text(summary: dict, varied: list[str]) -> str:
+    """The fastest passing point's parameters in a line ("" where none passes)."""
+    best = summary["fastest_passing"]
+    return ("" if best is None else f"Point {best['point']}: "
+            + ", ".join(f"{k} = {best[k]}" for k in varied) + ".")
 
 
 def write_sweep_report(summary: dict, varied: list[str], fidelity: str, out: Path,
-                       thresholds: str = "") -> Path:
+                       thresholds: str = "", path: str = "") -> Path:
     """sweep.md: the answer (the counts, the fastest passing point) with the verdict's
     thresholds, the Pareto front as a table."""
     lines = [f"# Sweep: {summary['points']} design points ({fidelity})", "",
-             answer(summary, varied), "",
+             answer(summary, varied, path), "",
+             *([fastest_text(summary, varied), ""] if summary["fastest_passing"] else []),
              "A sweep of the spec's parameters on its path: a trade, not a recommendation "
              "(which motor, gearbox and leg pass every maneuver in simulation is `fivebar-drake "
              "codesign`'s answer).", "",

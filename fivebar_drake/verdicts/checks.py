@@ -86,6 +86,21 @@ def verdict(checks: Checks, safety_factor: float) -> str:
     return "warn" if safety_factor >= checks.sf_warn else "fail"
 
 
+def check_badness(name: str, c: dict) -> tuple:
+    """How bad one motor's check is (name: torque, speed or thermal), to find the motor where
+    it is worst (the largest): torque the lowest safety factor; speed the worst verdict, then
+    the largest share beyond the envelope, then the least margin; thermal the worst verdict,
+    then the least margin (a missing figure counts as an infinite one)."""
+    def inf(x):
+        return math.inf if x is None else x
+
+    if name == "torque":
+        return (-inf(c["sf"]),)
+    if name == "speed":
+        return (SEVERITY[c["verdict"]], c["outside_fraction"], -inf(c["least_margin"]))
+    return (SEVERITY[c["verdict"]], -inf(c.get("margin")))
+
+
 def _finite(x) -> float | None:
     return float(x) if x is not None and math.isfinite(x) else None
 

@@ -434,7 +434,8 @@ class Summary(TypedDict):
     limits: LimitReport
     legs: dict[str, dict[str, MotorSummary]]   # leg -> motor ("A", "B") ->
     any_controller: AnyController | None       # a jump's floor (pipeline.any_controller)
-    answer: str
+    answer: str                              # the answer in one line (at most 200 characters)
+    answer_details: list[str]                # its reasons, one item each
     timing: NotRequired[Timing]
 
 

@@ -60,20 +60,69 @@ def test_report_is_written_and_finite(name, tmp_path, capsys):
         assert all("coincide" in why for why in home["home_pose_null_why"].values())
 
 
+def _answer_and_details(text: str) -> tuple[str, str]:
+    """report.md's answer (its first line after the title) and the list under it."""
+    paragraphs = text.split("\n\n")
+    return paragraphs[1], paragraphs[2]
+
+
 def test_the_report_answers_first():
-    """Issue 32: report.md's first paragraph is the answer: each motor's verdict and deciding
-    check for the trot-loaded full model and the seed's model, as report.json has them."""
+    """Issue 32: report.md's first line is the answer, at most 200 characters: each motor's
+    verdict and torque SF for the trot-loaded full model, then the seed's model, as report.json
+    has them; the check that decided each verdict in the answer (the first motor's, the same
+    for all) and in the list under it, with the motors and the thresholds."""
     from fivebar_drake.analysis.report import markdown
     from fivebar_drake.analysis.torques import analyze
+    from fivebar_drake.core.text import ANSWER_CHARS
     from fivebar_drake.robots.quadruped.config import load_params
 
     an = analyze(load_params(None))
     text = markdown(an)
-    first = text.split("\n\n")[1]
+    first, details = _answer_and_details(text)
     assert " N m" not in text and "N*m" not in text          # one spelling: N·m
-    assert first.startswith("**Answer:**")
+    assert first.startswith("**Answer:**") and "\n" not in first
+    assert len(first) <= ANSWER_CHARS
+    said = {}
     for model in ("full_trot", "seed"):
         for motor in ("A", "B"):
             c = an.results["results"][model][motor]["checks"]
-            assert (f"{motor} {c['verdict'].upper()} by the {c['deciding_check']} check "
-                    f"(SF {c['torque']['sf']:.2f})") in first
+            assert c["deciding_check"] == "torque"
+            said[model, motor] = (f"{motor} {c['verdict'].upper()}"
+                                  f"{' by the torque check' if said == {} else ''} "
+                                  f"(SF {c['torque']['sf']:.2f})")
+    assert first == ("**Answer:** the physically consistent model with the trot's loading: "
+                     f"{said['full_trot', 'A']}, {said['full_trot', 'B']}; the seed's model as "
+                     f"written: {said['seed', 'A']}, {said['seed', 'B']}.")
+    assert "each verdict above is the torque check's" in details
+    assert "the seed's estimate" in details.lower()
+    assert "5.00 N·m, 12.57 rad/s motors" in details
+    assert "Thresholds: SF ≥ 2 pass, ≥ 1.5 warn, else fail." in details
+
+
+def test_an_answer_whose_checks_differ_names_them():
+    """A deciding check other than the torque check is named in the answer (its SF is the
+    torque check's) as long as the line keeps to 200 characters; the list under it names every
+    motor's."""
+    from fivebar_drake.analysis.report import markdown
+    from fivebar_drake.analysis.torques import analyze
+    from fivebar_drake.core.text import ANSWER_CHARS
+    from fivebar_drake.robots.quadruped.config import load_params, with_changes
+
+    an = analyze(with_changes(load_params(None), {"motor.gear_ratio": 11.5}), path="trot")
+    r = an.results["results"]
+    first, details = _answer_and_details(markdown(an))
+    assert len(first) <= ANSWER_CHARS
+    assert r["full_trot"]["B"]["checks"]["deciding_check"] == "speed"
+    assert f"B {r['full_trot']['B']['checks']['verdict'].upper()} by speed" in first
+    decided = "; ".join(f"`{model}` " + ", ".join(
+        f"{m} {r[model][m]['checks']['deciding_check']}" for m in ("A", "B"))
+        for model in ("full_trot", "seed"))
+    assert f"the check that decided each verdict above: {decided}" in details
+    r["full_trot"]["A"]["checks"]["deciding_check"] = "thermal"   # three named: too long
+    r["seed"]["B"]["checks"]["deciding_check"] = "thermal"
+    for model in ("full_trot", "seed"):
+        for m in ("A", "B"):
+            r[model][m]["checks"]["torque"]["sf"] = 12.345
+    first, details = _answer_and_details(markdown(an))
+    assert len(first) <= ANSWER_CHARS and " by " not in first
+    assert "`full_trot` A thermal, B speed" in details and "B thermal" in details

@@ -7,6 +7,7 @@ an uninterrupted one; a finished co-design run again into its folder simulating 
 giving the same design; a spec no candidate meets (exit 1, the requirement and the best margin
 named); bad specs refused (exit 2, the field named, nothing written)."""
 
+import csv
 import json
 import math
 import re
@@ -139,7 +140,13 @@ def test_the_recommended_design_has_its_dossier(codesign):
         cells = [c.strip() for c in row.split("|")[1:-1]]
         assert float(cells[1]) == pytest.approx(torque, abs=0.005)
         assert float(cells[7]) == pytest.approx(current, abs=0.005)
+        vendor = next(row for row in csv.DictReader((folder / "requirements.csv").open())
+                      if row["motor"] == motor)
+        assert float(vendor["peak_torque_asked_Nm"]) == pytest.approx(torque, rel=1e-3)
+        assert float(vendor["largest_rms_current_A"]) == pytest.approx(current, rel=1e-3)
     assert "pronk top speed" in sheet
+    assert "(margins.png)" in sheet and (folder / "margins.png").stat().st_size > 10_000
+    assert len(sheet.splitlines()[2]) <= 200
 
 
 def test_predicted_and_simulated_figures_side_by_side(codesign):

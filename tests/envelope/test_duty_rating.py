@@ -38,3 +38,29 @@ def test_the_duty_cycle_uses_the_motors_one_continuous_rating(share):
     if a["peak_C"] > motor.winding_limit_C:                # a winding above its limit
         assert duty["verdict"] == "fail"
     assert (a["peak_C"] > motor.winding_limit_C) == (share == 1.4)
+
+
+@pytest.mark.parametrize("share", [None, 0.5])
+def test_the_duty_cycles_picture_draws_where_its_verdict_turns(share):
+    """duty_cycle.png's threshold lines (envelope.plots.verdict_temperatures) are where
+    duty_verdict's thermal check turns: a winding a kelvin under the warn line passes, a kelvin
+    over it warns; under the fail line warns, over it fails."""
+    from fivebar_drake.envelope.plots import verdict_temperatures
+
+    params = load_params(None)
+    if share is not None:
+        params = with_changes(params, {"motor.continuous_current_A":
+                                       share * params.motor.thermal_continuous_current_A})
+    motor = params.motor
+    turns = verdict_temperatures(motor, params.checks)
+    assert motor.ambient_C < turns["warn"] < turns["fail"] <= motor.winding_limit_C + 1e-9
+
+    def verdict(peak_C):
+        temperature = np.full((2, 4, 2), motor.ambient_C)
+        temperature[1] = peak_C
+        return duty_verdict(motor, params.checks, DutyTemperature(
+            np.array([0.0, 1e4]), temperature, np.array([0.0, 1e4])),
+            ("FL", "FR", "RL", "RR"), ("A", "B"))["verdict"]
+
+    assert [verdict(turns["warn"] - 1), verdict(turns["warn"] + 1)] == ["pass", "warn"]
+    assert [verdict(turns["fail"] - 1), verdict(turns["fail"] + 1)] == ["warn", "fail"]

@@ -177,6 +177,30 @@ def test_the_envelope_and_its_files(local):
         if sized["deciding_check"] == "torque":
             assert sized["maneuver"] == min(sfs, key=sfs.get)
     assert report["answer"].startswith(f"Worst verdict {report['verdict'].upper()}")
+    assert (out / "envelope.md").read_text().splitlines()[2] == report["design_answer"]["text"]
+
+
+def test_a_figure_has_one_value_in_every_report(local):
+    """Each check's worst figure of a maneuver, as summary.md writes it (the motor where it is
+    worst) and as envelope.md's rows write it (each motor's worst leg): the same text."""
+    import re
+
+    out, _, _ = local
+    table = (out / "envelope.md").read_text()
+    for name, entry in envelope(out)["maneuvers"].items():
+        told = (out / entry["folder"] / "summary.md").read_text()
+        checks = "\n".join(re.findall(r"- At the motor where it is worst, .*", told))
+        sf = re.search(r"torque: safety factor ([\d.]+)", checks).group(1)
+        margin = re.search(r"speed: least margin ([\d.]+), ([\d.]+)%", checks).groups()
+        current = re.search(r"thermal: continuous / RMS current ([\d.]+)", checks).group(1)
+        rows = [[c.strip() for c in line.split("|")[1:-1]] for line in table.splitlines()
+                if line.startswith(f"| {name} |")]
+        cells = [c for c in rows if len(c) == 7 and c[1] in ("PASS", "WARN", "FAIL")]
+        assert len(cells) == 2                                  # motor A's row, motor B's
+        assert min(float(c[3].split()[0]) for c in cells) == float(sf)
+        speeds = [c[4].split(" (")[0] for c in cells]
+        assert f"{margin[0]}, {margin[1]}%" in speeds
+        assert min(float(c[5].split(",")[0]) for c in cells) == float(current)
 
 
 @pytest.mark.slow

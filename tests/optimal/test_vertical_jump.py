@@ -156,9 +156,17 @@ def test_the_command_writes_the_answer_first(tmp_path, capsys):
     assert result["ceiling"]["com_rise_from_standing_m"] >= 0.08
     top = result["top_speed"]["pronk"]                 # the one gait asked, in the answer
     assert list(result["top_speed"]) == ["pronk"] and 0 < top["speed_m_s"] <= top["bound_m_s"]
-    assert f"the pronk {top['speed_m_s']:.2f} m/s" in result["answer"]
+    assert any(item.startswith(f"The pronk's top speed for any controller: "
+                               f"{top['speed_m_s']:.2f} m/s") for item in result["answer_details"])
     assert (tmp_path / "optimal.md").read_text().splitlines()[2] == result["answer"]
     assert report_violations(tmp_path / "optimal.md") == []
+    from rerun.chunk import RrdReader
+
+    chunks = RrdReader(tmp_path / "optimal.rrd").stream().filter(
+        content="/answer", is_static=True).to_chunks()       # the recording opens on its answer
+    text = [c.to_record_batch().column("TextDocument:text").to_pylist()[0] for c in chunks
+            if "TextDocument:text" in c.to_record_batch().schema.names][0][0]
+    assert text.startswith(result["answer"])
     _, torque = read_series(tmp_path / "optimal.rrd", "/torque/A/ceiling")     # Rerun's file
     assert np.abs(torque).max() == pytest.approx(
         result["ceiling"]["motors"]["A"]["peak_torque_Nm"])

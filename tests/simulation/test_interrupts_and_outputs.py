@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 from rerun.chunk import RrdReader
 
+from helpers import told
 from fivebar_drake.cli import main
 from fivebar_drake.robots.quadruped.config import DEFAULT_PATH, load_params, with_gait
 from fivebar_drake.core.files import TEMP_PREFIX, write_atomic
@@ -268,4 +269,4 @@ def test_an_interrupted_step_check_is_marked_as_such(tmp_path):
     summary = json.loads((out / "summary.json").read_text())
     assert summary["step_check"] is None and summary["completed"]
     assert summary["step_check_interrupted"].startswith("SIGINT stopped the run at half")
-    assert "No step check" in summary["answer"]
+    assert "No step check" in told(summary)

@@ -12,6 +12,7 @@ import json
 import numpy as np
 import pytest
 
+from helpers import told
 from fivebar_drake.cli import main
 from fivebar_drake.verdicts.checks import CHECK_ORDER
 from fivebar_drake.gaits import PATHS, evaluate
@@ -209,7 +210,7 @@ def test_a_landing_beyond_the_braking_limit_gives_way(runs, tmp_path):
     high = json.loads((tmp_path / "out" / "summary.json").read_text())
     landing = high["phases"]["landing"]
     assert landing["gives_way"] and landing["braking_beyond_limit_s"] > 0.005
-    assert high["verdict"] == "not_achieved" and "gave way at the landing" in high["answer"]
+    assert high["verdict"] == "not_achieved" and "gave way at the landing" in told(high)
     assert landing["delivered_peak_Nm"] >= 0.99 * runs["drop"][0].params.motor.braking_peak_torque_Nm
 
 
@@ -317,7 +318,7 @@ def test_saturation_is_not_called_a_need(runs):
     assert limited                          # the bound does clip: the test can fail
     worst = s["legs"][s["worst_motor"].split()[0]][s["worst_motor"].split()[1]]
     if any("at_limit_fraction" in worst["checks"][c] for c in CHECK_ORDER):
-        assert "the motors need" not in s["answer"] and "worked at their limits" in s["answer"]
+        assert "the motors need" not in told(s) and "worked at their limits" in told(s)
 
 
 def test_motors_too_weak_to_jump_get_not_achieved(tmp_path, capsys):
@@ -328,7 +329,7 @@ def test_motors_too_weak_to_jump_get_not_achieved(tmp_path, capsys):
     assert code == 1
     s = json.loads((tmp_path / "summary.json").read_text())
     assert s["verdict"] == "not_achieved"
-    assert "NOT ACHIEVED" in s["answer"] and "not achieved" in capsys.readouterr().err
+    assert "NOT ACHIEVED" in told(s) and "not achieved" in capsys.readouterr().err
     assert (tmp_path / "force_capability.png").exists() or s["force_capability"] is None
 
 

@@ -11,6 +11,7 @@ import pytest
 from pydrake.systems.analysis import Simulator
 from rerun.chunk import RrdReader
 
+from helpers import told
 from fivebar_drake.cli import main
 from fivebar_drake.gaits import Trot
 from fivebar_drake.mechanisms.fivebar import UnreachableError, foot_jacobian, forward
@@ -189,13 +190,14 @@ def test_touchdowns_keep_the_body_carried(run):
 @pytest.mark.slow
 def test_summary_text_follows_the_parameters(runs):
     """summary.md and the answer take their figures from the parameters used, none written in."""
-    from fivebar_drake.simulation.summary_text import answer, markdown
+    from fivebar_drake.simulation.summary_text import answer, answer_details, markdown
 
     scenario, params, record, sig, summary = runs["ball"]
     other = dataclasses.replace(params, robot=dataclasses.replace(params.robot, structure_kg=2.5),
                                 motor=dataclasses.replace(
                                     params.motor, peak_current_A=params.motor.peak_current_A * 1.4))
-    text = markdown(summary, other).split(summary["answer"])[1] + answer(summary, other)
+    again = {**summary, "answer_details": answer_details(summary, other)}
+    text = markdown(again, other).split(summary["answer"])[1] + answer(summary, other)
     assert f"{other.robot.weight_share_kg:.3f} kg" in text
     assert f"{other.motor.peak_torque_Nm:.2f} N·m driving" in text and "7.00 N·m" in text
     assert f"{params.robot.weight_share_kg:.3f}" not in text
@@ -224,7 +226,7 @@ def test_short_run_is_insufficient(tmp_path, capsys):
     assert main(["simulate", "--duration", "3.0", "--closure", "ball", "--out", str(out)]) == 1
     summary = json.loads((out / "summary.json").read_text())
     assert summary["verdict"] == "insufficient" and summary["cycles_in_window"] == 1
-    assert "No verdict" in summary["answer"]
+    assert "No verdict" in told(summary)
     assert "no verdict" in capsys.readouterr().err
 
 
@@ -288,7 +290,7 @@ def test_simulate_cli_writes_outputs_and_recording(tmp_path, capsys):
         f"{summary['verdict'].upper()}, decided by the {summary['deciding_check']} check: "
         f"worst motor {leg} {motor}, ")
     assert f"SF {sf:.2f} (" in summary["answer"].split(". ")[0]
-    assert "At 1 Hz with the trot gait the motors need" in summary["answer"]
+    assert "At 1 Hz with the trot gait the motors need" in told(summary)
     for leg in ("FL", "FR", "RL", "RR"):
         for motor in ("A", "B"):
             m = summary["legs"][leg][motor]

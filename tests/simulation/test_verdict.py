@@ -8,6 +8,7 @@ import math
 import numpy as np
 import pytest
 
+from helpers import told
 from fivebar_drake.robots.quadruped.config import with_changes
 from fivebar_drake.cli import main
 from fivebar_drake.verdicts.checks import (Checks, at_limit, demand_unmet, limit_shares,
@@ -102,6 +103,7 @@ def test_step_check_judges_the_converged_figure(params, monkeypatch):
     which reaches 2: marginal; 2.60 -> 2.58 converges to 2.56 +- 0.02: pass, not marginal."""
     import fivebar_drake.simulation.summary as summary_module
     monkeypatch.setattr(summary_module, "answer", lambda s, p: "")
+    monkeypatch.setattr(summary_module, "answer_details", lambda s, p: [])
     for start, half, converged, marginal in [(2.03, 1.99, 1.95, True), (2.04, 2.025, 2.01, True),
                                              (2.60, 2.58, 2.56, False)]:
         run = _summary([start, 3.0])
@@ -130,6 +132,7 @@ def test_the_step_check_holds_whom_a_verdict_blames(params, monkeypatch):
     steps, with safety factors far from a threshold, is not."""
     import fivebar_drake.simulation.summary as summary_module
     monkeypatch.setattr(summary_module, "answer", lambda s, p: "")
+    monkeypatch.setattr(summary_module, "answer_details", lambda s, p: [])
     for half_split, marginal in (("any controller", True), ("this controller", False)):
         run = {**_summary([1.2, 3.0], "fail"), "any_controller": {"fails_for": "this controller"}}
         half = {**_summary([1.19, 3.0], "fail"), "time_step_s": 5e-4,
@@ -146,6 +149,7 @@ def test_a_motion_achieved_at_one_step_and_not_the_other_is_marginal(params, mon
     clean not achieved or pass; not achieved at both stays not achieved."""
     import fivebar_drake.simulation.summary as summary_module
     monkeypatch.setattr(summary_module, "answer", lambda s, p: "")
+    monkeypatch.setattr(summary_module, "answer_details", lambda s, p: [])
     for now, at_half, verdict in (("not_achieved", "pass", "marginal"),
                                   ("pass", "not_achieved", "marginal"),
                                   ("not_achieved", "not_achieved", "not_achieved")):
@@ -219,8 +223,8 @@ def test_a_trot_beyond_its_motors_is_not_achieved(tmp_path, capsys):
     summary = json.loads((out / "summary.json").read_text())
     assert code == 1 and summary["completed"]
     assert summary["verdict"] == "not_achieved" and summary["deciding_check"] == "achieved"
-    assert "NOT ACHIEVED" in summary["answer"] and "need more than" in summary["answer"]
-    assert "the motors need 2" not in summary["answer"]
+    assert "NOT ACHIEVED" in told(summary) and "need more than" in told(summary)
+    assert "the motors need 2" not in told(summary)
     worst = summary["legs"][summary["worst_motor"].split()[0]][summary["worst_motor"].split()[1]]
     assert worst["checks"]["achieved"]["verdict"] == "not_achieved"
     assert worst["saturated_fraction"] > 0.05
@@ -260,19 +264,20 @@ def test_a_cut_maneuver_is_told_to_run_its_span_and_a_motor_always_at_a_limit_sa
     reported with "demand p99 is nan N·m"; now it says it was at a limit throughout."""
     import copy
 
-    from fivebar_drake.simulation.summary_text import answer
+    from fivebar_drake.simulation.summary_text import answer, answer_details
 
     record = run_simulation(load_scenario(gait="jump", duration_s=1.0), progress=False)
     s = summarize_run(record)
     assert s["verdict"] == "insufficient"
-    assert "run the whole maneuver: at least" in s["answer"] and "cycles" not in s["answer"]
+    assert "the run ended before the maneuver did; run at least" in s["answer"]
+    assert "cycles" not in told(s)
     saturated = copy.deepcopy(s)
     saturated.update(verdict="not_achieved", worst_motor="FL A", periodic=True,
                      gait_frequency_hz=1.0)
     m = saturated["legs"]["FL"]["A"]
     m.update(saturated_fraction=1.0, unsaturated_demand_p99_Nm=math.nan)
     m["checks"] = {"achieved": {"why": "the motor sat at its limits"}}
-    text = answer(saturated, record.params)
+    text = " ".join([answer(saturated, record.params), *answer_details(saturated, record.params)])
     assert "nan" not in text and "at a limit in every sample" in text
 
 

@@ -22,12 +22,15 @@ SIMULATION_FILES = ("summary.md", "summary.json")      # summary.json last
 TABLE_Q1_DEG = (10.0, 20.0, 30.0, 40.0, 50.0, 60.0, 70.0, 80.0)
 
 GEOMETRY = (
-    "Reading of the seed's geometry: O is the hip, OA = l1 the thigh, AP = l2 the shank, P the "
-    "foot; the lever DA = s1 is the shank's extension beyond the knee (D, A, P on one line), so "
-    "the angle OAD equals the knee's bend -q2 and the screw OD of length q2l sets the knee by "
-    "the seed's law of cosines q2 = -acos((l1^2 + s1^2 - q2l^2) / (2 l1 s1)). The screw pushes "
-    "at D along OD; its moment arm about the knee is s1 sin(ODA) = l1 s1 sin(-q2) / q2l, largest "
-    "where the angle ODP (= ODA) is 90 deg.")
+    "Reading of the seed's geometry:", "",
+    "- O is the hip, OA = l1 the thigh, AP = l2 the shank, P the foot.",
+    "- The lever DA = s1 is the shank's extension beyond the knee (D, A, P on one line), so the "
+    "angle OAD equals the knee's bend -q2.",
+    "- The screw OD of length q2l sets the knee by the seed's law of cosines "
+    "q2 = -acos((l1^2 + s1^2 - q2l^2) / (2 l1 s1)).",
+    "- The screw pushes at D along OD; its moment arm about the knee is s1 sin(ODA) = "
+    "l1 s1 sin(-q2) / q2l, largest where the angle ODP (= ODA) is 90 deg.",
+)
 SEED_TEXT_NOTES = (
     "The seed's screw Jacobian prints `q2` (and `q_2s`) where its own derivation needs the screw "
     "length q2l (the derivative of acos brings q2l down); read as q2l, it matches finite "
@@ -118,7 +121,7 @@ def _markdown(a: Analysis) -> str:
         f"screw lead {p.screw.lead_m * 1e3:g} mm at {p.screw.efficiency:.0%}; levers s1 = "
         f"{', '.join(f'{s * 1e3:g}' for s in p.screw.lever_lengths_m)} mm; q1 from "
         f"{p.squat.q1_min_deg:g} to {p.squat.q1_max_deg:g} deg ({p.squat.samples} samples).", "",
-        GEOMETRY, "",
+        *GEOMETRY, "",
         "Torques hold the pose at rest (static, massless links, as in the seed). The hip torque "
         "is 0 in this squat for both designs (the foot is straight below the hip).", "",
         "## Readings of the seed's text", "",

@@ -87,7 +87,8 @@ def failure(record: SimulationRecord, summary: Summary) -> str:
     if record.error:
         return f"error: the run stopped early: {record.error}"
     if summary["verdict"] == "insufficient":
-        return f"error: no verdict: {summary['answer']}"
+        return f"error: no verdict: {summary['answer'].removeprefix('No verdict: ')}"
     if summary["verdict"] == "not_achieved":
-        return f"error: the motion was not achieved: {summary['answer']}"
+        return ("error: the motion was not achieved: "
+                + summary["answer"].removeprefix("NOT ACHIEVED, "))
     return ""

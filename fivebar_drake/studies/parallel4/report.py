@@ -219,12 +219,13 @@ def markdown(params: Params, results: dict, seed_claims: list[dict]) -> str:
     lines = [
         "# parallel4: the 4-DOF parallel manipulator after Pierrot (seed 004)", "",
         claims_answer(seed_claims, "claims"), "",
-        f"Design geometry: a = {g.a:g} m, b = {g.b:g} m (a - b = {g.e:g} m), c = {g.c:g} m, "
+        f"- Design geometry: a = {g.a:g} m, b = {g.b:g} m (a - b = {g.e:g} m), c = {g.c:g} m, "
         f"d = {g.d:g} m, R = {g.R:g} m; pair spread |l1 - l2| in [{g.d_min_over_R:g}, "
-        f"{g.d_max_over_R:g}] R. Workspace: each leg pair reaches within that spread, on the "
-        "seed's forward branch (z below the line through the pair circles' centres), "
-        "|theta| < 90 deg. It is the same at every x: areas are m^2 of the yz cross-section, "
-        "i.e. m^3 of workspace per metre of x travel.", "",
+        f"{g.d_max_over_R:g}] R.",
+        "- Workspace: each leg pair reaches within that spread, on the seed's forward branch (z "
+        "below the line through the pair circles' centres), |theta| < 90 deg. It is the same at "
+        "every x: areas are m^2 of the yz cross-section, i.e. m^3 of workspace per metre of x "
+        "travel.", "",
         "## Checks", "",
         f"- FK(IK(pose)) over {ck['poses']} random workspace poses: max error "
         f"{ck['fk_ik_round_trip_max']:.2g} (lower branch), "
