@@ -119,6 +119,7 @@ def sheet(report: dict, params: Params, needs: dict, allows: dict) -> str:
              f"{m.braking_peak_torque_Nm:.2f} |",
              f"| no-load speed (rad/s) | {m.no_load_speed_rad_s:.2f} |",
              f"| continuous current (A) | {_f(m.rated_continuous_current_A)} |",
+             f"| continuous torque (N·m) | {_f(m.continuous_torque_Nm)} |",
              f"| reflected rotor inertia (kg·m^2) | {m.reflected_inertia_kg_m2:.3g} |", "",
              "## What the legs allow (any controller)", "",
              "| figure | value | limited by |", "|---|---|---|",
@@ -185,20 +186,22 @@ def plot_margins(report: dict, checks, path: Path) -> Path:
     fig, axes = plt.subplots(1, len(MARGIN_CHECKS), figsize=(13, 4.2))
     x = np.arange(len(names))
     for ax, (key, label, fails, turns) in zip(axes, MARGIN_CHECKS):
+        top = 1.0
         for k, (design, colour) in enumerate(zip(designs, ("0.6", "tab:blue"))):
             runs = (designs[design] or {}).get("maneuvers") or {}
             values = [((runs.get(n) or {}).get("figures") or {}).get(key) for n in names]
             values = [np.nan if v is None else v for v in values]
             bars = ax.bar(x + (k - 0.5) * 0.38, values, 0.38, color=colour, label=design)
             ax.bar_label(bars, fmt="%.2f", fontsize=7)
+            top = max(top, np.nanmax(values, initial=0.0))
         fail = getattr(checks, fails) if isinstance(fails, str) else fails
         word, other = turns
         ax.axhline(fail, color="tab:red", ls="--", lw=1, label=f"fail below {fail:g}")
         ax.axhline(getattr(checks, other), color="tab:orange" if word.startswith("warn") else
                    "tab:green", ls=":", lw=1.2, label=f"{word} {getattr(checks, other):g}")
-        ax.set(title=label, xticks=x, xticklabels=names)
+        ax.set(title=label, xticks=x, xticklabels=names, ylim=(0.0, 1.5 * top))
         ax.grid(axis="y", alpha=0.3)
-        ax.legend(fontsize=7, loc="upper left")
+        ax.legend(fontsize=7, loc="upper center", ncol=2)      # above the bars
     fig.suptitle("Simulated figures, the worst motor per maneuver: default and recommended")
     fig.tight_layout()
     return save_figure(fig, path)

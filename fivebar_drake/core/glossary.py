@@ -233,7 +233,7 @@ EVERYDAY = (   # words in their everyday sense
     'least', 'most', 'largest', 'smallest', 'geometry', 'relative', 'horizontal', 'vertical',
     'block', 'bend', 'length', 'loss', 'power', 'input', 'limit', 'load', 'loads', 'rest',
     'moving', 'path', 'held', 'run', 'runs', 'robot', 'body', 'foot', 'height', 'mass',
-    'value', 'unit',
+    'value', 'unit', 'report', 'recording', 'blames', 'failure', 'whom',
 )
 
 

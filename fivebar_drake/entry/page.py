@@ -79,7 +79,7 @@ def _maneuver_rows(envelope: dict, where: str) -> list[str]:
     """The maneuver table: this controller's verdict and worst safety factor, the need for any
     controller and the motors' safety factor on it, whom a failure blames, report, recording."""
     rows = ["| maneuver | this controller | deciding check | worst SF | any controller needs "
-            "(N·m) | SF on it | a failure blames | report | recording |",
+            "(N·m) | SF on it | whom a failure blames | report | recording |",
             "|---|---|---|---|---|---|---|---|---|"]
     for name, e in envelope["maneuvers"].items():
         motors = e.get("motors") or {}

@@ -229,11 +229,14 @@ def design_answer(verdict: str, maneuvers: dict, floor: dict | None, duty: dict 
     if floor is not None and floor["safety_factor"] == 0.0 and floor["maneuver"] not in beyond:
         beyond.append(floor["maneuver"])
     named = ", ".join(failed)
+    total = len(maneuvers) + (duty is not None)
     if verdict == "insufficient":
-        kind, text = "no verdict", "No answer yet: a maneuver has no verdict (see its entry)."
+        missing = sum(e["verdict"] not in VERDICTS for e in maneuvers.values())
+        kind, text = "no verdict", (f"No verdict: {missing} of {len(maneuvers)} maneuvers "
+                                    "have none (see their entries).")
     elif beyond:
-        kind, text = "beyond", (f"No: {', '.join(beyond)} is beyond these motors for any "
-                                "controller.")
+        kind, text = "beyond", (f"No: FAIL in {len(beyond)} of {total} for any controller: "
+                                f"{', '.join(beyond)} beyond these motors.")
     elif not failed:
         sfs = {n: min((m["checks"]["torque"]["sf"] for m in (e.get("motors") or {}).values()
                        if m.get("checks")), default=math.inf) for n, e in maneuvers.items()}
@@ -243,8 +246,8 @@ def design_answer(verdict: str, maneuvers: dict, floor: dict | None, duty: dict 
                                  f"{figure(sfs[least])}, {least}).")
     elif unbounded:
         kind, text = "this controller", (
-            f"Not with this controller: it fails {named}; no need for any controller bounds "
-            f"the {' or '.join(unbounded)} check.")
+            f"Not with this controller: FAIL in {len(failed)} of {total} ({named}); no need for "
+            f"any controller bounds the {' or '.join(unbounded)} check.")
     elif need["need_verdict"] in ("pass", "warn"):
         kind, text = "better controller", (
             f"Only with a better controller: this one fails {named}; the least found for any "
@@ -252,8 +255,8 @@ def design_answer(verdict: str, maneuvers: dict, floor: dict | None, duty: dict 
             f"{verdict_word(need['need_verdict'])}).")
     elif need["need_verdict"] == "fail":
         kind, text = "short of margin", (
-            f"No, not with margin: {need['maneuver']} needs at least {need['need_Nm']:.2f} N·m "
-            f"for the best motion found, SF {need['need_sf']:.2f} (fail below "
+            f"Not with margin: FAIL, {need['maneuver']} needs at least {need['need_Nm']:.2f} "
+            f"N·m for the best motion found, SF {need['need_sf']:.2f} (fail below "
             f"{checks.sf_warn:g}).")
     else:
         kind, text = "undecided", (f"Undecided: this controller fails {named}, and no need for "

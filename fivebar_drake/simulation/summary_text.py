@@ -113,9 +113,8 @@ def answer_details(s: Summary, params: Params) -> list[str]:
     over = f"over {s['cycles_in_window']} cycles" if s["periodic"] else "over the maneuver"
     limited = demand_unmet(c)
     need_Nm = m["p99_torque_Nm"] if limited else m["demand_p99_Nm"]
-    others = [f"{lg} {nm} sat at {limit_shares_text(o['limit_shares'])}"
-              for lg, ms in s["legs"].items() for nm, o in ms.items()
-              if o["saturated_fraction"] and (lg, nm) != (leg, name)]
+    others = [f"{lg} {nm} {o['saturated_fraction']:.1%}" for lg, ms in s["legs"].items()
+              for nm, o in ms.items() if o["saturated_fraction"] and (lg, nm) != (leg, name)]
     if limited:
         need = (f"the motors worked at their limits (worst motor {leg} {name}, at "
                 f"{limit_shares_text(limited['limits'])}, {over}): they delivered "
@@ -132,7 +131,8 @@ def answer_details(s: Summary, params: Params) -> list[str]:
     checks = [f"At the motor where it is worst, {where}: {check_text(k, w)}."
               for k, (where, w) in worst_checks(s).items()]
     return ([f"{head} {need}."]
-            + ([f"Other motors at a limit: {'; '.join(others)}."] if others else [])
+            + ([f"Other motors at a limit (share of the time, each limit in the table): "
+                f"{', '.join(others)}."] if others else [])
             + checks
             + [f"On the same poses with the same load schedule (the robot's weight shared by "
                f"the feet in stance) the static torque is {static:.2f} N·m: the dynamics add "
@@ -165,7 +165,7 @@ def opening(s: Summary, leg: str, name: str, t: TorqueCheck, c) -> str:
                     f"envelope (least margin {least}); ")
     elif check == "thermal" and d.get("margin") is not None:
         deciding = f"continuous / RMS current {d['margin']:.2f}; "
-    torque = ("no torque demand" if t["sf"] is None else
+    torque = ("no torque demand" if t["sf"] is None else f"SF {t['sf']:.2f}" if deciding else
               f"SF {t['sf']:.2f} (its demand's 99th percentile at "
               f"{t['share_of_limit'] * 100:.0f} % of its {t['limit_Nm']:.2f} N·m {t['quadrant']} "
               f"limit, each sample against its own quadrant's)")

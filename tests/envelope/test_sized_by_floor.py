@@ -84,6 +84,7 @@ def test_the_designs_answer_names_who_can_do_it_in_one_short_sentence():
     assert a["fails"] == ["trot"] and "SF 1.67" in a["text"] and "WARN" in a["text"]
     a = answer_of(cases["short of margin"])
     assert "4.00 N·m" in a["text"] and "SF 1.25" in a["text"]
-    assert answer_of(cases["beyond"])["text"].startswith("No: jump is beyond these motors")
+    assert answer_of(cases["beyond"])["text"].startswith(
+        "No: FAIL in 1 of 2 for any controller: jump beyond these motors")
     hot = {"verdict": "fail", "motors": {}}
     assert answer_of({"trot": ok}, duty=hot)["kind"] == "this controller"

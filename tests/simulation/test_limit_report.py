@@ -114,4 +114,5 @@ def test_never_reached_a_limit_covers_every_motor(simulated):
     m["limit_shares"] = {"driving_voltage": 0.029}
     text = " ".join(answer_details(s, record.params))
     assert "it never reached a limit" in text
-    assert f"Other motors at a limit: {other[0]} {other[1]} sat at" in text
+    assert (f"Other motors at a limit (share of the time, each limit in the table): "
+            f"{other[0]} {other[1]} 2.9%") in text
