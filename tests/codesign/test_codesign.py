@@ -196,7 +196,11 @@ def test_design_toml_is_the_recommended_design_and_runs(codesign, tmp_path):
     assert summary["completed"] and not summary["error"]
 
 
-def test_a_rerun_into_the_same_folder_simulates_nothing_and_gives_the_same_design(codesign):
+def test_a_rerun_into_the_same_folder_simulates_nothing_and_gives_the_same_design(codesign,
+                                                                                monkeypatch):
+    import fivebar_drake.codesign.dossier as dossier
+
+    monkeypatch.setattr(dossier, "SHEET_GAITS", ("pronk",))     # as the fixture's run
     _, out, report = codesign
     envelopes = sorted((out / "finalists").glob("*/envelope.json"))
     stamps = [p.stat().st_mtime_ns for p in envelopes]
