@@ -59,11 +59,14 @@ def columns(fidelity: str, varied: list[str]) -> list[str]:
     return [*HEAD, *varied, *WORST, *motors, *run, "error"]
 
 
-def _worst(motors: dict, demand_key: str) -> dict:
-    """The worst motor's figures (the worst verdict, then the lowest safety factor) and the
-    least thermal margin."""
-    name, worst = max(motors.items(), key=lambda kv: (
-        SEVERITY.get(kv[1]["verdict"], 3), -kv[1]["safety_factor"]))
+def _worst(motors: dict, demand_key: str, name: str | None = None) -> dict:
+    """The worst motor's figures and the least thermal margin: the motor named (a run's own
+    worst motor, summary.json's: verdicts.rules.badness), else the worst verdict, then the
+    lowest safety factor."""
+    if name is None:
+        name = max(motors, key=lambda n: (SEVERITY.get(motors[n]["verdict"], 3),
+                                          -motors[n]["safety_factor"]))
+    worst = motors[name]
     margins = [m["thermal_margin_K"] for m in motors.values() if "thermal_margin_K" in m]
     return {"worst_motor": name, "worst_verdict": worst["verdict"],
             "worst_deciding_check": worst.get("deciding_check") or "",
@@ -152,7 +155,7 @@ def simulation_row(base: Params, scenario: Scenario, step_check: bool, index: in
             figures["time_to_winding_limit_s"] = float(heat.time_to_limit_s)
     row.update(status="stopped" if record.error else "ok", error=record.error or "",
                speed_m_s=summary["mean_forward_speed_m_s"],
-               **_worst(motors, "demand_p99_Nm"))
+               **_worst(motors, "demand_p99_Nm", summary["worst_motor"].replace(" ", "_")))
     if summary["verdict"] in ("insufficient", "not_achieved", "marginal"):
         row["worst_verdict"] = summary["verdict"]
     row.update({f"{name}_{k}": v.get(k, "") for name, v in motors.items()

@@ -204,3 +204,24 @@ def test_simulation_points(tmp_path, shared_client):
         # 0.6 s is too short for a whole gait cycle: no verdict, said so
         assert r["worst_verdict"] == "insufficient"
         assert float(r["max_loop_gap_m"]) < 1e-4
+
+
+@pytest.mark.slow
+def test_a_simulated_points_worst_motor_is_its_summarys(params):
+    """A simulation point's worst motor is the one its run's summary names (the verdict's rule:
+    verdicts.rules.badness), not the lowest safety factor: at 11.5:1 the trot fails on the
+    speed check at one motor while another has the lowest SF (the demo's gear trade)."""
+    from fivebar_drake.pipeline import run_simulation, summarize_run
+    from fivebar_drake.robots.quadruped.config import with_changes
+    from fivebar_drake.simulation.scenario import load_scenario
+    from fivebar_drake.sweep.points import simulation_row
+
+    scenario, changes = load_scenario(duration_s=4.5), {"motor.gear_ratio": 11.5}
+    row = simulation_row(params, scenario, False, 0, changes)
+    summary = summarize_run(run_simulation(scenario, with_changes(params, changes),
+                                           progress=False))
+    leg, motor = summary["worst_motor"].split()
+    assert row["worst_motor"] == f"{leg}_{motor}"
+    assert row["worst_verdict"] == summary["verdict"]
+    assert row["worst_deciding_check"] == summary["deciding_check"]
+    assert float(row["worst_safety_factor"]) == summary["legs"][leg][motor]["safety_factor"]
