@@ -20,7 +20,7 @@ from fivebar_drake.codesign.dossier import DOSSIER_DIR, SHEET_FILE
 from fivebar_drake.core.files import write_atomic
 from fivebar_drake.core.text import figure, verdict_word
 from fivebar_drake.core.validation import ParameterError
-from fivebar_drake.mechanisms.fivebar import MOTORS
+from fivebar_drake.envelope.report import worst_sf
 
 INDEX_FILES = ("index.md", "index.html")
 ENVELOPES = ("envelope/envelope.json", "codesign/finalists/default/envelope.json")
@@ -82,15 +82,12 @@ def _maneuver_rows(envelope: dict, where: str) -> list[str]:
             "(N·m) | SF on it | whom a failure blames | report | recording |",
             "|---|---|---|---|---|---|---|---|---|"]
     for name, e in envelope["maneuvers"].items():
-        motors = e.get("motors") or {}
-        sfs = [motors[m]["checks"]["torque"]["sf"] for m in MOTORS
-               if motors.get(m) and motors[m].get("checks")]
         need = e.get("any_controller") or {}
         folder = f"{where}/{e['folder']}"
         name = _plain(name)
         rows.append(
             f"| {name} | {verdict_word(e['verdict'])} | {e.get('deciding_check') or '—'} | "
-            f"{figure(min(sfs) if sfs else None)} | {figure(need.get('floor_Nm'))} | "
+            f"{figure(worst_sf(e))} | {figure(need.get('floor_Nm'))} | "
             f"{figure(need.get('floor_safety_factor'))} | {need.get('fails_for') or '—'} | "
             f"[summary]({folder}/summary.md) | [run.rrd]({folder}/run.rrd) |")
     return rows

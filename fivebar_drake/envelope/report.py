@@ -200,6 +200,14 @@ def answer(maneuvers: dict, sized: dict, duty: dict | None) -> tuple[str, str]:
     return verdict, f"Worst verdict {label}: {reason}.{tail}"
 
 
+def worst_sf(entry: dict) -> float | None:
+    """A maneuver's worst torque safety factor over its motors (envelope.json's entry; None
+    where no motor has checks)."""
+    sfs = [m["checks"]["torque"]["sf"] for m in (entry.get("motors") or {}).values()
+           if m and m.get("checks")]
+    return min(sfs) if sfs else None
+
+
 def design_answer(verdict: str, maneuvers: dict, floor: dict | None, duty: dict | None,
                   checks) -> dict:
     """The design's one answer over the envelope (every output that gives it reads this):
@@ -238,9 +246,8 @@ def design_answer(verdict: str, maneuvers: dict, floor: dict | None, duty: dict 
         kind, text = "beyond", (f"No: FAIL in {len(beyond)} of {total} for any controller: "
                                 f"{', '.join(beyond)} beyond these motors.")
     elif not failed:
-        sfs = {n: min((m["checks"]["torque"]["sf"] for m in (e.get("motors") or {}).values()
-                       if m.get("checks")), default=math.inf) for n, e in maneuvers.items()}
-        least = min(sfs, key=sfs.get)
+        sfs = {n: worst_sf(e) for n, e in maneuvers.items()}
+        least = min(sfs, key=lambda n: math.inf if sfs[n] is None else sfs[n])
         kind, text = "carries", (f"Yes: the motors carry the robot through the envelope with "
                                  f"this controller ({verdict_word(verdict)}; least SF "
                                  f"{figure(sfs[least])}, {least}).")

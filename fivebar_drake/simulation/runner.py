@@ -23,7 +23,8 @@ from fivebar_drake.robots.quadruped.control_law import ControlGains
 from fivebar_drake.robots.quadruped.config import with_path_defaults
 from fivebar_drake.robots.quadruped.params import Params
 from fivebar_drake.robots.quadruped.plant import ClosureDesign, RobotLayout, set_standing_pose
-from fivebar_drake.simulation.builder import Setup, build_diagram, check_run
+from fivebar_drake.simulation.builder import (MIN_LOG_INTERVALS_PER_CYCLE, Setup, build_diagram,
+                                             check_run)
 from fivebar_drake.simulation.scenario import Scenario, load_scenario, source_of
 
 
@@ -44,14 +45,12 @@ def load_run(path: "str | Path | None" = None, **overrides) -> tuple[Scenario, P
         raise err.located(source_of(err, path, given)) from None
     return scenario, params
 
-LOG_INTERVALS = 100       # a top speed's recording: at least this many intervals per cycle
-
-
 def at_top_speed(scenario: Scenario, params: Params) -> tuple[Scenario, Params]:
     """A scenario whose gait runs at its top speed (Scenario.top_speed) as the optimum's path
     (optimal/top_speed.py on params and the scenario's payload: its duty factor and swing
     shape at its stride and frequency), its load transfer at most a quarter of the stance and
-    its recording's interval at most 1/LOG_INTERVALS of the period (1 ms at the least: beyond
+    its recording's interval at most 1/MIN_LOG_INTERVALS_PER_CYCLE of the period (the
+    statistics' least; 1 ms at the least: beyond
     10 Hz ParameterError); with the design at that gait. Any other scenario as it is.
     ParameterError where no speed of the gait passes, naming why."""
     if not scenario.top_speed:
@@ -66,7 +65,7 @@ def at_top_speed(scenario: Scenario, params: Params) -> tuple[Scenario, Params]:
         gait=found.path, top_speed=False,
         load_transfer_s=min(scenario.load_transfer_s, 0.25 * found.duty_factor * period),
         log_period_s=max(0.001, min(scenario.log_period_s,
-                                    math.floor(period / LOG_INTERVALS * 1e3) / 1e3)),
+                                    math.floor(period / MIN_LOG_INTERVALS_PER_CYCLE * 1e3) / 1e3)),
         **{f"gait_{k}": v for k, v in gait.items()})
     resolved.validate()
     return resolved, with_path_defaults(params, found.path, **gait)
