@@ -509,8 +509,8 @@ def parser() -> argparse.ArgumentParser:
             "cycle's winding temperature",
             "envelope spec (YAML; see README: maneuvers, duty_cycle, config, scenario, "
             "duration_s); default: the packaged fivebar_drake/data/envelope_default.yaml",
-            "output folder: envelope.md, envelope.json, operating_points.png, duty_cycle.png and "
-            "a folder per maneuver (default: out/envelope/SPEC's name)",
+            "output folder: envelope.md, envelope.json, operating_points.png (its points in "
+            "operating_points.npz), duty_cycle.png and a folder per maneuver (default: out/envelope/SPEC's name)",
             "run the maneuvers on", nargs="?")
     on_dask("codesign", _codesign, "co-design of motor (from the actuator catalogue), gearbox "
             "and leg parameters against an envelope's maneuvers: a search judged by closed-form "

@@ -7,6 +7,8 @@
                     asked (its quadrant, its speed margin) and the largest RMS current, over its
                     simulated envelope (OUT/finalists/KEY/envelope.json), beside what the motor
                     gives
+    operating_points.png  the default design's operating points and envelope beside the
+                    recommended design's (each finalist's simulated envelope)
     quadruped.sdf   the design's Drake model (closed by the explicit bushing, as sdf/)
     quadruped.xml   the design's MuJoCo model (robots/quadruped/mjcf.py)
 """
@@ -23,10 +25,13 @@ import numpy as np
 
 from fivebar_drake.codesign.designs import design_params
 from fivebar_drake.codesign.predict import ceiling
+from fivebar_drake.codesign.report import DEFAULT
 from fivebar_drake.codesign.spec import CodesignSpec
 from fivebar_drake.core.files import save_figure, write_atomic
 from fivebar_drake.core.text import ANSWER_CHARS
 from fivebar_drake.core.text import figure as _f
+from fivebar_drake.envelope.plots import (OPERATING_POINTS_FILE, POINTS_FILE, load_points,
+                                          plot_operating_points)
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.optimal.top_speed import GAITS, top_speed
 from fivebar_drake.robots.quadruped.closure import ExplicitBushing
@@ -39,9 +44,11 @@ from fivebar_drake.simulation.scenario import load_scenario
 DOSSIER_DIR = "dossier"
 SHEET_FILE = "spec_sheet.md"
 MARGINS_FILE = "margins.png"
+OVERLAY_FILE = OPERATING_POINTS_FILE
 REQUIREMENTS_FILE = "requirements.csv"
 SHEET_GAITS = GAITS           # the gaits whose top speed the sheet gives
-DOSSIER_FILES = ("quadruped.sdf", MJCF_FILE, REQUIREMENTS_FILE, MARGINS_FILE, SHEET_FILE)
+DOSSIER_FILES = ("quadruped.sdf", MJCF_FILE, REQUIREMENTS_FILE, MARGINS_FILE, OVERLAY_FILE,
+                 SHEET_FILE)
 # the simulated figures the margins picture sets side by side: (key, label, where it fails
 # below, and where it warns below or passes from: a Checks field or a number)
 MARGIN_CHECKS = (("torque", "torque: SF", "sf_warn", ("pass from", "sf_pass")),
@@ -97,8 +104,9 @@ def _sheet_answer(r: dict, asked: dict, allows: dict, fastest, speeds: dict) -> 
     return head + (legs if len(head + legs) < ANSWER_CHARS else "") + "."
 
 
-def sheet(report: dict, params: Params, needs: dict, allows: dict) -> str:
-    """spec_sheet.md of the recommended design (design.json's recommended entry)."""
+def sheet(report: dict, params: Params, needs: dict, allows: dict, overlay: bool) -> str:
+    """spec_sheet.md of the recommended design (design.json's recommended entry); overlay: with
+    OVERLAY_FILE's picture."""
     r, m = report["recommended"], params.motor
     design = r["design"]
     speeds = {k: t["speed_m_s"] for k, t in allows["top_speed"].items()
@@ -110,6 +118,8 @@ def sheet(report: dict, params: Params, needs: dict, allows: dict) -> str:
              "Below: its actuator, what its legs allow, and per motor what its maneuvers asked "
              f"(the requirements to send to a vendor, also as `{REQUIREMENTS_FILE}`).", "",
              f"![Simulated figures: default and recommended]({MARGINS_FILE})", "",
+             *([f"![Operating points over each design's envelope: default and recommended]"
+                f"({OVERLAY_FILE})", ""] if overlay else []),
              "## Actuator", "",
              "| figure | value |", "|---|---|",
              f"| motor | {design['motor']} |",
@@ -207,6 +217,19 @@ def plot_margins(report: dict, checks, path: Path) -> Path:
     return save_figure(fig, path)
 
 
+def plot_overlay(report: dict, spec: CodesignSpec, finalists: Path, path: Path) -> Path | None:
+    """OVERLAY_FILE: the default design's and the recommended design's operating points, each over
+    its own motor's envelope (their envelopes' POINTS_FILE); None where either has none."""
+    base, r = spec.envelope.maneuvers[0].params, report["recommended"]
+    designs = {"default design": (base.motor, finalists / DEFAULT / POINTS_FILE),
+               "recommended": (design_params(base, r["design"]).motor,
+                               finalists / r["key"] / POINTS_FILE)}
+    if not all(points.is_file() for _, points in designs.values()):
+        return None
+    return plot_operating_points({label: (motor, load_points(points))
+                                  for label, (motor, points) in designs.items()}, path)
+
+
 def write_dossier(spec: CodesignSpec, report: dict, out: Path, finalists: Path) -> list[Path]:
     """Write OUT/dossier/ for the recommended design (module docstring; its envelope in
     finalists/KEY/); [] without one, and an earlier run's dossier removed."""
@@ -226,4 +249,6 @@ def write_dossier(spec: CodesignSpec, report: dict, out: Path, finalists: Path) 
             write_atomic(folder / MJCF_FILE, quadruped_mjcf(params)),
             write_atomic(folder / REQUIREMENTS_FILE, requirements_csv(needs, params, allows)),
             plot_margins(report, params.checks, folder / MARGINS_FILE),
-            write_atomic(folder / SHEET_FILE, sheet(report, params, needs, allows))]
+            *filter(None, [plot_overlay(report, spec, finalists, folder / OVERLAY_FILE)]),
+            write_atomic(folder / SHEET_FILE, sheet(report, params, needs, allows,
+                                                    (folder / OVERLAY_FILE).is_file()))]

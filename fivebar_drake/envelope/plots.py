@@ -1,50 +1,87 @@
 """The duty envelope's pictures: every maneuver's operating points over the motor's torque-speed
-envelope (the actuator-sizing picture) and the windings' temperature over the duty cycle."""
+envelope (the actuator-sizing picture; its points kept in a file beside it) and the windings'
+temperature over the duty cycle."""
 
 from __future__ import annotations
 
+import io
 from pathlib import Path
 
 import numpy as np
 
-from fivebar_drake.core.files import save_figure
+from fivebar_drake.core.files import save_figure, write_atomic
 from fivebar_drake.actuators.motor import Motor
 from fivebar_drake.envelope.duty_cycle import DutyTemperature
 from fivebar_drake.mechanisms.fivebar import MOTORS
 
 OPERATING_POINTS_FILE, DUTY_CYCLE_FILE = "operating_points.png", "duty_cycle.png"
-PLOT_FILES = (OPERATING_POINTS_FILE, DUTY_CYCLE_FILE)
+POINTS_FILE = "operating_points.npz"       # the points operating_points.png draws
+PLOT_FILES = (OPERATING_POINTS_FILE, POINTS_FILE, DUTY_CYCLE_FILE)
 MOTOR_COLOURS = {"A": "tab:blue", "B": "tab:orange"}
+DESIGN_COLOURS = ("0.35", "tab:blue", "tab:green")     # designs side by side: the first grey
 
 
-def plot_operating_points(motor: Motor, points: dict, path: Path) -> Path:
+def save_points(points: dict, path: Path) -> Path:
+    """POINTS_FILE: the operating points plot_operating_points draws (name -> (speed (2, n) rad/s,
+    demand (2, n) N*m)), so that a later picture can set two designs side by side."""
+    buffer = io.BytesIO()
+    np.savez_compressed(buffer, **{f"{name}/{key}": array for name, pair in points.items()
+                                   for key, array in zip(("speed", "demand"), pair)})
+    return write_atomic(path, buffer.getvalue())
+
+
+def load_points(path: Path) -> dict:
+    """save_points' file read back: name -> (speed, demand), in the order saved."""
+    with np.load(path) as data:
+        names = list(dict.fromkeys(key.rsplit("/", 1)[0] for key in data.files))
+        return {n: (data[f"{n}/speed"], data[f"{n}/demand"]) for n in names}
+
+
+def plot_operating_points(designs: dict[str, tuple[Motor, dict]], path: Path) -> Path:
     """One panel per motor (A, B; every leg): the demand (N*m) at the joint speed (rad/s) of
-    each maneuver (points: name -> (speed (2, n), demand (2, n)); one colour each) over the
-    actuator's envelope in all four quadrants (actuators/motor.torque_limits: driving and braking)
-    and the continuous torque."""
+    each maneuver over the actuator's envelope in all four quadrants (actuators/motor.limits:
+    driving and braking) and the continuous torque. designs: label -> (motor, points: name ->
+    (speed (2, n), demand (2, n))). One design: a colour per maneuver, the envelope in black;
+    several (the dossier's default beside the recommended): a colour per design, its envelope
+    and its points alike."""
     import matplotlib.pyplot as plt
 
-    w0 = motor.no_load_speed_rad_s
-    fastest = max([w0] + [float(np.max(np.abs(s))) for s, _ in points.values() if s.size])
+    motors = [m for m, _ in designs.values()]
+    fastest = max([min(m.no_load_speed_rad_s for m in motors)]
+                  + [float(np.max(np.abs(s))) for _, points in designs.values()
+                     for s, _ in points.values() if s.size])
+    strongest = max([max(m.peak_torque_Nm, m.braking_peak_torque_Nm) for m in motors]
+                    + [float(np.max(np.abs(t))) for _, points in designs.values()
+                       for _, t in points.values() if t.size])
     speed = np.linspace(-1.1 * fastest, 1.1 * fastest, 801)
-    upper, lower = motor.limits(speed)
-    colours = plt.get_cmap("tab10" if len(points) <= 10 else "tab20")
+    single = len(designs) == 1
     fig, axes = plt.subplots(1, len(MOTORS), figsize=(13, 5.5), sharey=True)
     for j, (ax, name) in enumerate(zip(axes, MOTORS)):
-        ax.fill_between(speed, lower, upper, color="0.93", zorder=0)
-        ax.plot(speed, upper, "k-", lw=1.3, label="envelope (driving and braking)")
-        ax.plot(speed, lower, "k-", lw=1.3)
-        if motor.continuous_torque_Nm is not None:
-            for sign in (1, -1):
-                ax.axhline(sign * motor.continuous_torque_Nm, color="0.45", ls="--", lw=0.9,
-                           label="continuous torque" if sign > 0 else None)
-        for k, (maneuver, (s, d)) in enumerate(points.items()):
-            ax.scatter(s[j], d[j], s=4, alpha=0.5, color=colours(k % colours.N),
-                       label=maneuver, rasterized=True)
+        for d, (design, (motor, points)) in enumerate(designs.items()):
+            colour = "k" if single else DESIGN_COLOURS[d % len(DESIGN_COLOURS)]
+            upper, lower = motor.limits(speed)
+            named = "" if single else f"{design}: "
+            if d == 0:
+                ax.fill_between(speed, lower, upper, color="0.93", zorder=0)
+            ax.plot(speed, upper, "-", color=colour, lw=1.3,
+                    label=f"{named}envelope (driving and braking)")
+            ax.plot(speed, lower, "-", color=colour, lw=1.3)
+            if motor.continuous_torque_Nm is not None:
+                for sign in (1, -1):
+                    ax.axhline(sign * motor.continuous_torque_Nm, color=colour, ls="--",
+                               lw=0.9, alpha=0.6,
+                               label=f"{named}continuous torque" if sign > 0 else None)
+            cmap = plt.get_cmap("tab10" if len(points) <= 10 else "tab20")
+            for k, (maneuver, (s, t)) in enumerate(points.items()):
+                ax.scatter(s[j], t[j], s=4, alpha=0.5, rasterized=True,
+                           color=cmap(k % cmap.N) if single else colour,
+                           label=maneuver if single else (f"{design}: operating points"
+                                                          if k == 0 else None))
         ax.axhline(0, color="0.6", lw=0.5)
         ax.axvline(0, color="0.6", lw=0.5)
         ax.set(title=f"motor {name} (all legs): demand at the joint speed",
-               xlabel="joint speed (rad/s)", xlim=(speed[0], speed[-1]))
+               xlabel="joint speed (rad/s)", xlim=(speed[0], speed[-1]),
+               ylim=(-1.2 * strongest, 1.2 * strongest))
         ax.grid(alpha=0.3)
     axes[0].set_ylabel("torque (N·m)")
     axes[-1].legend(loc="upper right", fontsize=8, markerscale=3)

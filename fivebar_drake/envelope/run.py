@@ -5,6 +5,7 @@ workers, each builds its own Diagrams) and write it:
     OUT/envelope.md, envelope.json    per motor and maneuver the four checks, what sizes each
                                       motor, the worst verdict in one sentence, the duty cycle
     OUT/operating_points.png          every maneuver's operating points over the envelope
+    OUT/operating_points.npz          those points (per maneuver: speed, demand; motors A, B)
     OUT/duty_cycle.png                the windings' temperature over the duty cycle
     OUT/<maneuver>/                   `simulate`'s outputs of each maneuver (summary.json last,
                                       run.rrd with the maneuver's name in its recording id)
@@ -27,7 +28,8 @@ from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.envelope.duty_cycle import duty_temperature, duty_verdict
 from fivebar_drake.envelope.maneuver import OPERATING_POINTS, ManeuverResult, run_maneuvers
 from fivebar_drake.envelope.plots import (DUTY_CYCLE_FILE, OPERATING_POINTS_FILE, PLOT_FILES,
-                                          plot_duty_cycle, plot_operating_points)
+                                          POINTS_FILE, plot_duty_cycle, plot_operating_points,
+                                          save_points)
 from fivebar_drake.envelope.report import REPORT_FILES, envelope_report, write_report
 from fivebar_drake.envelope.spec import EnvelopeSpec
 from fivebar_drake.mechanisms.fivebar import MOTORS
@@ -155,7 +157,8 @@ def write_envelope(spec: EnvelopeSpec, results: dict[str, ManeuverResult],
     files = []
     points = {n: (r.speed, r.demand) for n, r in results.items() if r.speed is not None}
     if points:
-        files.append(plot_operating_points(params.motor, points, out / OPERATING_POINTS_FILE))
+        files += [plot_operating_points({"": (params.motor, points)}, out / OPERATING_POINTS_FILE),
+                  save_points(points, out / POINTS_FILE)]
     if temperature is not None:
         files.append(plot_duty_cycle(params.motor, params.checks, temperature, spec.duty_cycle,
                                      LEGS, out / DUTY_CYCLE_FILE))

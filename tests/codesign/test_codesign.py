@@ -12,6 +12,7 @@ import json
 import math
 import re
 
+import numpy as np
 import pytest
 
 from fivebar_drake.cli import main
@@ -147,6 +148,26 @@ def test_the_recommended_design_has_its_dossier(codesign):
     assert "pronk top speed" in sheet
     assert "(margins.png)" in sheet and (folder / "margins.png").stat().st_size > 10_000
     assert len(sheet.splitlines()[2]) <= 200
+
+
+def test_the_spec_sheet_overlays_both_designs_operating_points(codesign):
+    """dossier/operating_points.png draws the default design's and the recommended design's
+    operating points (their envelopes' operating_points.npz), whose largest demand per motor is
+    each maneuver's summary.json peak; the spec sheet shows the picture."""
+    from fivebar_drake.envelope.plots import load_points
+
+    _, out, report = codesign
+    folder = out / "dossier"
+    assert "(operating_points.png)" in (folder / "spec_sheet.md").read_text()
+    assert (folder / "operating_points.png").stat().st_size > 10_000
+    for key in ("default", report["recommended"]["key"]):
+        points = load_points(out / "finalists" / key / "operating_points.npz")
+        for name, (speed, demand) in points.items():
+            legs = json.loads((out / "finalists" / key / name / "summary.json").read_text())["legs"]
+            for j, motor in enumerate("AB"):
+                assert speed[j].shape == demand[j].shape and demand[j].size > 100
+                assert np.abs(demand[j]).max() == max(ms[motor]["demand_peak_Nm"]
+                                                      for ms in legs.values())
 
 
 def test_predicted_and_simulated_figures_side_by_side(codesign):

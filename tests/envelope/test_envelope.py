@@ -325,6 +325,12 @@ def test_operating_points_hold_the_demand_peak(local):
             peak = max(ms[motor]["demand_peak_Nm"] for ms in s["legs"].values())
             assert np.abs(result.demand[j]).max() == peak
             assert result.demand[j].size == 2000 < result.current.shape[0] * 4
+    from fivebar_drake.envelope.plots import load_points
+    saved = load_points(out / "operating_points.npz")      # what the dossier's overlay reads
+    assert list(saved) == list(run.results)
+    for name, result in run.results.items():
+        np.testing.assert_array_equal(saved[name][0], result.speed)
+        np.testing.assert_array_equal(saved[name][1], result.demand)
 
 
 def without_dask(monkeypatch, first, second):
