@@ -6,6 +6,7 @@ from __future__ import annotations
 import numpy as np
 from pydrake.systems.framework import BasicVector, LeafSystem
 
+from fivebar_drake.core.compiled import bound
 from fivebar_drake.gaits import REFERENCES_PER_LEG, FootPath, Gait, references_kernel
 
 
@@ -26,11 +27,11 @@ class GaitSource(LeafSystem):
     def __init__(self, gait: Gait, path: FootPath, phases, start_s: float, ramp_s: float,
                  transfer_s: float):
         super().__init__()
-        self._kernel = references_kernel(path.point)
         self._args = (path.constants(gait), *path.clock(gait), path.stance_start(gait),
-                      float(transfer_s), path.home(gait), np.asarray(phases, dtype=float),
-                      float(path.start_s(start_s)), float(ramp_s) if path.periodic else 0.0,
-                      path.periodic)
+                      float(transfer_s), np.ascontiguousarray(path.home(gait), dtype=float),
+                      np.ascontiguousarray(phases, dtype=float), float(path.start_s(start_s)),
+                      float(ramp_s) if path.periodic else 0.0, path.periodic)
+        self._kernel = bound(references_kernel(path.point), *self._args, 0.0)
         self.DeclareVectorOutputPort("foot_references",
                                      BasicVector(REFERENCES_PER_LEG * len(phases)),
                                      self._calc, {self.time_ticket()})

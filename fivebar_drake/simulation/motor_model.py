@@ -9,6 +9,7 @@ from pydrake.systems.primitives import (Demultiplexer, DiscreteTimeDelay, Matrix
                                         ZeroOrderHold)
 
 from fivebar_drake.actuators.motor import MEMORY, Motor, motor_step
+from fivebar_drake.core.compiled import bound
 
 
 class MotorModel(Diagram):
@@ -95,12 +96,15 @@ class MotorStep(LeafSystem):
         self._first = first
         self.DeclareVectorOutputPort("motor_step", 3 * n + MEMORY * n + 2, self._calc, {
             self.all_input_ports_ticket(), self.time_ticket()})
+        out = np.zeros(3 * n + MEMORY * n + 2)         # the kernel for the types _calc passes
+        self._step = bound(motor_step, self._law, np.zeros(n), np.zeros(n), first, 0.0,
+                           self._cap, out[:3 * n], out[3 * n:-1])
 
     def _calc(self, context, output):
         memory = self._memory.Eval(context)
         out = output.get_mutable_value()
         n = self._n
-        motor_step(self._law, self._held.Eval(context), self._state.Eval(context)[self._v_index],
+        self._step(self._law, self._held.Eval(context), self._state.Eval(context)[self._v_index],
                    memory[:-1] if memory[-1] else self._first, context.get_time(), self._cap,
                    out[:3 * n], out[3 * n:-1])
         out[-1] = 1.0

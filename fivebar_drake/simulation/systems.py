@@ -14,6 +14,7 @@ from typing import ClassVar
 import numpy as np
 from pydrake.systems.framework import LeafSystem
 
+from fivebar_drake.core.compiled import bound
 from fivebar_drake.gaits import REFERENCES_PER_LEG
 from fivebar_drake.core.validation import check_number, require
 from fivebar_drake.core.variants import Variant, documented, known, registrar
@@ -166,6 +167,15 @@ class FootLegController(LeafSystem):
         self._memory = self.DeclareDiscreteState(np.concatenate([support, np.zeros(layout.nv)]))
         self.DeclarePeriodicDiscreteUpdateEvent(knobs.control_period_s, 0.0, self._update)
         self.DeclareStateOutputPort("torque_command", self._command)
+        # the kernels that take the constants, for the argument types a tick passes (bound)
+        k, legs, state = self.constants, layout.state.q_index.shape[0], np.zeros(layout.nx)
+        self._plan = bound(leg_plan, k, np.zeros(REFERENCES_PER_LEG * legs), state,
+                           np.zeros(legs), self.standing_support(), 0.0)
+        self._loads = bound(foot_loads, k, state, np.zeros(layout.nv))
+        plan = self._plan(k, np.zeros(REFERENCES_PER_LEG * legs), state, np.zeros(legs),
+                          self.standing_support(), 0.0)      # its fields' types (values: nan)
+        self._forces = bound(self._forces, k, plan.body, plan.weights, plan.share, plan.fx,
+                             plan.fy, state, plan.r_wb)
 
     @property
     def gains(self) -> ControlGains:
@@ -188,11 +198,14 @@ class FootLegController(LeafSystem):
         legs cannot close."""
         memory = self.standing_support() if support is None else support
         n = memory.shape[0]
-        loads = np.full(n, np.inf) if loads_N is None else np.asarray(loads_N, dtype=float)
-        state = np.asarray(state, dtype=float)
-        k = self.constants
-        plan = leg_plan(k, np.asarray(references, dtype=float), state, loads, memory, float(t))
-        out, finite = leg_torques(k.state.actuators, *self.stance_torques(plan, state, float(t)))
+        loads = np.full(n, np.inf) if loads_N is None else np.ascontiguousarray(loads_N, float)
+        state = np.ascontiguousarray(state, dtype=float)
+        require(memory.flags.c_contiguous and memory.dtype == float, "support", memory.dtype,
+                "a C-contiguous float array (it is updated in place)")
+        plan = self._plan(self.constants, np.ascontiguousarray(references, dtype=float), state,
+                          loads, memory, float(t))
+        out, finite = leg_torques(self.constants.state.actuators,
+                                  *self.stance_torques(plan, state, float(t)))
         if not finite:                        # name the reason, if it is a reach
             self._mechanism.inverse(plan.goal)
             self._mechanism.forward(state[self._layout.state.q_index])
@@ -219,7 +232,7 @@ class FootLegController(LeafSystem):
         memory = context.get_discrete_state(self._memory).get_value()
         last = memory[self._support_size:]
         return (self._references.Eval(context), state,
-                foot_loads(self.constants, state, (impulse - last) / self._period),
+                self._loads(self.constants, state, (impulse - last) / self._period),
                 memory[:self._support_size].reshape(-1, SUPPORT_FIELDS).copy(),
                 context.get_time(), impulse)
 
