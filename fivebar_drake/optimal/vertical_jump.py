@@ -41,7 +41,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from fivebar_drake.gaits import Jump as JumpPath, Landing
-from fivebar_drake.actuators.motor import Motor
+from fivebar_drake.actuators.motor import Motor, friction_torque, torque_limits
+from fivebar_drake.core.compiled import jit
 from fivebar_drake.core.validation import ParameterError
 from fivebar_drake.mechanisms.fivebar import (KNEES_OUT, LINK_NAMES, held_force, limit_tests,
                                               link_coms, past_any)
@@ -135,26 +136,29 @@ def stroke(params: Params, u0: float, u1: float, payload_kg: float = 0.0,
                   params.body.foot_friction, params.motor)
 
 
-def acceleration_bounds(s: Stroke, k: int, w: float, peak_Nm: float = math.inf):
-    """(least, largest) hip acceleration b (m/s^2) at node k and hip speed w (m/s; > 0 rising,
-    < 0 sinking): every motor's delivered torque within its envelope at its speed and within
-    +-peak_Nm, the foot on the ground inside its friction cone."""
+@jit
+def acceleration_bounds(law, alpha, beta, gamma, fx, fy, dq, mu, w, peak_Nm):
+    """(least, largest) hip acceleration b (m/s^2) at one node of a Stroke (its alpha, beta,
+    gamma (2,), fx (2,), fy (3,), dq (2,) there; mu its foot friction) at hip speed w (m/s;
+    > 0 rising, < 0 sinking): every motor's delivered torque within its envelope at its speed
+    (law: actuators.motor.ActuatorLaw) and within +-peak_Nm, the foot on the ground inside its
+    friction cone."""
     x = w * w
-    omega = s.dq[k] * w
-    upper, lower = s.motor.limits(omega)
-    friction = s.motor.friction(omega)
-    rows = []                                   # c1 b <= c0
-    for i in range(2):
-        rest = s.beta[k, i] * x + s.gamma[k, i] + friction[i]
-        rows.append((s.alpha[k, i], min(upper[i], peak_Nm) - rest))
-        rows.append((-s.alpha[k, i], rest - max(lower[i], -peak_Nm)))
-    fy_b, fy0 = s.fy[k, 0], s.fy[k, 1] * x + s.fy[k, 2]
-    fx_b, fx0 = s.fx[k, 0], s.fx[k, 1] * x
-    rows.append((-fy_b, fy0))                                        # F_y >= 0
-    rows.append((fx_b - s.mu * fy_b, s.mu * fy0 - fx0))              # F_x <= mu F_y
-    rows.append((-fx_b - s.mu * fy_b, s.mu * fy0 + fx0))             # -F_x <= mu F_y
     low, high = -math.inf, math.inf
-    for c1, c0 in rows:
+    rows = np.empty((7, 2))                      # c1 b <= c0
+    for i in range(2):
+        omega = dq[i] * w
+        upper, lower = torque_limits(law, omega)
+        rest = beta[i] * x + gamma[i] + friction_torque(law, omega)
+        rows[2 * i, 0], rows[2 * i, 1] = alpha[i], min(upper, peak_Nm) - rest
+        rows[2 * i + 1, 0], rows[2 * i + 1, 1] = -alpha[i], rest - max(lower, -peak_Nm)
+    fy_b, fy0 = fy[0], fy[1] * x + fy[2]
+    fx_b, fx0 = fx[0], fx[1] * x
+    rows[4, 0], rows[4, 1] = -fy_b, fy0                              # F_y >= 0
+    rows[5, 0], rows[5, 1] = fx_b - mu * fy_b, mu * fy0 - fx0        # F_x <= mu F_y
+    rows[6, 0], rows[6, 1] = -fx_b - mu * fy_b, mu * fy0 + fx0       # -F_x <= mu F_y
+    for r in range(7):
+        c1, c0 = rows[r, 0], rows[r, 1]
         if c1 > 0:
             high = min(high, c0 / c1)
         elif c1 < 0:
@@ -162,6 +166,49 @@ def acceleration_bounds(s: Stroke, k: int, w: float, peak_Nm: float = math.inf):
         elif c0 < 0:
             return math.inf, -math.inf                               # infeasible at any b
     return low, high
+
+
+@jit
+def _push_nodes(law, alpha, beta, gamma, fx, fy, dq, u, mu, peak_Nm):
+    """push's sweep up the stroke (arrays of a Stroke): (x = w^2, b) at the nodes reached,
+    empty where the motors cannot start it from rest at the first node."""
+    n = u.size
+    x, b = np.zeros(n), np.zeros(n)
+    end = n
+    for k in range(n - 1):
+        low, high = acceleration_bounds(law, alpha[k], beta[k], gamma[k], fx[k], fy[k], dq[k],
+                                        mu, math.sqrt(x[k]), peak_Nm)
+        if not high >= low or (k == 0 and high <= 0.0):      # no admissible push from here
+            end = 0 if k == 0 else k + 1
+            break
+        b[k] = high
+        x[k + 1] = max(x[k] + 2.0 * high * (u[k + 1] - u[k]), 0.0)
+        if x[k + 1] == 0.0:
+            end = k + 2
+            break
+    return x[:end], b[:end]
+
+
+@jit
+def _catch_nodes(law, alpha, beta, gamma, fx, fy, dq, u, mu, touchdown_speed, peak_Nm):
+    """catch's sweep down the stroke from its top (arrays of a Stroke): (x = w^2, b, the node
+    where the hip stops or -1, the lowest node reached)."""
+    n = u.size
+    x, b = np.zeros(n), np.zeros(n)
+    x[n - 1] = touchdown_speed**2
+    stop, last = -1, n - 1
+    for k in range(n - 1, 0, -1):
+        last = k
+        low, high = acceleration_bounds(law, alpha[k], beta[k], gamma[k], fx[k], fy[k], dq[k],
+                                        mu, -math.sqrt(x[k]), peak_Nm)
+        if not high >= low:
+            break                                     # the motors cannot hold it: gives way
+        b[k] = high
+        x[k - 1] = x[k] - 2.0 * high * (u[k] - u[k - 1])
+        if x[k - 1] <= 0.0:
+            x[k - 1], stop = 0.0, k - 1
+            break
+    return x, b, stop, last if stop < 0 else stop
 
 
 @dataclass(frozen=True)
@@ -207,20 +254,10 @@ def body_apexes(s: Stroke, w: np.ndarray, standing_u: float) -> np.ndarray:
 def push(s: Stroke, standing_u: float, peak_Nm: float = math.inf) -> Jump | None:
     """The highest jump along the stroke (module docstring), torques within +-peak_Nm too;
     None if the motors cannot start it from rest at the crouch."""
-    n = s.u.size
-    x, b = np.zeros(n), np.zeros(n)
-    for k in range(n - 1):
-        low, high = acceleration_bounds(s, k, math.sqrt(x[k]), peak_Nm)
-        if not high >= low or (k == 0 and high <= 0.0):      # no admissible push from here
-            if k == 0:
-                return None
-            x, b = x[:k + 1], b[:k + 1]
-            break
-        b[k] = high
-        x[k + 1] = max(x[k] + 2.0 * high * (s.u[k + 1] - s.u[k]), 0.0)
-        if x[k + 1] == 0.0:
-            x, b = x[:k + 2], b[:k + 2]
-            break
+    x, b = _push_nodes(s.motor.law, s.alpha, s.beta, s.gamma, s.fx, s.fy, s.dq, s.u, s.mu,
+                       float(peak_Nm))
+    if not x.size:
+        return None
     w = np.sqrt(x)
     v_com = w * (1.0 + s.com_u[:w.size])
     z_com = s.u[:w.size] + s.com_m[:w.size]
@@ -383,19 +420,9 @@ def catch(s: Stroke, touchdown_speed: float, peak_Nm: float = math.inf) -> Catch
     is not modelled: the hip keeps its speed through it (the links' momentum lost at impact
     would help; the floor is that much too high)."""
     n = s.u.size
-    x, b = np.zeros(n), np.zeros(n)
-    x[-1] = touchdown_speed**2
-    stop = None
-    for k in range(n - 1, 0, -1):
-        low, high = acceleration_bounds(s, k, -math.sqrt(x[k]), peak_Nm)
-        if not high >= low:
-            break                                     # the motors cannot hold it: gives way
-        b[k] = high
-        x[k - 1] = x[k] - 2.0 * high * (s.u[k] - s.u[k - 1])
-        if x[k - 1] <= 0.0:
-            x[k - 1], stop = 0.0, k - 1
-            break
-    first = stop if stop is not None else k
+    x, b, stop, first = _catch_nodes(s.motor.law, s.alpha, s.beta, s.gamma, s.fx, s.fy, s.dq,
+                                     s.u, s.mu, float(touchdown_speed), float(peak_Nm))
+    stop = None if stop < 0 else stop
     cells = slice(first + 1, n)
     w = -np.sqrt(x)
     omega = s.dq[cells] * w[cells, None]
