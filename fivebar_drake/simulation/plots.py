@@ -194,7 +194,7 @@ def torque_speed_figure(sig: Signals, legs, params: Params, summary: Summary) ->
     fastest = max(float(np.max(np.abs(speed), initial=0.0)), motor.no_load_speed_rad_s)
     w = np.linspace(0.0, 1.1 * fastest, 200)
     up, lo = motor.limits(w)
-    fig, axes = plt.subplots(1, len(MOTORS), figsize=(12, 5), sharey=True, layout="constrained")
+    fig, axes = plt.subplots(1, len(MOTORS), figsize=(12, 5), sharey=True)
     for j, (ax, name) in enumerate(zip(axes, MOTORS)):
         ax.plot(w, up, "r-", lw=1.5, label="envelope, driving (beyond the no-load speed the "
                 "back-EMF forces braking)")
@@ -211,15 +211,16 @@ def torque_speed_figure(sig: Signals, legs, params: Params, summary: Summary) ->
                        f"{check.get('outside_fraction', 0.0):.1%} beyond")
             ax.scatter(np.abs(speed[beyond, i, j]), along[beyond], s=30, marker="x",
                        color=LEG_COLORS[i], rasterized=True, zorder=3)
-        ax.set(title=f"motor {name}", xlabel="|joint speed| (rad/s)", xlim=(0, w[-1]),
-               ylabel="demand along the motion (N·m): driving > 0, braking < 0")
+        ax.set(title=f"motor {name}", xlabel="|joint speed| (rad/s)", xlim=(0, w[-1]))
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7, loc="lower left")
+    axes[0].set_ylabel("demand along the motion (N·m): driving > 0, braking < 0")
     fig.suptitle(f"Verdict {summary['verdict'].upper()}, decided by the "
                  f"{summary.get('deciding_check') or 'no'} check (worst motor "
                  f"{summary.get('worst_motor') or 'none'}): the demand over the window "
                  f"{summary['window_s'][0]:.2f} .. {summary['window_s'][1]:.2f} s on the "
-                 "torque–speed plane; x: beyond the envelope")
+                 "torque–speed plane; x: beyond the envelope", fontsize=9)
+    fig.subplots_adjust(left=0.07, right=0.99, bottom=0.1, top=0.91, wspace=0.04)
     return fig
 
 
@@ -280,8 +281,7 @@ def capability_figure(sig: StepSignals, legs, params: Params,
         ld = summary["landing"]
         phases["landing"] = (sig.t > ld["touchdown_s"]) & (sig.t <= ld["end_s"])
     along = capability_along(sig, params, phases, legs)["phases"]
-    fig, axes = plt.subplots(1, len(along), figsize=(6 * len(along), 5), squeeze=False,
-                             layout="constrained")
+    fig, axes = plt.subplots(1, len(along), figsize=(6 * len(along), 5), squeeze=False)
     for ax, (name, a) in zip(axes[0], along.items()):
         y = a["foot_y_m"] * 1e3
         curves = (a["required_N"], a["box_N"], a["envelope_N"])
@@ -312,4 +312,5 @@ def capability_figure(sig: StepSignals, legs, params: Params,
         f"{_least(fc['least_ratio_box'], fc.get('least_box_at'))} in the torque box, "
         f"{_least(fc['least_ratio_envelope'], fc.get('least_envelope_at'))} in the envelope; "
         "below 1 the motors could not hold that force there.", wrap=True, fontsize=8)
+    fig.subplots_adjust(left=0.07, right=0.98, bottom=0.1, top=0.84, wspace=0.18)
     return fig
