@@ -5,7 +5,9 @@ step by step (the replay must end in the run's exact state, or the figure is not
 run; the actuation is recorded by a separate, identical run, so the timed runs carry no
 benchmark logger), alternating with the default run --pairs times (the ratio is the median over the pairs:
 this machine's speed drifts between runs); where the default run's time goes (plant, the Python
-blocks, the rest of the Diagram, the summary and the output files after the run); and the peak
+blocks, the rest of the Diagram, the summary and the output files after the run; and each block's
+whole cost, dispatch and caches included, by replacing the others with the replayed actuation:
+cost_by_replacement); and the peak
 memory of a 10 s and a 60 s default run (each in a fresh process). Every run goes through the
 pipeline (run_simulation, summarize_run, write_simulation). Prints tables, then, as its last
 line, one JSON object: rtf (per closure), plant_alone_rtf, diagram_to_plant_ratio (and
@@ -13,7 +15,8 @@ _per_pair), max_loop_gap_m (per closure), rms_torque_agreement (largest per-moto
 difference against `ball`), logging_share (the Rerun recording / the whole simulate job),
 output_share (writing the run's files: plots, recording, summary /
 whole simulate job), step_check_ratio (simulate --step-check over simulate, median of --pairs),
-peak_rss_mb_10s, peak_rss_mb_60s, split_us_per_step, python_callbacks_per_step."""
+peak_rss_mb_10s, peak_rss_mb_60s, split_us_per_step, python_callbacks_per_step,
+cost_by_replacement_us_per_step."""
 
 from __future__ import annotations
 
@@ -29,11 +32,13 @@ from pathlib import Path
 import numpy as np
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder
-from pydrake.systems.primitives import TrajectorySource
+from pydrake.systems.primitives import Multiplexer, TrajectorySource, VectorLogSink
 from pydrake.trajectories import PiecewisePolynomial
 
+from fivebar_drake.simulation.builder import (PERIODIC, add_contact_integral, add_controller,
+                                              add_recorders, recorded_periods)
 from fivebar_drake.simulation.gait_source import GaitSource
-from fivebar_drake.simulation.motor_model import MotorStep
+from fivebar_drake.simulation.motor_model import MotorModel, MotorStep
 from fivebar_drake.pipeline import (run_simulation, run_step_check, summarize_run,
                                     write_simulation)
 from fivebar_drake.robots.quadruped.closure import CLOSURES
@@ -87,6 +92,97 @@ def plant_alone(params, design, actuation, duration: float):
     start = time.perf_counter()
     simulator.AdvanceTo(duration)
     return duration / (time.perf_counter() - start), plant.GetPositionsAndVelocities(context)
+
+
+REPLACEMENTS = ("plant alone", "plant and the C++ blocks", "motor model", "controller and gait source",
+                "the whole Diagram")
+
+
+def replaced_run(record, actuation, keep: str, duration: float) -> tuple[float, np.ndarray]:
+    """(CPU seconds, final state) of the default run's plant driven by its own per-step
+    actuation (a C++ replay: the same physics bit for bit), with some of the Diagram's blocks
+    kept beside it (REPLACEMENTS): none; the contact integral and the recorders; the motor
+    model (its command replayed too, its output logged every step, as the plant would ask for
+    it); the controller and the gait source (their command unused); all of them, wired as the
+    tool wires them (the motor model driving the plant)."""
+    scenario, params, design = record.scenario, record.params, record.design
+    times, torques = actuation
+    builder = DiagramBuilder()
+    plant, instance, layout = add_robot(builder, params, design, scenario.plant_config)
+    replay = builder.AddSystem(TrajectorySource(PiecewisePolynomial.ZeroOrderHold(times,
+                                                                                 torques.T)))
+    actuated = replay.get_output_port()
+    if keep != "plant alone":
+        contact = add_contact_integral(builder, plant, instance, layout, design.time_step_s)
+    if keep == "the whole Diagram":
+        _, motor = add_controller(builder, scenario, params, plant, instance, layout, contact,
+                                  design.time_step_s)
+        actuated = None                               # add_controller drives the plant
+        add_recorders(builder, scenario, plant, instance, layout, motor, design.time_step_s,
+                      contact)
+    elif keep == "plant and the C++ blocks":
+        rows = builder.AddSystem(Multiplexer([layout.nx, layout.nv]))
+        log_period, _ = recorded_periods(scenario, design.time_step_s)
+        recorder = builder.AddSystem(VectorLogSink(layout.nx + layout.nv, PERIODIC, log_period))
+        builder.Connect(plant.get_state_output_port(instance), rows.get_input_port(0))
+        builder.Connect(contact.get_output_port(), rows.get_input_port(1))
+        builder.Connect(rows.get_output_port(), recorder.get_input_port())
+    elif keep == "motor model":
+        speed_index = np.zeros(layout.state.actuators.size, dtype=int)
+        speed_index[layout.state.actuators.ravel()] = (layout.state.v_index.ravel()
+                                                       + layout.state.nq)
+        motor = builder.AddSystem(MotorModel(params.motor, speed_index, layout.nx,
+                                             scenario.motor_period_s, design.time_step_s))
+        builder.Connect(replay.get_output_port(), motor.GetInputPort("torque_command"))
+        builder.Connect(plant.get_state_output_port(instance), motor.GetInputPort("plant_state"))
+        sink = builder.AddSystem(VectorLogSink(torques.shape[1], PERIODIC, design.time_step_s))
+        builder.Connect(motor.GetOutputPort("applied_torque"), sink.get_input_port())
+    elif keep == "controller and gait source":
+        gait = GaitSource.add_to(builder, params.gait, scenario.gait, scenario.phases_rad,
+                                 scenario.stand_s, scenario.ramp_s, scenario.load_transfer_s)
+        controller = scenario.controller.add_to(builder, params, layout, scenario)
+        builder.Connect(gait.GetOutputPort("foot_references"),
+                        controller.GetInputPort("foot_references"))
+        builder.Connect(plant.get_state_output_port(instance),
+                        controller.GetInputPort("plant_state"))
+        builder.Connect(contact.get_output_port(), controller.GetInputPort("contact_impulse"))
+    if actuated is not None:
+        builder.Connect(actuated, plant.get_actuation_input_port())
+    diagram = builder.Build()
+    simulator = Simulator(diagram)
+    context = simulator.get_mutable_context()
+    set_standing_pose(plant, plant.GetMyMutableContextFromRoot(context), instance, layout.legs,
+                      params, scenario.gait.home(params.gait), scenario.gait.lift_m(params.gait))
+    simulator.Initialize()
+    diagram.CalcForcedDiscreteVariableUpdate(context, diagram.AllocateDiscreteVariables())
+    start = time.process_time()
+    simulator.AdvanceTo(duration)
+    return (time.process_time() - start,
+            plant.GetPositionsAndVelocities(plant.GetMyContextFromRoot(context)))
+
+
+def cost_by_replacement(record, actuation, duration: float, pairs: int) -> dict:
+    """Each block's whole cost per plant step (us, CPU time, median of `pairs` rounds of
+    REPLACEMENTS): what keeping it beside the replayed plant adds, its dispatch, its primitives
+    and the caches it costs the plant included; and whether every variant ended in the run's
+    state bit for bit."""
+    steps = duration / record.design.time_step_s
+    times = {keep: [] for keep in REPLACEMENTS}
+    same = True
+    for _ in range(pairs):
+        for keep in REPLACEMENTS:
+            seconds, final = replaced_run(record, actuation, keep, duration)
+            times[keep].append(seconds / steps * 1e6)
+            same &= bool(np.array_equal(final, record.table["state"][-1]))
+    us = {keep: float(np.median(t)) for keep, t in times.items()}
+    base = us["plant and the C++ blocks"]
+    return {"plant alone": us["plant alone"],
+            "contact integral and recorders (C++)": base - us["plant alone"],
+            "motor model (its block, primitives and dispatch)": us["motor model"] - base,
+            "controller and gait source (their blocks and dispatch)":
+                us["controller and gait source"] - base,
+            "the whole Diagram": us["the whole Diagram"],
+            "same state": same}
 
 
 def python_time_per_block(duration: float) -> tuple[dict, dict, float, float]:
@@ -187,6 +283,13 @@ def main():
           f"(median of {args.pairs}); diagram / plant per pair "
           f"{', '.join(f'{r:.2f}' for r in ratios)}, median {ratio:.2f}; replay ends in the "
           f"run's state: {'yes (bit for bit)' if same else 'NO'}")
+    replaced = cost_by_replacement(logged, logged.actuation, args.duration, args.pairs)
+    print(f"each block's whole cost, by replacing the others with the run's replayed actuation "
+          f"(CPU time, median of {args.pairs}; every variant ends in the run's state bit for bit: "
+          f"{'yes' if replaced['same state'] else 'NO'}):")
+    for name, us in replaced.items():
+        if name != "same state":
+            print(f"  {name:55s} {us:7.1f} us/step")
     spent, calls, wall, steps = python_time_per_block(args.duration)
     per_step = {"plant (alone)": args.duration / alone / steps * 1e6}
     per_step.update({f"{name} ({calls.get(name, 0) / steps:.2f} Python callbacks/step)":
@@ -219,7 +322,10 @@ def main():
                       "output_share": share["bushing"], "logging_share": logging["bushing"], "peak_rss_mb_10s": rss10,
                       "peak_rss_mb_60s": rss60,
                       "split_us_per_step": {k: round(v, 1) for k, v in per_step.items()},
-                      "python_callbacks_per_step": {k: v / steps for k, v in calls.items()}}))
+                      "python_callbacks_per_step": {k: v / steps for k, v in calls.items()},
+                      "cost_by_replacement_us_per_step": {
+                          k: (round(v, 1) if k != "same state" else v)
+                          for k, v in replaced.items()}}))
 
 
 if __name__ == "__main__":
