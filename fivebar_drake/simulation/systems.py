@@ -169,10 +169,10 @@ class FootLegController(LeafSystem):
         self.DeclareStateOutputPort("torque_command", self._command)
         # the kernels that take the constants, for the argument types a tick passes (bound)
         k, legs, state = self.constants, layout.state.q_index.shape[0], np.zeros(layout.nx)
-        self._plan = bound(leg_plan, k, np.zeros(REFERENCES_PER_LEG * legs), state,
+        self._leg_plan = bound(leg_plan, k, np.zeros(REFERENCES_PER_LEG * legs), state,
                            np.zeros(legs), self.standing_support(), 0.0)
-        self._loads = bound(foot_loads, k, state, np.zeros(layout.nv))
-        plan = self._plan(k, np.zeros(REFERENCES_PER_LEG * legs), state, np.zeros(legs),
+        self._foot_loads = bound(foot_loads, k, state, np.zeros(layout.nv))
+        plan = self._leg_plan(k, np.zeros(REFERENCES_PER_LEG * legs), state, np.zeros(legs),
                           self.standing_support(), 0.0)      # its fields' types (values: nan)
         self._forces = bound(self._forces, k, plan.body, plan.weights, plan.share, plan.fx,
                              plan.fy, state, plan.r_wb)
@@ -202,8 +202,8 @@ class FootLegController(LeafSystem):
         state = np.ascontiguousarray(state, dtype=float)
         require(memory.flags.c_contiguous and memory.dtype == float, "support", memory.dtype,
                 "a C-contiguous float array (it is updated in place)")
-        plan = self._plan(self.constants, np.ascontiguousarray(references, dtype=float), state,
-                          loads, memory, float(t))
+        plan = self._leg_plan(self.constants, np.ascontiguousarray(references, dtype=float),
+                              state, loads, memory, float(t))
         out, finite = leg_torques(self.constants.state.actuators,
                                   *self.stance_torques(plan, state, float(t)))
         if not finite:                        # name the reason, if it is a reach
@@ -232,7 +232,7 @@ class FootLegController(LeafSystem):
         memory = context.get_discrete_state(self._memory).get_value()
         last = memory[self._support_size:]
         return (self._references.Eval(context), state,
-                self._loads(self.constants, state, (impulse - last) / self._period),
+                self._foot_loads(self.constants, state, (impulse - last) / self._period),
                 memory[:self._support_size].reshape(-1, SUPPORT_FIELDS).copy(),
                 context.get_time(), impulse)
 
