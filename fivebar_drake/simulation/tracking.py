@@ -10,7 +10,9 @@ over one period, it commands, on each foot the support holds, the floor's ground
 instant of the period (feed-forward, turned from the world's x-z plane into
 the leg plane by the body's measured rotation) plus a feedback wrench on the body's deviation
 from the floor's motion, shared by the feet down as the virtual model shares its wrench (least
-weighted norm, F_z >= 0, inside the friction cone): height and vertical speed, forward speed,
+weighted norm, F_z >= 0, inside the friction cone, and no yaw moment: on a diagonal pair a
+pitch moment has no lever but a yaw couple of the feet's x forces, which the split must not
+use): height and vertical speed, forward speed,
 pitch and pitch rate (towards the floor's), roll and roll rate (towards level), with the foot/leg
 controller's gains (FootLeg.gains). The swing legs, the support's memory, the links' weight and
 everything before the takeover are the foot/leg controller's (FootLegController)."""
@@ -110,9 +112,9 @@ class TrackingController(FootLegController):
         body_f = np.zeros((weights.size, 3))          # the floor's forces in the body frame
         body_f[:, 0], body_f[:, 2] = forces_w[:, 0], forces_w[:, 1]
         body_f = body_f @ r_wb                         # rows: R^T f
-        extra = np.zeros(2 * weights.size)            # the feedback (no yaw row: 4 of 5)
+        extra = np.zeros(2 * weights.size)            # the feedback, no yaw moment
         if weights.sum() > 0.0:
-            extra = split_wrench(k, weights, plan.fx, plan.fy, np.append(wrench, 0.0), 4)
+            extra = split_wrench(k, weights, plan.fx, plan.fy, np.append(wrench, 0.0), 5)
         return plane_forces(k, weights * body_f[:, 0] + extra[0::2],
                             weights * body_f[:, 2] + extra[1::2])
 

@@ -33,6 +33,22 @@ def test_the_tracked_bound_asks_less_than_the_foot_leg_controllers():
 
 
 @pytest.mark.slow
+def test_the_tracked_trot_is_achieved_without_a_yaw_wrench():
+    """The default trot, tracked: achieved, no motor at a limit more than 1 % of the time, and
+    its worst demand p99 at most 2x the floor. On a diagonal pair a pitch moment has no other
+    lever than the two feet pushing apart along x (a yaw couple): the feedback's split held
+    no yaw row, and its least-norm answer to a steady pitch error was a yaw couple of ~30 N per
+    foot that saturated a rear motor 12.8 % of the time (NOT ACHIEVED, asked 4.2x the floor)."""
+    summary = summarize_run(run_simulation(load_scenario(
+        gait="trot", duration_s=4.5, controller={"kind": "tracking"}), progress=False))
+    assert summary["verdict"] != "not_achieved", summary["answer"]
+    assert all(m["clipped_peak_fraction"] + m["clipped_line_fraction"] <= 0.01
+               for motors in summary["legs"].values() for m in motors.values())
+    a = summary["any_controller"]
+    assert a["floor_Nm"] <= a["asked_Nm"] <= 2.0 * a["floor_Nm"]
+
+
+@pytest.mark.slow
 @pytest.mark.parametrize("gait, duration_s", [("jump", 2.6), ("drop", 2.0)])
 def test_the_tracked_jump_and_drop_ask_less_than_the_foot_leg_controllers(simulated, gait,
                                                                            duration_s):
