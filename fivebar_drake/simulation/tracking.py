@@ -7,7 +7,7 @@ For a gait, from its takeover (Tracking.takeover: the ramp's end by default; at 
 body enters the floor's periodic motion while the path grows, which spares the default bound's
 first full cycle the motors' limits, 16 ms of them, but not the pronk its flight), blended in
 over one period, it commands, on each foot the support holds, the floor's ground force at that
-instant of the period (feed-forward, turned from the world's x-z plane into
+instant of the period in full (feed-forward, turned from the world's x-z plane into
 the leg plane by the body's measured rotation) plus a feedback wrench on the body's deviation
 from the floor's motion, shared by the feet down as the virtual model shares its wrench (least
 weighted norm, F_z >= 0, inside the friction cone, and no yaw moment: on a diagonal pair a
@@ -92,8 +92,11 @@ class TrackingController(FootLegController):
         return plan.base, plan.jf, forces
 
     def _forces_plane(self, plan, state, forces_w, body) -> np.ndarray:
-        """Leg-plane ground forces (legs, 2) N: the floor's on the feet down (scaled by their
-        support weights) plus the shared feedback wrench."""
+        """Leg-plane ground forces (legs, 2) N: the floor's, in full on every foot the support
+        holds (its weight > 0: scaled by the weight's ramp, the feet gave the floor's motion too
+        little impulse after touchdown, the body sank 9 mm below it and the feedback then asked
+        the rear motors beyond their limits at the top speed), plus the shared feedback
+        wrench."""
         k, r_wb = self.constants, plan.r_wb
         w0 = k.state.nq + k.state.body_v
         r_bw = r_wb.T
@@ -115,8 +118,9 @@ class TrackingController(FootLegController):
         extra = np.zeros(2 * weights.size)            # the feedback, no yaw moment
         if weights.sum() > 0.0:
             extra = split_wrench(k, weights, plan.fx, plan.fy, np.append(wrench, 0.0), 5)
-        return plane_forces(k, weights * body_f[:, 0] + extra[0::2],
-                            weights * body_f[:, 2] + extra[1::2])
+        down = (weights > 0.0).astype(float)    # the floor's force in full once down
+        return plane_forces(k, down * body_f[:, 0] + extra[0::2],
+                            down * body_f[:, 2] + extra[1::2])
 
 
 class JumpPlan:
