@@ -372,6 +372,23 @@ def markdown(spec: CodesignSpec, report: dict) -> str:
                   + ("yes" if j["landed"] else f"no, its landing not verified: "
                                                f"{j['not_landed']}")
                   + " |" for j in report["max_jumps"]]
+    speeds = [(f["key"], f["name"], gait, v) for f in report["finalists"]
+              for gait, v in (f["simulated"].get("top_speeds") or {}).items()]
+    if speeds:
+        lines += ["", "## Top speeds tracked", "",
+                  "Each required gait at the finalist's top speed for any controller "
+                  "(optimal/top_speed.py), run with the tracking controller "
+                  "(finalists/KEY/top_speed/GAIT/): it meets the requirement when the run is "
+                  "achieved (a torque FAIL is the optimum's own: it rides the envelope) at the "
+                  "speed required.", "",
+                  "| finalist | gait | required (m/s) | optimum (m/s) | tracked, mean (m/s) | "
+                  "share of the optimum | verdict | meets |", "|---|---|---|---|---|---|---|---|"]
+        lines += [f"| {key}: {name} | {gait} | {v['required_m_s']:.2f} | "
+                  f"{_f(v['predicted_m_s'])} | {v['simulated_m_s']:.3f} | "
+                  + (f"{v['simulated_m_s'] / v['predicted_m_s']:.0%}"
+                     if v["predicted_m_s"] and math.isfinite(v["predicted_m_s"]) else "")
+                  + f" | {v['verdict']} | {'yes' if v['meets'] else 'no'} |"
+                  for key, name, gait, v in speeds]
     if report["not_simulated"]:
         first = spec.objectives[0]
         lines += ["", "## Better candidates not simulated", "",

@@ -12,12 +12,16 @@ or an existing scheduler), then the report (report.py):
                                   max-effort jump (optimal --simulate's: the jump planned at its
                                   ceiling, the tracking controller): its measured apex is the
                                   design's simulated max_jump_height_m
+    OUT/finalists/KEY/top_speed/GAIT/  with requirements.top_speed_m_s, each required gait at
+                                  the design's top speed tracked (optimal --simulate's: the
+                                  optimum's path, the tracking controller): the design meets
+                                  the requirement when the run is achieved at the speed asked
     OUT/design.md, design.json    the recommended design and why, margins, predicted vs simulated
     OUT/design.toml               the recommended design's parameter file
     OUT/pareto.png                the objectives, predicted and verified
 
 A design is verified only when its simulated envelope has every maneuver (and the duty cycle)
-in the accepted verdicts; with requirements.step_check every run is judged against its run at
+in the accepted verdicts, and each required top speed is run, achieved, at that speed; with requirements.step_check every run is judged against its run at
 half the plant step (a marginal verdict is not accepted), with requirements.never_at_limit a run
 with a motor at its torque or voltage limit in any sample, or a leg at a joint limit, fails. The finalists are simulated one after the other, `budget.finalists` of
 them at most: each is the best (the first objective; with several, the predicted Pareto front
@@ -48,13 +52,16 @@ from fivebar_drake.codesign.search import corrected, predictions, ranked, search
 from fivebar_drake.codesign.spec import ON_MANEUVER, CodesignSpec
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.optimal import gait_floor
-from fivebar_drake.pipeline import max_jump_scenario, run_simulation, write_simulation
+from fivebar_drake.optimal.top_speed import top_speed
+from fivebar_drake.pipeline import (max_jump_scenario, run_simulation, top_speed_scenario,
+                                    write_simulation)
 from fivebar_drake.envelope.run import run_envelope
 from fivebar_drake.sweep.engine import (check_output_folder, check_scheduler,
                                         check_workers, dask_client)
 
 FINALISTS_DIR = "finalists"
 MAX_JUMP_DIR = "max_jump"
+TOP_SPEED_DIR = "top_speed"
 
 
 def pareto(spec: CodesignSpec, entries: list[dict]) -> list[dict]:
@@ -210,6 +217,30 @@ def max_jump(params, folder: Path) -> dict:
             "verdict": summary["verdict"], "landed": not not_landed, "not_landed": not_landed}
 
 
+def tracked_top_speeds(params, required, folder: Path) -> dict:
+    """Each required gait's top speed for any controller (optimal/top_speed.py) run by the
+    tracking controller (pipeline.top_speed_scenario, as `optimal --simulate`) into
+    folder/GAIT: per gait (required: (gait, least speed m/s) pairs) the speed required, the
+    optimum's, the run's mean forward speed (m/s; 0 without one), its verdict, whether the
+    motion was achieved (a verdict of pass, warn or fail: a torque FAIL at the top speed is the
+    optimum's own, which rides the envelope) and whether it meets the requirement (achieved, at
+    least the speed required)."""
+    out = {}
+    for gait, least in required:
+        optimum = top_speed(params, gait).speed_m_s
+        entry = {"required_m_s": least, "predicted_m_s": optimum, "simulated_m_s": 0.0,
+                 "verdict": "none", "achieved": False}
+        if math.isfinite(optimum):
+            record = run_simulation(top_speed_scenario(gait), params, progress=False)
+            summary = write_simulation(record, folder / gait)[0]
+            entry.update(simulated_m_s=summary["mean_forward_speed_m_s"] or 0.0,
+                         verdict=summary["verdict"],
+                         achieved=summary["verdict"] in ("pass", "warn", "fail"))
+        entry["meets"] = entry["achieved"] and entry["simulated_m_s"] >= least
+        out[gait] = entry
+    return out
+
+
 def landing_not_verified(summary: dict, error: str = "") -> str:
     """Why a max jump's run does not verify its landing ("" where it does: the run went to its
     end with a verdict, the motion achieved): the run's error where it stopped, else the
@@ -261,6 +292,12 @@ def run_codesign(spec: CodesignSpec, out: str | Path, workers: int | None = None
                                     out / FINALISTS_DIR / key / MAX_JUMP_DIR)
                     outcome["max_jump"] = jump
                     outcome["objectives"]["max_jump_height_m"] = jump["height_m"]
+                if spec.top_speeds:
+                    speeds = tracked_top_speeds(envelope.maneuvers[0].params, spec.top_speeds,
+                                                out / FINALISTS_DIR / key / TOP_SPEED_DIR)
+                    outcome["top_speeds"] = speeds
+                    outcome["passes"] = outcome["passes"] and all(
+                        v["meets"] for v in speeds.values())
                 study.set_user_attr(attr, json_ready(outcome))
             verified[key] = study.user_attrs[attr]
             return verified[key]

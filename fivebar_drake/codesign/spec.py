@@ -24,7 +24,8 @@ to minimise and how much to spend.
                                     # max_jump_height_m
       top_speed_m_s: {bound: 1.0}   # a gait's top speed for any controller (optimal/
                                     # top_speed.py) at least this (m/s; trot, bound, pronk):
-                                    # predicted, not simulated
+                                    # predicted, then verified: each simulated design's gait
+                                    # at its top speed tracked, achieved at this speed
     compare:                        # optional: designs simulated beside the default design,
       - {motor: odrive_d5065_270kv, motor.gear_ratio: 8.0}   # e.g. the obvious fix
     objectives: [actuator_mass_kg, max_jump_height_m]   # the first decides; default the mass;
