@@ -63,7 +63,7 @@ SWING_EVALUATIONS = 150              # Nelder-Mead's evaluations of one swing at
 REACH_SAMPLES = 200                  # samples of a cycle checked for reach
 STRIDE_STEPS = 12                    # bisection steps of the longest half stride
 WORKSPACE_SAMPLES = 61               # per axis, for the no-load bound
-CACHE_SIZE = 32
+CACHE_SIZE = 128                     # top speeds kept per process (each some kB)
 HOPELESS_MARGIN = 0.2                # a check this far beyond the envelope (of the peak torque)
 
 
@@ -115,18 +115,18 @@ class Check:
 def top_speed(params: Params, kind: str, payload_kg: float = 0.0, duties=None,
               shares=STRIDE_SHARES) -> TopSpeed:
     """The gait's top speed (module docstring), cached per process by the design, gait kind,
-    payload and grid. ParameterError for a kind outside GAITS."""
+    payload and grid (the CACHE_SIZE most recently used). ParameterError for a kind outside GAITS."""
     if kind not in GAITS:
         raise ParameterError(f"gait {kind!r}: the top speed is computed for {list(GAITS)}",
                              "gait", "top speed")
     duties = tuple(DUTIES[kind] if duties is None else duties)
     key = pickle.dumps((params, kind, float(payload_kg), duties, tuple(shares)))
-    found = _CACHE.get(key)
+    found = _CACHE.pop(key, None)            # kept most recently used last
     if found is None:
         found = _search(params, kind, float(payload_kg), duties, tuple(shares))
         if len(_CACHE) >= CACHE_SIZE:
             _CACHE.pop(next(iter(_CACHE)))
-        _CACHE[key] = found
+    _CACHE[key] = found
     return found
 
 
