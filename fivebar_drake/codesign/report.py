@@ -376,18 +376,20 @@ def markdown(spec: CodesignSpec, report: dict) -> str:
               for gait, v in (f["simulated"].get("top_speeds") or {}).items()]
     if speeds:
         lines += ["", "## Top speeds tracked", "",
-                  "Each required gait at the finalist's top speed for any controller "
+                  "Each required gait (or objective) at the finalist's top speed for any "
+                  "controller "
                   "(optimal/top_speed.py), run with the tracking controller "
                   "(finalists/KEY/top_speed/GAIT/): it meets the requirement when the run is "
                   "achieved (a torque FAIL is the optimum's own: it rides the envelope) at the "
                   "speed required.", "",
                   "| finalist | gait | required (m/s) | optimum (m/s) | tracked, mean (m/s) | "
                   "share of the optimum | verdict | meets |", "|---|---|---|---|---|---|---|---|"]
-        lines += [f"| {key}: {name} | {gait} | {v['required_m_s']:.2f} | "
+        lines += [f"| {key}: {name} | {gait} | {_f(v['required_m_s'])} | "
                   f"{_f(v['predicted_m_s'])} | {v['simulated_m_s']:.3f} | "
                   + (f"{v['simulated_m_s'] / v['predicted_m_s']:.0%}"
                      if v["predicted_m_s"] and math.isfinite(v["predicted_m_s"]) else "")
-                  + f" | {v['verdict']} | {'yes' if v['meets'] else 'no'} |"
+                  + f" | {v['verdict']} | "
+                  + {True: "yes", False: "no", None: "(an objective)"}[v["meets"]] + " |"
                   for key, name, gait, v in speeds]
     if report["not_simulated"]:
         first = spec.objectives[0]

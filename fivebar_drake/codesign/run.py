@@ -12,10 +12,12 @@ or an existing scheduler), then the report (report.py):
                                   max-effort jump (optimal --simulate's: the jump planned at its
                                   ceiling, the tracking controller): its measured apex is the
                                   design's simulated max_jump_height_m
-    OUT/finalists/KEY/top_speed/GAIT/  with requirements.top_speed_m_s, each required gait at
-                                  the design's top speed tracked (optimal --simulate's: the
-                                  optimum's path, the tracking controller): the design meets
-                                  the requirement when the run is achieved at the speed asked
+    OUT/finalists/KEY/top_speed/GAIT/  with requirements.top_speed_m_s (or an objective
+                                  top_speed_m_s:GAIT), each such gait at the design's top speed
+                                  tracked (optimal --simulate's: the optimum's path, the
+                                  tracking controller): the design meets the requirement when
+                                  the run is achieved at the speed asked; the objective's
+                                  simulated value is its mean speed (0 where not achieved)
     OUT/design.md, design.json    the recommended design and why, margins, predicted vs simulated
     OUT/design.toml               the recommended design's parameter file
     OUT/pareto.png                the objectives, predicted and verified
@@ -217,14 +219,28 @@ def max_jump(params, folder: Path) -> dict:
             "verdict": summary["verdict"], "landed": not not_landed, "not_landed": not_landed}
 
 
+SPEED_OBJECTIVE = "top_speed_m_s"
+
+
+def speed_gaits(spec: CodesignSpec) -> tuple:
+    """The gaits a simulated design runs at its top speed: the required ones (gait, least m/s),
+    then those only an objective top_speed_m_s:GAIT names (gait, None)."""
+    gaits = dict(spec.top_speeds)
+    for objective in spec.objectives:
+        name, _, gait = objective.partition(":")
+        if name == SPEED_OBJECTIVE:
+            gaits.setdefault(gait, None)
+    return tuple(gaits.items())
+
+
 def tracked_top_speeds(params, required, folder: Path) -> dict:
-    """Each required gait's top speed for any controller (optimal/top_speed.py) run by the
-    tracking controller (pipeline.top_speed_scenario, as `optimal --simulate`) into
-    folder/GAIT: per gait (required: (gait, least speed m/s) pairs) the speed required, the
-    optimum's, the run's mean forward speed (m/s; 0 without one), its verdict, whether the
-    motion was achieved (a verdict of pass, warn or fail: a torque FAIL at the top speed is the
-    optimum's own, which rides the envelope) and whether it meets the requirement (achieved, at
-    least the speed required)."""
+    """Each gait's top speed for any controller (optimal/top_speed.py) run by the tracking
+    controller (pipeline.top_speed_scenario, as `optimal --simulate`) into folder/GAIT: per
+    gait (required: (gait, least speed m/s or None for an objective alone) pairs) the speed
+    required, the optimum's, the run's mean forward speed (m/s; 0 without one), its verdict,
+    whether the motion was achieved (a verdict of pass, warn or fail: a torque FAIL at the top
+    speed is the optimum's own, which rides the envelope) and whether it meets the requirement
+    (achieved, at least the speed required; None without one)."""
     out = {}
     for gait, least in required:
         optimum = top_speed(params, gait).speed_m_s
@@ -236,7 +252,8 @@ def tracked_top_speeds(params, required, folder: Path) -> dict:
             entry.update(simulated_m_s=summary["mean_forward_speed_m_s"] or 0.0,
                          verdict=summary["verdict"],
                          achieved=summary["verdict"] in ("pass", "warn", "fail"))
-        entry["meets"] = entry["achieved"] and entry["simulated_m_s"] >= least
+        entry["meets"] = None if least is None else (entry["achieved"]
+                                                      and entry["simulated_m_s"] >= least)
         out[gait] = entry
     return out
 
@@ -292,12 +309,17 @@ def run_codesign(spec: CodesignSpec, out: str | Path, workers: int | None = None
                                     out / FINALISTS_DIR / key / MAX_JUMP_DIR)
                     outcome["max_jump"] = jump
                     outcome["objectives"]["max_jump_height_m"] = jump["height_m"]
-                if spec.top_speeds:
-                    speeds = tracked_top_speeds(envelope.maneuvers[0].params, spec.top_speeds,
+                gaits = speed_gaits(spec)
+                if gaits:
+                    speeds = tracked_top_speeds(envelope.maneuvers[0].params, gaits,
                                                 out / FINALISTS_DIR / key / TOP_SPEED_DIR)
                     outcome["top_speeds"] = speeds
                     outcome["passes"] = outcome["passes"] and all(
-                        v["meets"] for v in speeds.values())
+                        v["meets"] for v in speeds.values() if v["meets"] is not None)
+                    for gait, v in speeds.items():
+                        if f"{SPEED_OBJECTIVE}:{gait}" in spec.objectives:
+                            outcome["objectives"][f"{SPEED_OBJECTIVE}:{gait}"] = (
+                                v["simulated_m_s"] if v["achieved"] else 0.0)
                 study.set_user_attr(attr, json_ready(outcome))
             verified[key] = study.user_attrs[attr]
             return verified[key]

@@ -259,3 +259,15 @@ def test_a_required_top_speed_is_verified_by_its_tracked_run(tmp_path, monkeypat
     assert not bound["meets"]
     written = json.loads((tmp_path / "bound" / "summary.json").read_text())
     assert written["mean_forward_speed_m_s"] == bound["simulated_m_s"]
+
+
+def test_the_gaits_run_at_their_top_speed_are_the_required_and_the_objectives(spec):
+    """A simulated design runs at its top speed each gait a requirement names (with its least
+    speed) and each only an objective names (no requirement: None); none without either."""
+    from fivebar_drake.codesign.run import speed_gaits
+
+    asked = dataclasses.replace(spec, objectives=("actuator_mass_kg", "top_speed_m_s:pronk",
+                                                  "top_speed_m_s:bound"),
+                                top_speeds=(("bound", 1.0),))
+    assert speed_gaits(asked) == (("bound", 1.0), ("pronk", None))
+    assert speed_gaits(spec) == ()
