@@ -114,13 +114,14 @@ class Check:
 
 def top_speed(params: Params, kind: str, payload_kg: float = 0.0, duties=None,
               shares=STRIDE_SHARES) -> TopSpeed:
-    """The gait's top speed (module docstring), cached per process by the design, gait kind,
-    payload and grid (the CACHE_SIZE most recently used). ParameterError for a kind outside GAITS."""
+    """The gait's top speed (module docstring), cached per process by the design (but the
+    gait's stride and frequency, which the search sets), gait kind, payload and grid (the
+    CACHE_SIZE most recently used). ParameterError for a kind outside GAITS."""
     if kind not in GAITS:
         raise ParameterError(f"gait {kind!r}: the top speed is computed for {list(GAITS)}",
                              "gait", "top speed")
     duties = tuple(DUTIES[kind] if duties is None else duties)
-    key = pickle.dumps((params, kind, float(payload_kg), duties, tuple(shares)))
+    key = pickle.dumps((_design_key(params), kind, float(payload_kg), duties, tuple(shares)))
     found = _CACHE.pop(key, None)            # kept most recently used last
     if found is None:
         found = _search(params, kind, float(payload_kg), duties, tuple(shares))
@@ -131,6 +132,15 @@ def top_speed(params: Params, kind: str, payload_kg: float = 0.0, duties=None,
 
 
 _CACHE: dict[bytes, TopSpeed] = {}
+SEARCHED_GAIT_FIELDS = ("a_m", "frequency_hz")   # set by every candidate (check): not the design's
+
+
+def _design_key(params: Params) -> tuple:
+    """What the search reads of params: all of it but the gait's stride and frequency, which
+    each candidate sets (a scenario's own defaults there, 0.03 m and 2 Hz, searched anew)."""
+    gait = {k: v for k, v in vars(params.gait).items() if k not in SEARCHED_GAIT_FIELDS}
+    return tuple(getattr(params, f.name) for f in dataclasses.fields(params)
+                 if f.name != "gait") + (tuple(sorted(gait.items())),)
 
 
 def _search(params: Params, kind: str, payload_kg: float, duties, shares) -> TopSpeed:
