@@ -433,3 +433,30 @@ def test_the_entry_page_gives_one_answer_and_links_every_output(codesign, tmp_pa
     empty = tmp_path / "empty"
     empty.mkdir()
     assert main(["index", str(empty)]) == 2 and list(empty.iterdir()) == []
+
+
+def test_design_md_sets_each_tracked_top_speed_beside_its_optimum(codesign):
+    """design.md's "Top speeds tracked" (codesign.report.markdown): per finalist and gait the
+    speed required, the optimum's, the tracked run's mean and its share, the verdict and
+    whether it meets the requirement ("(an objective)" where none asks a speed); none without
+    a tracked top speed. The run's outcome is set here on the small co-design's report."""
+    import copy
+
+    from fivebar_drake.codesign.report import markdown
+
+    _, out, report = codesign
+    spec = load_codesign_spec(out.parent / "spec.yaml")
+    assert "## Top speeds tracked" not in markdown(spec, report)
+    tracked = copy.deepcopy(report)
+    finalist = tracked["finalists"][0]
+    finalist["simulated"]["top_speeds"] = {
+        "bound": {"required_m_s": 0.5, "predicted_m_s": 0.501, "simulated_m_s": 0.49,
+                  "verdict": "fail", "achieved": True, "meets": False},
+        "pronk": {"required_m_s": None, "predicted_m_s": 0.85, "simulated_m_s": 0.0,
+                  "verdict": "not_achieved", "achieved": False, "meets": None}}
+    lines = markdown(spec, tracked).splitlines()
+    assert "## Top speeds tracked" in lines
+    rows = [line for line in lines if line.startswith(f"| {finalist['key']}: ")
+            and ("| bound |" in line or "| pronk |" in line)]
+    assert rows[0].endswith("| bound | 0.50 | 0.50 | 0.490 | 98% | fail | no |")
+    assert rows[1].endswith("| pronk | — | 0.85 | 0.000 | 0% | not_achieved | (an objective) |")
