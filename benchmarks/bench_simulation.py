@@ -35,8 +35,8 @@ from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import Multiplexer, TrajectorySource, VectorLogSink
 from pydrake.trajectories import PiecewisePolynomial
 
-from fivebar_drake.simulation.builder import (PERIODIC, add_contact_integral, add_controller,
-                                              add_recorders, recorded_periods)
+from fivebar_drake.simulation.builder import (PERIODIC, actuator_speeds, add_contact_integral,
+                                              add_controller, add_recorders, recorded_periods)
 from fivebar_drake.simulation.gait_source import GaitSource
 from fivebar_drake.simulation.motor_model import MotorModel, MotorStep
 from fivebar_drake.pipeline import (run_simulation, run_step_check, summarize_run,
@@ -128,10 +128,7 @@ def replaced_run(record, actuation, keep: str, duration: float) -> tuple[float, 
         builder.Connect(contact.get_output_port(), rows.get_input_port(1))
         builder.Connect(rows.get_output_port(), recorder.get_input_port())
     elif keep == "motor model":
-        speed_index = np.zeros(layout.state.actuators.size, dtype=int)
-        speed_index[layout.state.actuators.ravel()] = (layout.state.v_index.ravel()
-                                                       + layout.state.nq)
-        motor = builder.AddSystem(MotorModel(params.motor, speed_index, layout.nx,
+        motor = builder.AddSystem(MotorModel(params.motor, actuator_speeds(layout), layout.nx,
                                              scenario.motor_period_s, design.time_step_s))
         builder.Connect(replay.get_output_port(), motor.GetInputPort("torque_command"))
         builder.Connect(plant.get_state_output_port(instance), motor.GetInputPort("plant_state"))

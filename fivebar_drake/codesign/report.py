@@ -387,7 +387,7 @@ def markdown(spec: CodesignSpec, report: dict) -> str:
         lines += [f"| {key}: {name} | {gait} | {_f(v['required_m_s'])} | "
                   f"{_f(v['predicted_m_s'])} | {v['simulated_m_s']:.3f} | "
                   + (f"{v['simulated_m_s'] / v['predicted_m_s']:.0%}"
-                     if v["predicted_m_s"] and math.isfinite(v["predicted_m_s"]) else "")
+                     if v["predicted_m_s"] else "")
                   + f" | {v['verdict']} | "
                   + {True: "yes", False: "no", None: "(an objective)"}[v["meets"]] + " |"
                   for key, name, gait, v in speeds]

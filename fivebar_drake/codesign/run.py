@@ -47,14 +47,14 @@ import numpy as np
 from fivebar_drake.core.files import json_ready, lock_folder
 from fivebar_drake.core.progress import Progress
 from fivebar_drake.codesign.designs import actuator_mass, design_envelope, design_name
-from fivebar_drake.codesign.predict import CHECKS, DUTY, ceiling, needs, power_maneuvers
+from fivebar_drake.codesign.predict import (CHECKS, DUTY, ceiling, needs, power_maneuvers,
+                                            top_speed_of)
 from fivebar_drake.codesign.dossier import write_dossier
 from fivebar_drake.codesign.report import COMPARED, DEFAULT, CodesignRun, write_report
 from fivebar_drake.codesign.search import corrected, predictions, ranked, search
-from fivebar_drake.codesign.spec import ON_MANEUVER, CodesignSpec
+from fivebar_drake.codesign.spec import ON_GAIT, ON_MANEUVER, CodesignSpec
 from fivebar_drake.mechanisms.fivebar import MOTORS
 from fivebar_drake.optimal import gait_floor
-from fivebar_drake.optimal.top_speed import top_speed
 from fivebar_drake.pipeline import (max_jump_scenario, run_simulation, top_speed_scenario,
                                     write_simulation)
 from fivebar_drake.envelope.run import run_envelope
@@ -219,16 +219,13 @@ def max_jump(params, folder: Path) -> dict:
             "verdict": summary["verdict"], "landed": not not_landed, "not_landed": not_landed}
 
 
-SPEED_OBJECTIVE = "top_speed_m_s"
-
-
 def speed_gaits(spec: CodesignSpec) -> tuple:
     """The gaits a simulated design runs at its top speed: the required ones (gait, least m/s),
     then those only an objective top_speed_m_s:GAIT names (gait, None)."""
     gaits = dict(spec.top_speeds)
     for objective in spec.objectives:
         name, _, gait = objective.partition(":")
-        if name == SPEED_OBJECTIVE:
+        if name in ON_GAIT:
             gaits.setdefault(gait, None)
     return tuple(gaits.items())
 
@@ -243,10 +240,10 @@ def tracked_top_speeds(params, required, folder: Path) -> dict:
     (achieved, at least the speed required; None without one)."""
     out = {}
     for gait, least in required:
-        optimum = top_speed(params, gait).speed_m_s
+        optimum = top_speed_of(params, gait)
         entry = {"required_m_s": least, "predicted_m_s": optimum, "simulated_m_s": 0.0,
                  "verdict": "none", "achieved": False}
-        if math.isfinite(optimum):
+        if optimum > 0.0:
             record = run_simulation(top_speed_scenario(gait), params, progress=False)
             summary = write_simulation(record, folder / gait)[0]
             entry.update(simulated_m_s=summary["mean_forward_speed_m_s"] or 0.0,
@@ -316,10 +313,12 @@ def run_codesign(spec: CodesignSpec, out: str | Path, workers: int | None = None
                     outcome["top_speeds"] = speeds
                     outcome["passes"] = outcome["passes"] and all(
                         v["meets"] for v in speeds.values() if v["meets"] is not None)
-                    for gait, v in speeds.items():
-                        if f"{SPEED_OBJECTIVE}:{gait}" in spec.objectives:
-                            outcome["objectives"][f"{SPEED_OBJECTIVE}:{gait}"] = (
-                                v["simulated_m_s"] if v["achieved"] else 0.0)
+                    for objective in spec.objectives:
+                        name, _, gait = objective.partition(":")
+                        if name in ON_GAIT:
+                            v = speeds[gait]
+                            outcome["objectives"][objective] = (v["simulated_m_s"]
+                                                                if v["achieved"] else 0.0)
                 study.set_user_attr(attr, json_ready(outcome))
             verified[key] = study.user_attrs[attr]
             return verified[key]

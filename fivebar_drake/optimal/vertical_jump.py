@@ -137,34 +137,42 @@ def stroke(params: Params, u0: float, u1: float, payload_kg: float = 0.0,
 
 
 @jit
+def _bounded(low, high, c1, c0):
+    """(low, high, infeasible) of the acceleration interval after the row c1 b <= c0."""
+    if c1 > 0:
+        return low, min(high, c0 / c1), False
+    if c1 < 0:
+        return max(low, c0 / c1), high, False
+    return low, high, c0 < 0
+
+
+@jit
 def acceleration_bounds(law, alpha, beta, gamma, fx, fy, dq, mu, w, peak_Nm):
     """(least, largest) hip acceleration b (m/s^2) at one node of a Stroke (its alpha, beta,
     gamma (2,), fx (2,), fy (3,), dq (2,) there; mu its foot friction) at hip speed w (m/s;
     > 0 rising, < 0 sinking): every motor's delivered torque within its envelope at its speed
     (law: actuators.motor.ActuatorLaw) and within +-peak_Nm, the foot on the ground inside its
-    friction cone."""
+    friction cone; (inf, -inf) where no b is admissible."""
     x = w * w
     low, high = -math.inf, math.inf
-    rows = np.empty((7, 2))                      # c1 b <= c0
     for i in range(2):
         omega = dq[i] * w
         upper, lower = torque_limits(law, omega)
         rest = beta[i] * x + gamma[i] + friction_torque(law, omega)
-        rows[2 * i, 0], rows[2 * i, 1] = alpha[i], min(upper, peak_Nm) - rest
-        rows[2 * i + 1, 0], rows[2 * i + 1, 1] = -alpha[i], rest - max(lower, -peak_Nm)
+        low, high, none = _bounded(low, high, alpha[i], min(upper, peak_Nm) - rest)
+        if none:
+            return math.inf, -math.inf
+        low, high, none = _bounded(low, high, -alpha[i], rest - max(lower, -peak_Nm))
+        if none:
+            return math.inf, -math.inf
     fy_b, fy0 = fy[0], fy[1] * x + fy[2]
     fx_b, fx0 = fx[0], fx[1] * x
-    rows[4, 0], rows[4, 1] = -fy_b, fy0                              # F_y >= 0
-    rows[5, 0], rows[5, 1] = fx_b - mu * fy_b, mu * fy0 - fx0        # F_x <= mu F_y
-    rows[6, 0], rows[6, 1] = -fx_b - mu * fy_b, mu * fy0 + fx0       # -F_x <= mu F_y
-    for r in range(7):
-        c1, c0 = rows[r, 0], rows[r, 1]
-        if c1 > 0:
-            high = min(high, c0 / c1)
-        elif c1 < 0:
-            low = max(low, c0 / c1)
-        elif c0 < 0:
-            return math.inf, -math.inf                               # infeasible at any b
+    for c1, c0 in ((-fy_b, fy0),                                     # F_y >= 0
+                   (fx_b - mu * fy_b, mu * fy0 - fx0),               # F_x <= mu F_y
+                   (-fx_b - mu * fy_b, mu * fy0 + fx0)):             # -F_x <= mu F_y
+        low, high, none = _bounded(low, high, c1, c0)
+        if none:
+            return math.inf, -math.inf
     return low, high
 
 

@@ -166,6 +166,13 @@ def add_contact_integral(builder: DiagramBuilder, plant, instance, layout: Robot
     return integrator
 
 
+def actuator_speeds(layout: RobotLayout) -> np.ndarray:
+    """Each actuator's joint speed as its index in the plant state (actuation order)."""
+    index = np.zeros(layout.state.actuators.size, dtype=int)
+    index[layout.state.actuators.ravel()] = layout.state.v_index.ravel() + layout.state.nq
+    return index
+
+
 def add_controller(builder: DiagramBuilder, scenario: Scenario, params: Params, plant,
                    instance, layout: RobotLayout, contact: DiscreteTimeIntegrator,
                    time_step: float) -> tuple[LeafSystem, MotorModel]:
@@ -178,10 +185,8 @@ def add_controller(builder: DiagramBuilder, scenario: Scenario, params: Params, 
     gait = GaitSource.add_to(builder, params.gait, scenario.gait, scenario.phases_rad,
                              scenario.stand_s, scenario.ramp_s, scenario.load_transfer_s)
     controller = scenario.controller.add_to(builder, params, layout, scenario)
-    speed_index = np.zeros(layout.state.actuators.size, dtype=int)    # joint speed of each actuator
-    speed_index[layout.state.actuators.ravel()] = layout.state.v_index.ravel() + layout.state.nq
     motor = builder.AddNamedSystem("motor_model", MotorModel(
-        params.motor, speed_index, layout.nx, scenario.motor_period_s, time_step))
+        params.motor, actuator_speeds(layout), layout.nx, scenario.motor_period_s, time_step))
     state = plant.get_state_output_port(instance)
     builder.Connect(gait.GetOutputPort("foot_references"),
                     controller.GetInputPort("foot_references"))
