@@ -125,7 +125,7 @@ def design_metrics(params: Params, samples: GaitSamples, models: dict[str, Dynam
         s = Support(needed=needed, at_rest=at_rest,
                     moving=support_available(jf, peak, tb.total - tb.foot_load))
         support[name] = s
-        with np.errstate(divide="ignore"):
+        with np.errstate(divide="ignore", invalid="ignore"):   # masked by where
             results["force_capability"]["gait"][name] = {
                 "least_margin_at_rest": _least(np.where(needed > 0, s.at_rest / needed, np.inf),
                                                samples),
