@@ -126,9 +126,12 @@ def spec_from_dict(data, folder: Path, source: str = "") -> CodesignSpec:
     require(not unknown, unknown[0] if unknown else "", unknown,
             f"unknown key(s); the keys are {list(KEYS)}")
     variables = data.get("variables")
-    require(isinstance(variables, dict) and MOTOR in variables, "variables", variables,
+    require(isinstance(variables, dict), "variables", variables,
             "must map `motor` (a list of catalogue names) and dotted parameter paths to a list "
             "or a range [low, high]")
+    require(MOTOR in variables, "variables.motor", "missing",
+            "is required: a list of catalogue names (fivebar_drake/data/actuators.yaml), e.g. "
+            "[default_assumed] for the design's own motor")
     motors = _names("variables.motor", variables[MOTOR], catalog())
     kinds = (_names("variables.gearbox", variables[GEARBOX], gearboxes())
              if GEARBOX in variables else ())

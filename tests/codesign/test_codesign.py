@@ -319,6 +319,16 @@ def test_a_spec_no_candidate_meets_names_the_requirement_and_the_best_margin(tmp
       "[tmotor_mn5212_kv340]\n  gearbox: [single_stage_planetary]\n"
       "  motor.gear_ratio: [500.0, 900.0]"),
      ["variables.motor.gear_ratio", "no design of the space can be built"]),
+    (("  motor: [tmotor_mn5212_kv340, cubemars_ak80_9]\n", ""),
+     ["variables.motor", "is required", "default_assumed"]),
+    (("accept: warn", "accept: warn\n  top_speed_m_s: {gallop: 2.0}"),
+     ["requirements.top_speed_m_s", "'trot', 'bound', 'pronk'"]),
+    (("accept: warn", "accept: warn\n  top_speed_m_s: {pronk: .nan}"),
+     ["requirements.top_speed_m_s.pronk", "finite"]),
+    (("accept: warn", "accept: warn\n  top_speed_m_s: {trot: '700 mm/s'}"),
+     ["requirements.top_speed_m_s.trot", "a number"]),
+    (("budget:", "objectives: [actuator_mass_kg, 'top_speed_m_s:Bound']\nbudget:"),
+     ["objectives[1]", "top_speed_m_s:GAIT"]),
 ])
 def test_bad_specs_are_refused_naming_the_field(tmp_path, capsys, change, words):
     spec = write(tmp_path, SPEC.replace(*change))
