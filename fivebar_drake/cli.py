@@ -294,32 +294,42 @@ def _optimal(args, signals) -> int:
                 (stale / name).unlink(missing_ok=True)
             with contextlib.suppress(OSError):   # emptied: gone; another file in it: kept
                 stale.rmdir()
-    if args.simulate and jumps["ceiling"] is None:
-        result["max_jump_simulated"] = None
-        _err(f"--simulate: no highest jump to simulate ({result['ceiling_why_none']})")
-    if args.simulate and jumps["ceiling"] is not None:
-        scenario = max_jump_scenario(params, jumps["ceiling"], args.payload or 0.0)
-        plan = scenario.gait
-        folder = prepare_output_dir(out / "max_jump", "--out", SIMULATION_FILES)
-        summary, files = write_simulation(run_simulation(scenario, params, progress=True,
-                                                         stop=lambda: signals.name), folder)
-        height = summary["jump"]["height_m"] if summary["jump"] else 0.0
-        phases = (summary["any_controller"] or {}).get("phases") or {}
-        result["max_jump_simulated"] = {
-            "folder": "max_jump", "plan": plan.fields(), "controller": "tracking",
-            "height_m": height, "planned_height_m": plan.height_m,
-            "share_of_ceiling": height / jumps["ceiling"].body_apex_above_standing_m,
-            "verdict": summary["verdict"],
-            "achieved": summary["verdict"] in ("pass", "warn", "fail"),
-            "phases": {name: {"floor_Nm": p["floor_Nm"], "asked_Nm": p["asked_Nm"]}
-                       for name, p in phases.items()}}
-    if args.simulate:
-        result["top_speed_simulated"] = {}
-        for kind, row in result["top_speed"].items():
-            if row["speed_m_s"] == row["speed_m_s"]:
-                result["top_speed_simulated"][kind], written = _track_top_speed(
-                    params, kind, args.payload or 0.0, out, signals)
-                files += written
+    try:                    # the simulations; a signal: the answer written first, then 130/143
+        if args.simulate and jumps["ceiling"] is None:
+            result["max_jump_simulated"] = None
+            _err(f"--simulate: no highest jump to simulate ({result['ceiling_why_none']})")
+        if args.simulate and jumps["ceiling"] is not None:
+            scenario = max_jump_scenario(params, jumps["ceiling"], args.payload or 0.0)
+            plan = scenario.gait
+            folder = prepare_output_dir(out / "max_jump", "--out", SIMULATION_FILES)
+            with signals.gently():
+                record = run_simulation(scenario, params, progress=True,
+                                        stop=lambda: signals.name)
+            summary, files = write_simulation(record, folder)    # an interrupted run's too
+            signals.raise_received()
+            height = summary["jump"]["height_m"] if summary["jump"] else 0.0
+            phases = (summary["any_controller"] or {}).get("phases") or {}
+            result["max_jump_simulated"] = {
+                "folder": "max_jump", "plan": plan.fields(), "controller": "tracking",
+                "height_m": height, "planned_height_m": plan.height_m,
+                "share_of_ceiling": height / jumps["ceiling"].body_apex_above_standing_m,
+                "verdict": summary["verdict"],
+                "achieved": summary["verdict"] in ("pass", "warn", "fail"),
+                "phases": {name: {"floor_Nm": p["floor_Nm"], "asked_Nm": p["asked_Nm"]}
+                           for name, p in phases.items()}}
+        if args.simulate:
+            result["top_speed_simulated"] = {}
+            for kind, row in result["top_speed"].items():
+                if row["speed_m_s"] == row["speed_m_s"]:
+                    result["top_speed_simulated"][kind], written = _track_top_speed(
+                        params, kind, args.payload or 0.0, out, signals)
+                    files += written
+    except BaseException:       # Interrupted, or what it became inside compiled code
+        if not signals.signum:
+            raise
+        result["simulation_interrupted"] = signals.name
+        write(result, jumps, params, out)
+        raise
     files = write(result, jumps, params, out) + files
     say(result["answer"])
     say(f"wrote {len(files)} files to {out.resolve()} in {time.perf_counter() - start:.1f} s:")
@@ -344,12 +354,14 @@ def _track_top_speed(params, kind: str, payload_kg: float, out, signals) -> tupl
     folder = prepare_output_dir(out / f"top_speed_{kind}", "--out", SIMULATION_FILES)
     stop = (lambda: signals.name)
     try:
-        record = run_simulation(top_speed_scenario(kind, payload_kg), params, progress=True,
-                                stop=stop)
+        with signals.gently():
+            record = run_simulation(top_speed_scenario(kind, payload_kg), params,
+                                    progress=True, stop=stop)
+            half = None if signals.signum else run_step_check(record, progress=True, stop=stop)
     except ParameterError as err:
         return {"folder": folder.name, "why_none": err.message}, []
-    half = run_step_check(record, progress=True, stop=stop)
-    summary, files = write_simulation(record, folder, half=half)
+    summary, files = write_simulation(record, folder, half=half)     # an interrupted run's too
+    signals.raise_received()
     asked = max(m["demand_peak_Nm"] for leg in summary["legs"].values() for m in leg.values())
     return {"folder": folder.name, "speed_m_s": summary["mean_forward_speed_m_s"],
             "share_of_optimum": summary["mean_forward_speed_m_s"] / found.speed_m_s,

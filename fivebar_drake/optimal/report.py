@@ -403,6 +403,9 @@ def markdown(r: dict) -> str:
                       f"ceiling; verdict {m['verdict'].upper()}"
                       f"{' (achieved)' if m['achieved'] else ''}"
                       + (f"; {asked}" if asked else "") + "."]
+    if r.get("simulation_interrupted"):
+        lines += ["", f"Simulations interrupted by {r['simulation_interrupted']}: only those "
+                      "above finished; run `optimal --simulate` again for the rest."]
     if r["published"]:
         lines += ["", "## Published figures", "",
                   "| figure | published | computed (the ceiling) | ratio | reproduced | "

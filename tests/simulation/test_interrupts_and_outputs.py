@@ -79,6 +79,38 @@ def test_signals_stop_simulate_and_keep_what_it_has(tmp_path):
         assert viewer.exists()
 
 
+@pytest.mark.slow
+def test_a_signal_during_optimal_simulations_keeps_the_answer(tmp_path):
+    """SIGTERM while `optimal --simulate` runs the highest jump (issue 44: exit 143 with what
+    finished written): the optimum's answer was computed before the simulations began, so
+    optimal.md and optimal.json are written, naming the signal, and the jump's run what it
+    simulated (as simulate's); no traceback, no crash (a segmentation fault 1 of 6 times when
+    the signal's exception landed in a compiled kernel's result: tests/core/test_interrupts)."""
+    out = tmp_path / "optimal"
+    proc = subprocess.Popen([sys.executable, "-m", "fivebar_drake", "optimal", "--simulate",
+                             "--top-speed", "none", "--out", str(out)],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    lines = []
+    deadline = time.monotonic() + 240
+    while time.monotonic() < deadline:                   # wait for the jump's stepping
+        line = proc.stderr.readline()
+        lines.append(line)
+        if "s simulated" in line and "real time" in line or not line:
+            break
+    assert "real time" in lines[-1], "".join(lines)
+    proc.send_signal(signal.SIGTERM)
+    _, stderr = proc.communicate(timeout=120)
+    stderr = "".join(lines) + stderr
+    assert proc.returncode == 143, stderr
+    assert "Traceback" not in stderr and "interrupted by SIGTERM" in stderr
+    result = json.loads((out / "optimal.json").read_text())
+    assert result["simulation_interrupted"] == "SIGTERM" and "max_jump_simulated" not in result
+    assert result["ceiling"]["com_rise_from_standing_m"] > 0.0
+    assert "Simulations interrupted by SIGTERM" in (out / "optimal.md").read_text()
+    jump = json.loads((out / "max_jump" / "summary.json").read_text())     # what it simulated
+    assert jump["interrupted"] is True and 0 < jump["duration_s"] < jump["requested_duration_s"]
+
+
 def test_interrupted_write_leaves_the_old_or_the_new_file(tmp_path):
     """A writer killed (SIGKILL: no clean-up at all) at any moment of write_atomic leaves the
     target whole: its old text or the complete new one, never a truncated file."""
