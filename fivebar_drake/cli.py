@@ -44,7 +44,8 @@ EXIT_CODES = """exit codes:
        did not achieve its motion (verdict not_achieved)
   2    bad input: a parameter or scenario file, a command-line value, an output path
   3    internal error (a bug): the message names a log file with the traceback
-  130  interrupted by SIGINT (Ctrl-C), 143 by SIGTERM; simulate and envelope write what they have first"""
+  130  interrupted by SIGINT (Ctrl-C), 143 by SIGTERM; simulate, envelope and optimal write
+       what they have first"""
 
 EXIT_INTERNAL = 3
 DEFAULTS = Scenario()
