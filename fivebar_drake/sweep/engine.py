@@ -216,10 +216,12 @@ def dask_client(workers: int | None, scheduler: str | None, client=None):
                                  f"({type(err).__name__}: {err})"[:500], "--scheduler",
                                  "command line") from None
     else:
+        # a task's error is ours to report, and a stopped command's workers losing their
+        # scheduler (a Ctrl-C) are not news: their logs below CRITICAL are silent
         client = Client(LocalCluster(n_workers=workers or os.cpu_count(), threads_per_worker=1,
                                      processes=True, dashboard_address=":0",
-                                     silence_logs=logging.ERROR))   # a task's error is ours
-#                                                                     to report, not its log's
+                                     preload=["fivebar_drake.sweep.worker_setup"],  # no SIGINT
+                                     silence_logs=logging.CRITICAL))
     try:
         yield client
     finally:

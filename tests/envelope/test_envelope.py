@@ -6,8 +6,14 @@ integration of the thermal ODE and its steady state; an interrupted envelope kee
 finished."""
 
 import json
+import os
+import signal
+import subprocess
+import sys
+import time
 import tomllib
 from contextlib import nullcontext
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -424,3 +430,55 @@ def test_a_maneuver_asks_for_its_contact_check(tmp_path):
     spec.write_text("maneuvers:\n  - {name: jump, gait: jump, contact_check: yes please}\n")
     with pytest.raises(ParameterError, match=r"maneuvers\[0\]\.contact_check"):
         load_envelope_spec(spec)
+
+
+def _sigint_ignored(pid: int) -> bool:
+    """Whether the process ignores SIGINT (its SigIgn mask in /proc)."""
+    try:
+        status = Path(f"/proc/{pid}/status").read_text()
+    except OSError:
+        return False
+    mask = next(int(line.split()[1], 16) for line in status.splitlines()
+                if line.startswith("SigIgn:"))
+    return bool(mask & (1 << (signal.SIGINT - 1)))
+
+
+@pytest.mark.slow
+def test_a_terminals_ctrl_c_stops_the_local_cluster_quietly(tmp_path):
+    """A terminal's Ctrl-C reaches the whole process group, the local cluster's workers too
+    (issue 44's reliability round): exit 130, the finished maneuvers kept, and not a traceback
+    from any process (each worker printed its KeyboardInterrupt's, and its heartbeat's to a
+    scheduler gone, before the workers ignored SIGINT and their logs below CRITICAL were
+    silenced). Waits on the event: both workers started and ignoring SIGINT."""
+    out = tmp_path / "envelope"
+    proc = subprocess.Popen([sys.executable, "-m", "fivebar_drake", "envelope", str(DATA / "envelope_demo.yaml"),
+                             "--workers", "2", "--out", str(out)], stdout=subprocess.DEVNULL,
+                            stderr=subprocess.PIPE, text=True, start_new_session=True)
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and proc.poll() is None:
+        workers = [int(p.name) for p in Path("/proc").iterdir() if p.name.isdigit()
+                   and _parent(int(p.name)) == proc.pid and b"spawn_main" in _cmdline(p)]
+        if sum(_sigint_ignored(w) for w in workers) >= 2:
+            break
+        time.sleep(0.05)
+    os.killpg(proc.pid, signal.SIGINT)
+    _, err = proc.communicate(timeout=120)
+    assert proc.returncode == 130, err
+    assert "Traceback" not in err and "ERROR" not in err, err
+    assert "interrupted by SIGINT" in err
+
+
+def _cmdline(folder: Path) -> bytes:
+    """A /proc process folder's command line (empty where it is gone)."""
+    try:
+        return (folder / "cmdline").read_bytes()
+    except OSError:
+        return b""
+
+
+def _parent(pid: int) -> int:
+    """The process's parent id (0 where it is gone)."""
+    try:
+        return int(Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[1])
+    except (OSError, IndexError, ValueError):
+        return 0
