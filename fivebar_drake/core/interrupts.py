@@ -47,8 +47,9 @@ class Signals:
     is put off by RETRY_S and tried again (SIGALRM): numba calls Python there (the result's
     NamedTuple class, unpickled, and its __new__) and does not check for an exception on its
     return, so one raised by a handler crashed the process (a segmentation fault: 1 of 6
-    SIGTERMs into `optimal --simulate`, and every run of 500 signals into a kernel returning a
-    NamedTuple, numba 0.68; none once put off)."""
+    SIGTERMs into `optimal --simulate`; every run of a loop calling a kernel that returns a
+    NamedTuple while signals arrive every 0.2-5 ms, numba 0.68; none once put off:
+    tests/core/test_interrupts.py)."""
 
     def __init__(self, stop_gently: bool = False):
         self.stop_gently = stop_gently
