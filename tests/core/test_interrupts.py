@@ -24,15 +24,16 @@ def kernel(x):
 x = np.ones(8)
 kernel(x)
 pid, stopped, calls = os.getpid(), 0, 0
+def send(sent, delay):
+    time.sleep(delay)
+    os.kill(pid, signal.SIGTERM)
+    sent.set()
+
 for round in range(ROUNDS):
     sent = threading.Event()
-    def send():
-        time.sleep(0.002 + 0.003 * (round % 5) / 5)
-        os.kill(pid, signal.SIGTERM)
-        sent.set()
-    threading.Thread(target=send).start()
     try:
-        with Signals():
+        with Signals():            # the handler first: a busy machine may be slow to get here
+            threading.Thread(target=send, args=(sent, 0.002 + 0.003 * (round % 5) / 5)).start()
             while True:
                 kernel(x)
                 calls += 1
