@@ -34,6 +34,7 @@ from fivebar_drake.gaits import PATHS
 from fivebar_drake.core import plugins
 from fivebar_drake.core.interrupts import SIGNALS, Interrupted, Signals
 from fivebar_drake.core.validation import ParameterError
+from fivebar_drake.verdicts.rules import ACHIEVED_VERDICTS
 from fivebar_drake.robots.quadruped.closure import CLOSURES
 from fivebar_drake.simulation.scenario import Scenario
 
@@ -222,7 +223,7 @@ def _envelope(args, signals) -> int:
     say(f"wrote {len(files)} files to {out.resolve()} in {time.perf_counter() - start:.1f} s: "
         + ", ".join(p.name for p in run.files) + " and a folder per maneuver")
     unrated = [n for n, e in report["maneuvers"].items()
-               if e["verdict"] not in ("pass", "warn", "fail")]
+               if e["verdict"] not in ACHIEVED_VERDICTS]
     if unrated:
         _err(f"no verdict or not achieved: {', '.join(unrated)} (see {out / 'envelope.md'})")
         return 1
@@ -315,7 +316,7 @@ def _optimal(args, signals) -> int:
                 "height_m": height, "planned_height_m": plan.height_m,
                 "share_of_ceiling": height / jumps["ceiling"].body_apex_above_standing_m,
                 "verdict": summary["verdict"],
-                "achieved": summary["verdict"] in ("pass", "warn", "fail"),
+                "achieved": summary["verdict"] in ACHIEVED_VERDICTS,
                 "phases": {name: {"floor_Nm": p["floor_Nm"], "asked_Nm": p["asked_Nm"]}
                            for name, p in phases.items()}}
         if args.simulate:
@@ -366,8 +367,8 @@ def _track_top_speed(params, kind: str, payload_kg: float, out, signals) -> tupl
     asked = max(m["demand_peak_Nm"] for leg in summary["legs"].values() for m in leg.values())
     return {"folder": folder.name, "speed_m_s": summary["mean_forward_speed_m_s"],
             "share_of_optimum": summary["mean_forward_speed_m_s"] / found.speed_m_s,
-            "verdict": summary["verdict"], "achieved": summary["verdict"] in (
-                "pass", "warn", "fail"), "max_tilt_deg": summary["max_tilt_deg"],
+            "verdict": summary["verdict"], "achieved": summary["verdict"] in ACHIEVED_VERDICTS,
+            "max_tilt_deg": summary["max_tilt_deg"],
             "demand_peak_Nm": asked, "optimum_peak_Nm": max(found.peak_Nm),
             "why_none": ""}, files
 

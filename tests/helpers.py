@@ -44,3 +44,16 @@ def random_poses(params, rng, n=200):
 def told(summary) -> str:
     """What a run's summary says of its answer: its one line and its reasons, joined."""
     return " ".join([summary["answer"], *summary["answer_details"]])
+
+
+def signal_mask(pid: int, field: str) -> int:
+    """A process's signal set from /proc/PID/status (field: "SigBlk", "SigIgn", "SigCgt"; bit
+    n - 1 for signal n), 0 where the process is gone."""
+    from pathlib import Path
+
+    try:
+        status = Path(f"/proc/{pid}/status").read_text()
+    except OSError:
+        return 0
+    return next((int(line.split()[1], 16) for line in status.splitlines()
+                 if line.startswith(f"{field}:")), 0)

@@ -1,11 +1,11 @@
 import json
 import math
-from pathlib import Path
 import subprocess
 import sys
 
 import pytest
 
+from helpers import signal_mask
 from fivebar_drake.cli import main
 from fivebar_drake.robots.quadruped.config import DEFAULT_PATH
 
@@ -81,12 +81,9 @@ def test_a_signal_while_loading_is_quiet(tmp_path, delay_s, signum, code):
     # signals (its main thread's SigBlk in /proc); before that, Python itself is still starting
     # (a signal there is the interpreter's, not the package's: on a loaded machine 50 ms after
     # the start it landed in Python's own site import)
-    status = Path(f"/proc/{proc.pid}/status")
     deadline = time.monotonic() + 60.0
     while time.monotonic() < deadline and proc.poll() is None:
-        blocked = next((int(line.split()[1], 16) for line in status.read_text().splitlines()
-                        if line.startswith("SigBlk:")), 0)
-        if blocked & (1 << (signum - 1)):
+        if signal_mask(proc.pid, "SigBlk") & (1 << (signum - 1)):
             break
         time.sleep(0.001)
     time.sleep(delay_s)

@@ -60,6 +60,7 @@ from fivebar_drake.pipeline import (max_jump_scenario, run_simulation, top_speed
 from fivebar_drake.envelope.run import run_envelope
 from fivebar_drake.sweep.engine import (check_output_folder, check_scheduler,
                                         check_workers, dask_client)
+from fivebar_drake.verdicts.rules import ACHIEVED_VERDICTS
 
 FINALISTS_DIR = "finalists"
 MAX_JUMP_DIR = "max_jump"
@@ -223,11 +224,14 @@ def speed_gaits(spec: CodesignSpec) -> tuple:
     """The gaits a simulated design runs at its top speed: the required ones (gait, least m/s),
     then those only an objective top_speed_m_s:GAIT names (gait, None)."""
     gaits = dict(spec.top_speeds)
-    for objective in spec.objectives:
-        name, _, gait = objective.partition(":")
-        if name in ON_GAIT:
-            gaits.setdefault(gait, None)
+    for gait in gait_objectives(spec).values():
+        gaits.setdefault(gait, None)
     return tuple(gaits.items())
+
+
+def gait_objectives(spec: CodesignSpec) -> dict[str, str]:
+    """The spec's objectives on a gait (ON_GAIT: top_speed_m_s:GAIT), each to its gait."""
+    return {o: o.partition(":")[2] for o in spec.objectives if o.partition(":")[0] in ON_GAIT}
 
 
 def tracked_top_speeds(params, required, folder: Path) -> dict:
@@ -248,7 +252,7 @@ def tracked_top_speeds(params, required, folder: Path) -> dict:
             summary = write_simulation(record, folder / gait)[0]
             entry.update(simulated_m_s=summary["mean_forward_speed_m_s"] or 0.0,
                          verdict=summary["verdict"],
-                         achieved=summary["verdict"] in ("pass", "warn", "fail"))
+                         achieved=summary["verdict"] in ACHIEVED_VERDICTS)
         entry["meets"] = None if least is None else (entry["achieved"]
                                                       and entry["simulated_m_s"] >= least)
         out[gait] = entry
@@ -261,7 +265,7 @@ def landing_not_verified(summary: dict, error: str = "") -> str:
     achieved check's reasons (summary.json's legs), else a pointer to its summary.md."""
     if error:
         return error
-    if summary["verdict"] in ("pass", "warn", "fail"):
+    if summary["verdict"] in ACHIEVED_VERDICTS:
         return ""
     why = sorted({m["checks"]["achieved"]["why"] for motors in summary["legs"].values()
                   for m in motors.values()
@@ -313,12 +317,10 @@ def run_codesign(spec: CodesignSpec, out: str | Path, workers: int | None = None
                     outcome["top_speeds"] = speeds
                     outcome["passes"] = outcome["passes"] and all(
                         v["meets"] for v in speeds.values() if v["meets"] is not None)
-                    for objective in spec.objectives:
-                        name, _, gait = objective.partition(":")
-                        if name in ON_GAIT:
-                            v = speeds[gait]
-                            outcome["objectives"][objective] = (v["simulated_m_s"]
-                                                                if v["achieved"] else 0.0)
+                    for objective, gait in gait_objectives(spec).items():
+                        v = speeds[gait]
+                        outcome["objectives"][objective] = (v["simulated_m_s"]
+                                                            if v["achieved"] else 0.0)
                 study.set_user_attr(attr, json_ready(outcome))
             verified[key] = study.user_attrs[attr]
             return verified[key]

@@ -18,6 +18,7 @@ STEP_ORDER = 1   # the discrete plant's time stepping is first order in the step
 #                  error at step h is about (f(h) - f(h/2)) / (2^p - 1) (measured on the default
 #                  trot's worst SF: 1.505, 1.457, 1.416, 1.405 at 2, 1, 0.5, 0.25 ms)
 NO_STEP_CHECK_VERDICTS = ("insufficient", "not_achieved")   # the step check leaves these
+ACHIEVED_VERDICTS = ("pass", "warn", "fail")   # a run that did its motion, whatever the torque
 
 
 def achievement(checks: Checks, missed: list[str], max_tilt: float,

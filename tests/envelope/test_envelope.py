@@ -19,6 +19,7 @@ import numpy as np
 import pytest
 from rerun.chunk import RrdReader
 
+from helpers import signal_mask
 from fivebar_drake.cli import main
 from fivebar_drake.envelope import run as envelope_run
 from fivebar_drake.envelope.duty_cycle import duty_temperature
@@ -433,14 +434,8 @@ def test_a_maneuver_asks_for_its_contact_check(tmp_path):
 
 
 def _sigint_ignored(pid: int) -> bool:
-    """Whether the process ignores SIGINT (its SigIgn mask in /proc)."""
-    try:
-        status = Path(f"/proc/{pid}/status").read_text()
-    except OSError:
-        return False
-    mask = next(int(line.split()[1], 16) for line in status.splitlines()
-                if line.startswith("SigIgn:"))
-    return bool(mask & (1 << (signal.SIGINT - 1)))
+    """Whether the process ignores SIGINT."""
+    return bool(signal_mask(pid, "SigIgn") & (1 << (signal.SIGINT - 1)))
 
 
 @pytest.mark.slow
