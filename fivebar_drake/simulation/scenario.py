@@ -80,10 +80,12 @@ class Scenario:
                                 "kind (its defaults) or as {kind: KIND, FIELD: value, ...} (trot: "
                                 "duty_factor, null = the parameter file's); {kind: trot, bound "
                                 "or pronk, speed_m_s: max}: the gait at its top speed for any "
-                                "controller (top_speed)", factory=Trot)
+                                "controller (top_speed), and with duty_factor: D its top speed "
+                                "at that duty factor", factory=Trot)
     top_speed: bool = _doc(False, "run the gait at its top speed for any controller "
-                                  "(optimal/top_speed.py: its duty factor, stride, frequency and "
-                                  "swing shape; written gait: {kind: KIND, speed_m_s: max})")
+                                  "(optimal/top_speed.py: its duty factor (the path's where it "
+                                  "has one), stride, frequency and swing shape; written gait: "
+                                  "{kind: KIND, speed_m_s: max})")
     closure: Closure = _doc(None, f"loop closure, one of {', '.join(CLOSURES)} "
                                   "(robots/quadruped/closure.py)", factory=CompliantBushing)
     time_step_s: float = _doc(0.0, "plant step; 0 = derived (bushing, ball: 1 ms; bushing_rpy: "
@@ -150,10 +152,14 @@ class Scenario:
             require(speed == "max", "scenario.gait.speed_m_s", speed,
                     "max (the gait's top speed for any controller) is the one speed a gait takes "
                     "by name; set a speed by gait_a_m and gait_frequency_hz")
-            others = sorted(set(gait) - {"kind", "speed_m_s"})
+            others = sorted(set(gait) - {"kind", "speed_m_s", "duty_factor"})
             require(not others, "scenario.gait", gait, f"at its top speed the optimum sets the "
-                    f"path's shape: no {', '.join(others)} beside speed_m_s: max")
+                    f"path's shape: no {', '.join(others)} beside speed_m_s: max (duty_factor: "
+                    f"the top speed at that duty factor)")
+            # no duty factor: searched (a bound's or pronk's default is not the search's)
             changes["gait"] = {"kind": gait.get("kind")}
+            if gait.get("kind") in SPEED_GAITS:
+                changes["gait"]["duty_factor"] = gait.get("duty_factor")
             changes["top_speed"] = True
         scenario = dataclasses.replace(self, **changes)
         if flat:

@@ -144,7 +144,7 @@ def test_the_tracked_run_is_the_optimums_gait(trot, params, monkeypatch):
     from fivebar_drake.simulation import runner
 
     found, _ = trot
-    monkeypatch.setattr(runner, "top_speed", lambda p, kind, payload: found)
+    monkeypatch.setattr(runner, "top_speed", lambda p, kind, payload, duties: found)
     asked = top_speed_scenario("trot")
     assert asked.top_speed and asked.controller.kind == "tracking"
     scenario, design = runner.at_top_speed(asked, params)
@@ -156,13 +156,34 @@ def test_the_tracked_run_is_the_optimums_gait(trot, params, monkeypatch):
     assert scenario.load_transfer_s <= 0.25 * found.duty_factor * period + 1e-12
     assert scenario.log_period_s <= period / 100
     monkeypatch.setattr(runner, "top_speed",
-                        lambda p, kind, payload: dataclasses.replace(found, frequency_hz=12.0))
+                        lambda p, kind, payload, duties: dataclasses.replace(found,
+                                                                             frequency_hz=12.0))
     with pytest.raises(ParameterError, match=r"frequency_hz = 12.0: must be in \(0, 10\]"):
         runner.at_top_speed(asked, params)
-    monkeypatch.setattr(runner, "top_speed", lambda p, kind, payload: dataclasses.replace(
+    monkeypatch.setattr(runner, "top_speed", lambda p, kind, payload, duties: dataclasses.replace(
         found, speed_m_s=math.nan, limited_by="the motors' torque (5 of 5 checks)"))
     with pytest.raises(ParameterError, match=r"no trot at any speed: the motors' torque"):
         runner.at_top_speed(asked, params)
+
+
+@pytest.mark.parametrize("kind", ["trot", "bound", "pronk"])
+def test_a_top_speed_at_a_duty_factor_searches_that_one_alone(kind, trot, params, monkeypatch):
+    """{kind: KIND, speed_m_s: max, duty_factor: D} searches the top speed at D alone; without
+    duty_factor every duty factor of the search's (not the bound's or pronk's default 0.75 or
+    0.7): the duties the search is handed."""
+    from fivebar_drake.simulation import runner
+    from fivebar_drake.simulation.scenario import load_scenario
+
+    found, asked = trot[0], []
+
+    def search(p, kind, payload, duties):
+        asked.append(duties)
+        return found
+    monkeypatch.setattr(runner, "top_speed", search)
+    runner.at_top_speed(load_scenario(gait={"kind": kind, "speed_m_s": "max",
+                                            "duty_factor": 0.55}), params)
+    runner.at_top_speed(load_scenario(gait={"kind": kind, "speed_m_s": "max"}), params)
+    assert asked == [(0.55,), None]
 
 
 @pytest.mark.parametrize("gait, extra, why", [
@@ -170,7 +191,11 @@ def test_the_tracked_run_is_the_optimums_gait(trot, params, monkeypatch):
     ({"kind": "walk", "speed_m_s": "max"}, {}, r"gait.kind = 'walk': speed_m_s: max is searched "
                                                 r"for trot, bound, pronk"),
     ({"kind": "bound", "speed_m_s": "max", "swing_reach_m": 0.01}, {},
-     r"no swing_reach_m beside speed_m_s: max"),
+     r"no swing_reach_m beside speed_m_s: max \(duty_factor: the top speed at that duty"),
+    ({"kind": "trot", "speed_m_s": "max", "duty_factor": 1.0}, {},
+     r"gait.duty_factor = 1.0: must be in \(0, 1\)"),
+    ({"kind": "pronk", "speed_m_s": "max", "duty_factor": "half"}, {},
+     r"gait.duty_factor = 'half': must be a number"),
     ({"kind": "bound", "speed_m_s": "max"}, {"gait_frequency_hz": 2.0},
      r"gait_frequency_hz = 2.0: at its top speed"),
 ])
