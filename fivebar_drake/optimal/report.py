@@ -313,6 +313,20 @@ def answer_details(r: dict, params: Params) -> list[str]:
     return out + top_speed_text(r["top_speed"])
 
 
+def fastest_achieved_text(kind: str, found: dict) -> str:
+    """The sentence on the fastest top speed the tracking controller achieved where the
+    optimum's was not (cli._fastest_achieved's record)."""
+    if found["folder"] is None:
+        duties = ", ".join(f"{t['duty_factor']:g}" for t in found["tried"])
+        return (f"Nor is the {kind}'s top speed at a longer duty factor ({duties or 'none left'}"
+                "): this controller achieves none of them.")
+    return (f"The fastest this controller achieves: the {kind}'s top speed at duty factor "
+            f"{found['duty_factor']:g} ({found['planned_m_s']:.3f} m/s planned), tracked at "
+            f"{found['speed_m_s']:.3f} m/s, {found['share_of_optimum']:.0%} of the top speed; "
+            f"verdict {found['verdict'].upper()} (achieved, also at half the step), "
+            f"`{found['folder']}/`.")
+
+
 def top_speed_text(speeds: dict) -> list[str]:
     """The top speeds, one item each (none for none searched)."""
     if not speeds:
@@ -392,6 +406,8 @@ def markdown(r: dict) -> str:
                      f"{' (achieved)' if m['achieved'] else ''}; largest tilt {m['max_tilt_deg']:.1f} deg; the controller asked up to "
                      f"{m['demand_peak_Nm']:.2f} N·m against the optimum's "
                      f"{m['optimum_peak_Nm']:.2f} N·m") + "."]
+        if m.get("fastest_achieved"):
+            lines[-1] += " " + fastest_achieved_text(kind, m["fastest_achieved"])
     if r.get("max_jump_simulated"):
         m = r["max_jump_simulated"]
         asked = "; ".join(f"{name}: asked {p['asked_Nm']:.2f} N·m against its floor "

@@ -302,10 +302,15 @@ def markdown(s: Summary, params: Params) -> str:
 
 
 def ran_text(ran: Ran) -> str:
-    """What ran in one line: each variant's kind and fields, and the plan's events."""
+    """What ran in one line: each variant's kind and fields (numbers to 4 significant digits: the
+    optimum's swing shape has all its digits in summary.json), and the plan's events."""
     events = ran["planned_events_s"]
+
+    def shown(x):
+        return f"{x:.4g}" if isinstance(x, float) else repr(x)
     return ("Ran: " + "; ".join(
-        f"{what} {v['kind']} (" + ", ".join(f"{k} = {x!r}" for k, x in v.items() if k != "kind")
+        f"{what} {v['kind']} (" + ", ".join(f"{k} = {shown(x)}" for k, x in v.items()
+                                            if k != "kind")
         + ")" for what, v in ((w, ran[w]) for w in ("gait", "controller", "closure")))
         + (", planned events " + ", ".join(f"{k} {x:.3f} s" for k, x in events.items())
            if events else "") + ".")
