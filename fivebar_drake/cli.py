@@ -324,9 +324,14 @@ def _optimal(args, signals) -> int:
             result["top_speed_simulated"] = {}
             for kind, row in result["top_speed"].items():
                 if row["speed_m_s"] == row["speed_m_s"]:
-                    result["top_speed_simulated"][kind], written = _track_top_speed(
-                        params, kind, args.payload or 0.0, out, signals)
+                    tracked, written = _track_top_speed(params, kind, args.payload or 0.0, out,
+                                                        signals)
+                    result["top_speed_simulated"][kind] = tracked       # kept if interrupted
                     files += written
+                    if "achieved" in tracked and not tracked["achieved"]:
+                        tracked["fastest_achieved"], written = _fastest_achieved(
+                            params, row, args.payload or 0.0, out, signals)
+                        files += written
     except BaseException:       # Interrupted, or what it became inside compiled code
         if not signals.signum:
             raise
@@ -372,9 +377,6 @@ def _track_top_speed(params, kind: str, payload_kg: float, out, signals) -> tupl
            "max_tilt_deg": summary["max_tilt_deg"],
            "demand_peak_Nm": asked, "optimum_peak_Nm": max(found.peak_Nm),
            "why_none": "", "fastest_achieved": None}
-    if not row["achieved"]:
-        row["fastest_achieved"], more = _fastest_achieved(params, found, payload_kg, out, signals)
-        files += more
     return row, files
 
 
@@ -389,11 +391,12 @@ def _held(summary: dict) -> bool:
             and checked.get("achieved_at_half_step", True) is not False)
 
 
-def _fastest_achieved(params, found, payload_kg: float, out, signals) -> tuple[dict, list]:
-    """Where a gait's optimum is not achieved when tracked: the gait's top speed at each longer
-    duty factor (ACHIEVED_DUTY_STEP apart, up to the search's longest: a longer stance asks
-    each foot for less force and a duty factor of 0.5 or more has no flight), tracked as the
-    optimum's; the first achieved at the plant step and at half of it is written, with its step
+def _fastest_achieved(params, optimum: dict, payload_kg: float, out,
+                      signals) -> tuple[dict, list]:
+    """Where a gait's optimum (its TopSpeed.row()) is not achieved when tracked: the gait's top
+    speed at each longer duty factor (ACHIEVED_DUTY_STEP apart, up to the search's longest: a
+    longer stance asks each foot for less force and a duty factor of 0.5 or more has no
+    flight), tracked as the optimum's; the first achieved at the plant step and at half of it is written, with its step
     check, to out/top_speed_KIND_achieved: (its record for optimal.json: duty factor, planned
     and tracked speed, share of the optimum, verdict; or the duty factors tried and what each
     missed, files)."""
@@ -401,8 +404,8 @@ def _fastest_achieved(params, found, payload_kg: float, out, signals) -> tuple[d
     from fivebar_drake.pipeline import (SIMULATION_FILES, run_simulation, run_step_check,
                                         summarize_run, top_speed_scenario, write_simulation)
 
-    kind, stop, tried = found.kind, (lambda: signals.name), []
-    duty = found.duty_factor + ACHIEVED_DUTY_STEP
+    kind, stop, tried = optimum["kind"], (lambda: signals.name), []
+    duty = optimum["duty_factor"] + ACHIEVED_DUTY_STEP
     while duty <= max(DUTIES[kind]) + 1e-9:
         duty = round(duty, 3)
         try:
@@ -427,7 +430,8 @@ def _fastest_achieved(params, found, payload_kg: float, out, signals) -> tuple[d
                 planned = top_speed(params, kind, payload_kg, duties=(duty,)).speed_m_s
                 return {"folder": folder.name, "duty_factor": duty, "planned_m_s": planned,
                         "speed_m_s": summary["mean_forward_speed_m_s"],
-                        "share_of_optimum": summary["mean_forward_speed_m_s"] / found.speed_m_s,
+                        "share_of_optimum": (summary["mean_forward_speed_m_s"]
+                                             / optimum["speed_m_s"]),
                         "verdict": summary["verdict"], "tried": tried}, files
         tried.append({"duty_factor": duty, "missed": summary["answer"]})
         duty += ACHIEVED_DUTY_STEP

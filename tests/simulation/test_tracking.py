@@ -62,7 +62,6 @@ def test_the_fastest_achieved_is_written_only_if_achieved_at_both_steps(tmp_path
     its step check, achieved at the plant step and at half of it, its record what its files
     say; none kept: each duty factor tried, with what it missed, and nothing written."""
     import json
-    from types import SimpleNamespace
 
     from style_rules import report_violations
 
@@ -71,7 +70,7 @@ def test_the_fastest_achieved_is_written_only_if_achieved_at_both_steps(tmp_path
     from fivebar_drake.robots.quadruped.config import load_params
     from fivebar_drake.verdicts.rules import ACHIEVED_VERDICTS
 
-    optimum = SimpleNamespace(kind="trot", duty_factor=0.55, speed_m_s=1.0)
+    optimum = {"kind": "trot", "duty_factor": 0.55, "speed_m_s": 1.0}
     row, files = _fastest_achieved(load_params(), optimum, 0.0, tmp_path, Signals())
     if row["folder"] is None:
         assert [t["duty_factor"] for t in row["tried"]] == [0.6] and row["tried"][0]["missed"]
