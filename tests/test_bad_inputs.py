@@ -319,6 +319,14 @@ CASES = {
     "crawl below three feet down": scen("gait: {kind: walk, duty_factor: 0.5}\n",
                                         "duty_factor", "0.5"),
     "pronk unknown field": scen("gait: {kind: pronk, spring: 2}\n", "spring"),
+    # a top speed at a chosen duty factor (issue 41)
+    "top speed at a duty factor of 1": scen("gait: {kind: trot, speed_m_s: max, duty_factor: 1}\n",
+                                            "duty_factor = 1", "(0, 1)"),
+    "top speed at a duty factor in words": scen(
+        "gait: {kind: bound, speed_m_s: max, duty_factor: half}\n", "duty_factor = 'half'"),
+    "top speed at a duty factor no stance sample holds": scen(
+        "gait: {kind: trot, speed_m_s: max, duty_factor: 0.02}\n", "no trot at any speed",
+        "the stance's balance"),
     "models into an empty --out": (lambda t: ["models", "--out", ""], "command line", "--out = ''"),
     "simulator config text for a number": scen(
         "simulator_config: {target_realtime_rate: fast}\n",

@@ -405,7 +405,12 @@ def _solve(params: Params, path, payload_kg: float, free_height: bool,
     g = params.robot.gravity_m_s2
     t = np.arange(KNOTS) / KNOTS * params.gait.period_s
     mass, com_z, inertia = whole_body(params, payload_kg)
-    body = Body(params, Schedule(params, path, t), mass, com_z)
+    schedule = Schedule(params, path, t)
+    if not schedule.stance.any(axis=1).all():
+        raise ParameterError(f"duty factor {path.beta(params.gait):g}: a foot's stance falls "
+                             f"between the floor's {KNOTS} samples of the period (at least "
+                             f"1/{KNOTS} of it down)", "gait", "parameter file")
+    body = Body(params, schedule, mass, com_z)
     level = np.zeros(KNOTS)
     state, forces = (level, level, level), np.zeros((body.legs.size, 2))
     held = _program(body, mass, inertia, g, state, forces, (0.0, 0.0), thermal, free_height)
