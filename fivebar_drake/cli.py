@@ -328,7 +328,7 @@ def _optimal(args, signals) -> int:
                                                         signals)
                     result["top_speed_simulated"][kind] = tracked       # kept if interrupted
                     files += written
-                    if "achieved" in tracked and not tracked["achieved"]:
+                    if tracked.get("achieved") is False:           # run, and missed
                         tracked["fastest_achieved"], written = _fastest_achieved(
                             params, row, args.payload or 0.0, out, signals)
                         files += written
@@ -388,7 +388,7 @@ def _held(summary: dict) -> bool:
     at half of it."""
     checked = summary.get("step_check") or {}
     return (summary["verdict"] in ACHIEVED_VERDICTS
-            and checked.get("achieved_at_half_step", True) is not False)
+            and checked.get("achieved_at_half_step", True))
 
 
 def _fastest_achieved(params, optimum: dict, payload_kg: float, out,
@@ -396,18 +396,20 @@ def _fastest_achieved(params, optimum: dict, payload_kg: float, out,
     """Where a gait's optimum (its TopSpeed.row()) is not achieved when tracked: the gait's top
     speed at each longer duty factor (ACHIEVED_DUTY_STEP apart, up to the search's longest: a
     longer stance asks each foot for less force and a duty factor of 0.5 or more has no
-    flight), tracked as the optimum's; the first achieved at the plant step and at half of it is written, with its step
-    check, to out/top_speed_KIND_achieved: (its record for optimal.json: duty factor, planned
-    and tracked speed, share of the optimum, verdict; or the duty factors tried and what each
-    missed, files)."""
+    flight), tracked as the optimum's; the first achieved at the plant step and at half of it
+    is written, with its step check, to out/top_speed_KIND_achieved: (its record for
+    optimal.json: duty factor, planned and tracked speed, share of the optimum, verdict; or the
+    duty factors tried and what each missed, files)."""
+    import numpy as np
+
     from fivebar_drake.optimal.top_speed import DUTIES, top_speed
     from fivebar_drake.pipeline import (SIMULATION_FILES, run_simulation, run_step_check,
                                         summarize_run, top_speed_scenario, write_simulation)
 
     kind, stop, tried = optimum["kind"], (lambda: signals.name), []
-    duty = optimum["duty_factor"] + ACHIEVED_DUTY_STEP
-    while duty <= max(DUTIES[kind]) + 1e-9:
-        duty = round(duty, 3)
+    longer = np.arange(optimum["duty_factor"] + ACHIEVED_DUTY_STEP, max(DUTIES[kind]) + 1e-9,
+                       ACHIEVED_DUTY_STEP)
+    for duty in np.round(longer, 3).tolist():
         try:
             with signals.gently():
                 record = run_simulation(top_speed_scenario(kind, payload_kg, duty), params,
@@ -418,7 +420,6 @@ def _fastest_achieved(params, optimum: dict, payload_kg: float, out,
                         else None)
         except ParameterError as err:
             tried.append({"duty_factor": duty, "missed": err.message})
-            duty += ACHIEVED_DUTY_STEP
             continue
         signals.raise_received()
         if half is not None:
@@ -434,7 +435,6 @@ def _fastest_achieved(params, optimum: dict, payload_kg: float, out,
                                              / optimum["speed_m_s"]),
                         "verdict": summary["verdict"], "tried": tried}, files
         tried.append({"duty_factor": duty, "missed": summary["answer"]})
-        duty += ACHIEVED_DUTY_STEP
     return {"folder": None, "tried": tried}, []
 
 

@@ -48,10 +48,10 @@ def load_run(path: "str | Path | None" = None, **overrides) -> tuple[Scenario, P
 def at_top_speed(scenario: Scenario, params: Params) -> tuple[Scenario, Params]:
     """A scenario whose gait runs at its top speed (Scenario.top_speed) as the optimum's path
     (optimal/top_speed.py on params and the scenario's payload, over the path's own duty factor
-    where it has one: its duty factor and swing shape at its stride and frequency), its load transfer at most a quarter of the stance and
-    its recording's interval at most 1/MIN_LOG_INTERVALS_PER_CYCLE of the period (the
-    statistics' least; 1 ms at the least: beyond
-    10 Hz ParameterError); with the design at that gait. Any other scenario as it is.
+    where it has one: its duty factor and swing shape at its stride and frequency), its load
+    transfer at most a quarter of the stance and its recording's interval at most
+    1/MIN_LOG_INTERVALS_PER_CYCLE of the period (the statistics' least; 1 ms at the least:
+    beyond 10 Hz ParameterError); with the design at that gait. Any other scenario as it is.
     ParameterError where no speed of the gait passes, naming why."""
     if not scenario.top_speed:
         return scenario, params
