@@ -380,7 +380,10 @@ def _track_top_speed(params, kind: str, payload_kg: float, out, signals) -> tupl
     return row, files
 
 
-ACHIEVED_DUTY_STEP = 0.05   # the fastest achieved: the top speeds at duty factors this far apart
+ACHIEVED_SHARES = (0.95, 0.9, 0.85)   # the fastest achieved: the optimum at these shares of
+#                                       its speed first (a plan at the motors' limits leaves the
+#                                       feedback nothing),
+ACHIEVED_DUTY_STEP = 0.05   # then the top speeds at longer duty factors this far apart
 
 
 def _held(summary: dict) -> bool:
@@ -393,13 +396,15 @@ def _held(summary: dict) -> bool:
 
 def _fastest_achieved(params, optimum: dict, payload_kg: float, out,
                       signals) -> tuple[dict, list]:
-    """Where a gait's optimum (its TopSpeed.row()) is not achieved when tracked: the gait's top
-    speed at each longer duty factor (ACHIEVED_DUTY_STEP apart, up to the search's longest: a
-    longer stance asks each foot for less force and a duty factor of 0.5 or more has no
-    flight), tracked as the optimum's; the first achieved at the plant step and at half of it
-    is written, with its step check, to out/top_speed_KIND_achieved: (its record for
-    optimal.json: duty factor, planned and tracked speed, share of the optimum, verdict; or the
-    duty factors tried and what each missed, files)."""
+    """Where a gait's optimum (its TopSpeed.row()) is not achieved when tracked: the optimum's
+    path at each of ACHIEVED_SHARES of its speed (its frequency; the optimum plans the swing at
+    the motors' limits, where no feedback fits), then the gait's top speed at each longer duty
+    factor (ACHIEVED_DUTY_STEP apart, up to the search's longest: a longer stance asks each foot
+    for less force and a duty factor of 0.5 or more has no flight), tracked as the optimum's;
+    the first achieved at the plant step and at half of it is written, with its step check, to
+    out/top_speed_KIND_achieved: (its record for optimal.json: duty factor, share, planned and
+    tracked speed, share of the optimum, verdict; or the plans tried and what each missed,
+    files)."""
     import numpy as np
 
     from fivebar_drake.optimal.top_speed import DUTIES, top_speed
@@ -409,17 +414,19 @@ def _fastest_achieved(params, optimum: dict, payload_kg: float, out,
     kind, stop, tried = optimum["kind"], (lambda: signals.name), []
     longer = np.arange(optimum["duty_factor"] + ACHIEVED_DUTY_STEP, max(DUTIES[kind]) + 1e-9,
                        ACHIEVED_DUTY_STEP)
-    for duty in np.round(longer, 3).tolist():
+    plans = ([(optimum["duty_factor"], share) for share in ACHIEVED_SHARES]
+             + [(duty, 1.0) for duty in np.round(longer, 3).tolist()])
+    for duty, share in plans:
         try:
             with signals.gently():
-                record = run_simulation(top_speed_scenario(kind, payload_kg, duty), params,
-                                        progress=True, stop=stop)
+                record = run_simulation(top_speed_scenario(kind, payload_kg, duty, share),
+                                        params, progress=True, stop=stop)
                 summary = summarize_run(record)
                 half = (run_step_check(record, progress=True, stop=stop)
                         if summary["verdict"] in ACHIEVED_VERDICTS and not signals.signum
                         else None)
         except ParameterError as err:
-            tried.append({"duty_factor": duty, "missed": err.message})
+            tried.append({"duty_factor": duty, "share": share, "missed": err.message})
             continue
         signals.raise_received()
         if half is not None:
@@ -428,13 +435,14 @@ def _fastest_achieved(params, optimum: dict, payload_kg: float, out,
                 folder = prepare_output_dir(out / f"top_speed_{kind}_achieved", "--out",
                                             SIMULATION_FILES)
                 summary, files = write_simulation(record, folder, half=half)
-                planned = top_speed(params, kind, payload_kg, duties=(duty,)).speed_m_s
-                return {"folder": folder.name, "duty_factor": duty, "planned_m_s": planned,
+                planned = share * top_speed(params, kind, payload_kg, duties=(duty,)).speed_m_s
+                return {"folder": folder.name, "duty_factor": duty, "share": share,
+                        "planned_m_s": planned,
                         "speed_m_s": summary["mean_forward_speed_m_s"],
                         "share_of_optimum": (summary["mean_forward_speed_m_s"]
                                              / optimum["speed_m_s"]),
                         "verdict": summary["verdict"], "tried": tried}, files
-        tried.append({"duty_factor": duty, "missed": summary["answer"]})
+        tried.append({"duty_factor": duty, "share": share, "missed": summary["answer"]})
     return {"folder": None, "tried": tried}, []
 
 

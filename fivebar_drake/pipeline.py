@@ -122,14 +122,14 @@ def max_jump_scenario(params: Params, ceiling: vertical_jump.Jump,
 TOP_SPEED_RUN_S = 3.0     # a top speed's tracked run: this long after the stand and the ramp
 
 
-def top_speed_scenario(kind: str, payload_kg: float = 0.0,
-                       duty_factor: float | None = None) -> Scenario:
+def top_speed_scenario(kind: str, payload_kg: float = 0.0, duty_factor: float | None = None,
+                       share: float = 1.0) -> Scenario:
     """The scenario of a gait's top speed tracked (`optimal --simulate`): the gait at its top
     speed (gait: {kind: KIND, speed_m_s: max}, runner.at_top_speed; at duty_factor alone where
-    given) with the tracking controller, TOP_SPEED_RUN_S of gait after the stand and the
-    ramp."""
+    given; at that share of it, Scenario.top_speed_share) with the tracking controller,
+    TOP_SPEED_RUN_S of gait after the stand and the ramp."""
     default = Scenario()
-    gait = {"kind": kind, "speed_m_s": "max"}
+    gait = {"kind": kind, "speed_m_s": "max", "share": share}
     if duty_factor is not None:
         gait["duty_factor"] = duty_factor
     return load_scenario(gait=gait, payload_kg=payload_kg,

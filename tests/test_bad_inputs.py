@@ -327,6 +327,15 @@ CASES = {
     "top speed at a duty factor no stance sample holds": scen(
         "gait: {kind: trot, speed_m_s: max, duty_factor: 0.02}\n", "no trot at any speed",
         "the stance's balance"),
+    "top speed at a share beyond 1": scen("gait: {kind: trot, speed_m_s: max, share: 1.2}\n",
+                                          "scenario.top_speed_share = 1.2", "(0, 1]"),
+    "top speed at a share of 0": scen("gait: {kind: pronk, speed_m_s: max, share: 0}\n",
+                                      "scenario.top_speed_share = 0", "(0, 1]"),
+    "top speed at a share in words": scen(
+        "gait: {kind: bound, speed_m_s: max, share: most}\n", "scenario.top_speed_share",
+        "most"),
+    "a share without a top speed": scen("gait: trot\ntop_speed_share: 0.9\n",
+                                        "scenario.top_speed_share = 0.9", "top speed"),
     "models into an empty --out": (lambda t: ["models", "--out", ""], "command line", "--out = ''"),
     "simulator config text for a number": scen(
         "simulator_config: {target_realtime_rate: fast}\n",

@@ -317,14 +317,21 @@ def fastest_achieved_text(kind: str, found: dict) -> str:
     """The sentence on the fastest top speed the tracking controller achieved where the
     optimum's was not (cli._fastest_achieved's record)."""
     if found["folder"] is None:
-        duties = ", ".join(f"{t['duty_factor']:g}" for t in found["tried"])
-        return (f"Nor is the {kind}'s top speed at a longer duty factor ({duties or 'none left'}"
-                "): this controller achieves none of them.")
-    return (f"The fastest this controller achieves: the {kind}'s top speed at duty factor "
-            f"{found['duty_factor']:g} ({found['planned_m_s']:.3f} m/s planned), tracked at "
-            f"{found['speed_m_s']:.3f} m/s, {found['share_of_optimum']:.0%} of the top speed; "
-            f"verdict {found['verdict'].upper()} (achieved, also at half the step), "
+        plans = ", ".join(_plan_name(t) for t in found["tried"])
+        return (f"Nor is a slower {kind} ({plans or 'none left'}): this controller achieves "
+                "none of them.")
+    return (f"The fastest this controller achieves: the {kind}'s {_plan_name(found)} "
+            f"({found['planned_m_s']:.3f} m/s planned), tracked at {found['speed_m_s']:.3f} m/s, "
+            f"{found['share_of_optimum']:.0%} of the top speed; verdict "
+            f"{found['verdict'].upper()} (achieved, also at half the step), "
             f"`{found['folder']}/`.")
+
+
+def _plan_name(plan: dict) -> str:
+    """A plan of the fastest-achieved search: the top speed at its duty factor, or a share of
+    it."""
+    at = f"top speed at duty factor {plan['duty_factor']:g}"
+    return at if plan["share"] == 1.0 else f"{at} at {plan['share']:.0%} of its speed"
 
 
 def top_speed_text(speeds: dict) -> list[str]:

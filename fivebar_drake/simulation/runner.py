@@ -48,7 +48,8 @@ def load_run(path: "str | Path | None" = None, **overrides) -> tuple[Scenario, P
 def at_top_speed(scenario: Scenario, params: Params) -> tuple[Scenario, Params]:
     """A scenario whose gait runs at its top speed (Scenario.top_speed) as the optimum's path
     (optimal/top_speed.py on params and the scenario's payload, over the path's own duty factor
-    where it has one: its duty factor and swing shape at its stride and frequency), its load
+    where it has one: its duty factor and swing shape at its stride and frequency, the frequency
+    times Scenario.top_speed_share), its load
     transfer at most a quarter of the stance and its recording's interval at most
     1/MIN_LOG_INTERVALS_PER_CYCLE of the period (the statistics' least; 1 ms at the least:
     beyond 10 Hz ParameterError); with the design at that gait. Any other scenario as it is.
@@ -61,10 +62,11 @@ def at_top_speed(scenario: Scenario, params: Params) -> tuple[Scenario, Params]:
     if not math.isfinite(found.speed_m_s):
         raise ParameterError(f"no {found.kind} at any speed: {found.limited_by}",
                              "scenario.gait.speed_m_s")
-    period = 1.0 / found.frequency_hz
-    gait = {"a_m": found.stride_m / 2.0, "frequency_hz": found.frequency_hz}
+    frequency = found.frequency_hz * scenario.top_speed_share
+    period = 1.0 / frequency
+    gait = {"a_m": found.stride_m / 2.0, "frequency_hz": frequency}
     resolved = scenario.replaced(
-        gait=found.path, top_speed=False,
+        gait=found.path, top_speed=False, top_speed_share=1.0,
         load_transfer_s=min(scenario.load_transfer_s, 0.25 * found.duty_factor * period),
         log_period_s=max(0.001, min(scenario.log_period_s,
                                     math.floor(period / MIN_LOG_INTERVALS_PER_CYCLE * 1e3) / 1e3)),

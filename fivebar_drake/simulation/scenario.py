@@ -80,12 +80,17 @@ class Scenario:
                                 "kind (its defaults) or as {kind: KIND, FIELD: value, ...} (trot: "
                                 "duty_factor, null = the parameter file's); {kind: trot, bound "
                                 "or pronk, speed_m_s: max}: the gait at its top speed for any "
-                                "controller (top_speed), and with duty_factor: D its top speed "
-                                "at that duty factor", factory=Trot)
+                                "controller (top_speed), with duty_factor: D its top speed "
+                                "at that duty factor, with share: S that path at S of its "
+                                "speed (top_speed_share)", factory=Trot)
     top_speed: bool = _doc(False, "run the gait at its top speed for any controller "
                                   "(optimal/top_speed.py: its duty factor (the path's where it "
                                   "has one), stride, frequency and swing shape; written gait: "
                                   "{kind: KIND, speed_m_s: max})")
+    top_speed_share: float = _doc(1.0, "with top_speed: the top speed's path at this share of "
+                                       "its frequency, so of its speed (its stride, duty factor "
+                                       "and swing shape kept), in (0, 1]; written gait: {kind: "
+                                       "KIND, speed_m_s: max, share: S}")
     closure: Closure = _doc(None, f"loop closure, one of {', '.join(CLOSURES)} "
                                   "(robots/quadruped/closure.py)", factory=CompliantBushing)
     time_step_s: float = _doc(0.0, "plant step; 0 = derived (bushing, ball: 1 ms; bushing_rpy: "
@@ -152,10 +157,12 @@ class Scenario:
             require(speed == "max", "scenario.gait.speed_m_s", speed,
                     "max (the gait's top speed for any controller) is the one speed a gait takes "
                     "by name; set a speed by gait_a_m and gait_frequency_hz")
-            others = sorted(set(gait) - {"kind", "speed_m_s", "duty_factor"})
+            others = sorted(set(gait) - {"kind", "speed_m_s", "duty_factor", "share"})
             require(not others, "scenario.gait", gait, f"at its top speed the optimum sets the "
                     f"path's shape: no {', '.join(others)} beside speed_m_s: max (duty_factor: "
-                    f"the top speed at that duty factor)")
+                    f"the top speed at that duty factor; share: that path at a share of its "
+                    f"speed)")
+            changes["top_speed_share"] = gait.get("share", 1.0)
             # no duty factor: searched (a bound's or pronk's default is not the search's)
             changes["gait"] = {"kind": gait.get("kind")}
             if gait.get("kind") in SPEED_GAITS:
@@ -203,6 +210,10 @@ class Scenario:
                self.controller.control_period_s, why="the motor model samples every command of "
                                                      "the controller (scenario.control_period_s)")
         number("scenario.load_transfer_s", self.load_transfer_s, 0.0)
+        number("scenario.top_speed_share", self.top_speed_share, 0.0, 1.0, low_open=True)
+        require(self.top_speed or self.top_speed_share == 1.0, "scenario.top_speed_share",
+                self.top_speed_share, "a share of a top speed, so only with one (gait: {kind: "
+                                      "KIND, speed_m_s: max, share: S}); 1 otherwise")
         if self.top_speed:
             require(self.gait.kind in SPEED_GAITS, "scenario.gait.kind", self.gait.kind,
                     f"speed_m_s: max is searched for {', '.join(SPEED_GAITS)}")

@@ -189,13 +189,15 @@ class FootLegController(LeafSystem):
         return memory
 
     def command(self, references, state, loads_N=None, support=None,
-                t: float = 0.0) -> np.ndarray:
+                t: float = 0.0, gait_s: float | None = None) -> np.ndarray:
         """Torque command (8) in actuation order at time t (s) from the foot references
         (GaitSource), the plant state vector (nx,), the feet's measured normal forces (legs,)
         in N (default: every foot on the ground) and their support memory (legs,
         SUPPORT_FIELDS; default: standing_support; updated in place)
-        (control_law.leg_plan, the stance law's forces, control_law.leg_torques). Raises UnreachableError naming the target or pose where the
-        legs cannot close."""
+        (control_law.leg_plan, the stance law's forces, control_law.leg_torques); gait_s (s,
+        default t): the gait's clock, which the references were taken at (a controller variant
+        may let it lag t: TrackingController). Raises UnreachableError naming the target or pose
+        where the legs cannot close."""
         memory = self.standing_support() if support is None else support
         n = memory.shape[0]
         loads = np.full(n, np.inf) if loads_N is None else np.ascontiguousarray(loads_N, float)
@@ -204,17 +206,19 @@ class FootLegController(LeafSystem):
                 "a C-contiguous float array (it is updated in place)")
         plan = self._leg_plan(self.constants, np.ascontiguousarray(references, dtype=float),
                               state, loads, memory, float(t))
-        out, finite = leg_torques(self.constants.state.actuators,
-                                  *self.stance_torques(plan, state, float(t)))
+        out, finite = leg_torques(self.constants.state.actuators, *self.stance_torques(
+            plan, state, float(t), float(t if gait_s is None else gait_s)))
         if not finite:                        # name the reason, if it is a reach
             self._mechanism.inverse(plan.goal)
             self._mechanism.forward(state[self._layout.state.q_index])
         return out
 
-    def stance_torques(self, plan: LegPlan, state: np.ndarray, t: float) -> tuple:
+    def stance_torques(self, plan: LegPlan, state: np.ndarray, t: float,
+                       gait_s: float) -> tuple:
         """(base (8) N*m in actuation order, the foot Jacobians (legs, 2, 2), the feet's ground
-        forces (legs, 2) N in their leg planes) of a tick's command (control_law.leg_torques):
-        the plan's base and the stance law's forces. A controller variant changes them here."""
+        forces (legs, 2) N in their leg planes) of a tick's command (control_law.leg_torques) at
+        time t (s), the gait's clock at gait_s (s): the plan's base and the stance law's forces.
+        A controller variant changes them here."""
         forces = self._forces(self.constants, plan.body, plan.weights, plan.share, plan.fx,
                               plan.fy, state, plan.r_wb)
         return plan.base, plan.jf, forces

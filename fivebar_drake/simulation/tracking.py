@@ -15,7 +15,19 @@ pitch moment has no lever but a yaw couple of the feet's x forces, which the spl
 use): height and vertical speed, forward speed,
 pitch and pitch rate (towards the floor's), roll and roll rate (towards level), with the foot/leg
 controller's gains (FootLeg.gains). The swing legs, the support's memory, the links' weight and
-everything before the takeover are the foot/leg controller's (FootLegController)."""
+everything before the takeover are the foot/leg controller's (FootLegController), with two
+changes once the tracking is in full:
+- the gait's clock waits for late feet: a foot that lands after its scheduled touchdown moves
+  the clock the controller follows (the path's references and the floor's motion) back by
+  TOUCHDOWN_LOCK_GAIN of its lateness, so the floor's stance starts where the feet do (a pair
+  that lands late no longer starts its stance with the floor's force at its plateau, nor with
+  the body falling faster than the floor's: on the trot at 0.9 of its top speed this took the
+  time at the motors' limits from 12 % to under 5 %); an early foot is held where it lands (the
+  foot/leg controller's touchdown detection) and moves nothing;
+- each swing lands where the floor's body puts the ground: the last LANDING_ZONE_M of its
+  descent reaches the floor's hip height at its touchdown (Plan.touchdown_heights: the floor
+  lets the body heave and pitch, the path ends each swing at y_home under the hip), and a foot
+  due on the ground and not yet on it looks for it there."""
 
 from __future__ import annotations
 
@@ -27,6 +39,7 @@ import numpy as np
 
 from fivebar_drake.core.validation import check_number, require
 from fivebar_drake.core.variants import documented
+from fivebar_drake.gaits import cycle_phase, reference_parts
 from fivebar_drake.mechanisms.fivebar import KNEES_OUT
 from fivebar_drake.optimal.gait_floor import KINDS, GaitFloor, gait_floor, whole_body
 from fivebar_drake.optimal.vertical_jump import (Catch, Jump, catch, landing_need,
@@ -38,6 +51,11 @@ from fivebar_drake.robots.quadruped.sdf import body_height
 from fivebar_drake.simulation.systems import FootLeg, FootLegController, register_controller
 
 PUSH_WINDOW_SLACK = 0.25   # a tracked push may last this share longer than planned
+TOUCHDOWN_LOCK_GAIN = 0.5  # the gait's clock lags by this share of each late foot's lateness
+#                            (a trot's or a bound's touchdown is two feet: their mean)
+LATE_WINDOW = 0.3          # a foot landing within this share of a period after its schedule
+LANDING_ZONE_M = 0.01      # the last part of a swing's descent that reaches the floor's ground;
+#                            the reach is held within half of it, so the descent stays monotonic
 
 
 class Plan:
@@ -57,38 +75,115 @@ class Plan:
                               speed_m_s + rate(floor.x_m), floor.pitch_rad,
                               rate(floor.pitch_rad)], -1)              # (knots, 5)
 
-    def at(self, t: float):
-        """(forces (legs, 2), body (5,)) at time t (s) of the period, linear between knots."""
+    def _knots(self, t: float) -> tuple[int, int, float]:
+        """(knot, next knot, share of the way to it) at time t (s) of the period."""
         n = self.floor.t.size
         u = (t % self.period) / self.period * n
         k = int(math.floor(u)) % n
-        s = u - math.floor(u)
-        k1 = (k + 1) % n
+        return k, (k + 1) % n, u - math.floor(u)
+
+    def at(self, t: float):
+        """(forces (legs, 2), body (5,)) at time t (s) of the period, linear between knots."""
+        k, k1, s = self._knots(t)
         forces = (1 - s) * self.floor.force_N[:, k] + s * self.floor.force_N[:, k1]
         return forces, (1 - s) * self.body[k] + s * self.body[k1]
+
+    def touchdown_heights(self, hips, phases, stance_start: float) -> np.ndarray:
+        """(legs,) m: each hip's height above its nominal one at the leg's scheduled touchdown
+        (cycle phase stance_start, the leg at its gait phase phases (rad)), the floor's heave z
+        and pitch theta there: z - sin(theta) x + (cos(theta) - 1) z_hip; hips (legs, 2) m the
+        hips' (x, z) from the centre of mass, in the body frame."""
+        out = np.empty(len(phases))
+        for i, phase in enumerate(phases):
+            k, k1, s = self._knots((stance_start - phase / (2.0 * math.pi)) % 1.0 * self.period)
+            z, theta = ((1 - s) * v[k] + s * v[k1] for v in (self.floor.z_m, self.floor.pitch_rad))
+            out[i] = z - math.sin(theta) * hips[i][0] + (math.cos(theta) - 1.0) * hips[i][1]
+        return out
 
 
 class TrackingController(FootLegController):
     """The foot/leg controller (FootLegController) whose stance feet track the floor's forces
     and motion (module docstring) from takeover_s (s), blended in over one period; the floor's
-    period starts at start_s (s), with the gait's."""
+    period starts at start_s (s), with the gait's. The gait (its references at a time: the
+    Diagram's GaitSource, path with its phases (rad), stance start and y_home (m)) is followed
+    on the controller's own clock, which lags the run's time by the late touchdowns once the
+    tracking is in full (discrete state "clock": the lag (s), then whether each foot was in the
+    support at the last tick)."""
 
     def __init__(self, params, layout, gains, knobs, transfer_s, plan: Plan, start_s: float,
-                 takeover_s: float):
+                 takeover_s: float, gait, path):
         super().__init__(params, layout, gains, knobs, transfer_s)
         self._plan, self._start_s, self._takeover_s = plan, start_s, takeover_s
+        self._gait, self._gait_params = gait, params.gait
+        self._phases = np.array([path.leg_phase(leg) for leg in layout.legs])
+        self._stance_start = path.stance_start(params.gait)
+        self._y_home = params.gait.y_home_m
+        k = self.constants
+        self.landing_m = np.clip(plan.touchdown_heights(k.hips_m[:, [0, 2]] - k.com_m[[0, 2]],
+                                                        self._phases, self._stance_start),
+                                 -LANDING_ZONE_M / 2, LANDING_ZONE_M / 2)
+        self._clock = self.DeclareDiscreteState(np.zeros(1 + len(layout.legs)))
 
-    def stance_torques(self, plan, state, t: float) -> tuple:
+    def _in_full(self, t: float) -> bool:
+        """Whether the tracking is in full at time t (s): one period after the takeover."""
+        return t - self._takeover_s >= self._plan.period
+
+    def _update(self, context, discrete_state):
+        clock = context.get_discrete_state(self._clock).get_value()
+        _, state, loads, memory, t, impulse = self._tick(context)
+        gait_s, was = t - clock[0], clock[1:] > 0.5
+        new = self.command(self.references(gait_s, was, t), state, loads, memory, t, gait_s)
+        discrete_state.set_value(self._memory, np.concatenate([memory.ravel(), impulse]))
+        discrete_state.set_value(self._command, new)
+        discrete_state.set_value(self._clock, np.append(
+            self.lag(clock[0], was, memory[:, 0] > 0.5, t, gait_s), memory[:, 0]))
+
+    def references(self, gait_s: float, was, t: float) -> np.ndarray:
+        """The foot references (GaitSource) at the gait's clock gait_s (s), with the tracking
+        in full at time t (s) each swing landing at the floor's hip height (landing_m, over the
+        last LANDING_ZONE_M of its descent: its target, speed and acceleration) and each foot due
+        and not in the support at the last tick (was: (legs,) bool) looking for it there."""
+        out = np.array(self._gait.references(gait_s), dtype=float)
+        if not self._in_full(t):
+            return out
+        targets, velocities, accelerations, weights = reference_parts(out)   # views
+        for i, depth in enumerate(self.landing_m):
+            if weights[i] == 0.0 and velocities[i, 1] < 0.0:
+                r = 1.0 - (targets[i, 1] - self._y_home) / LANDING_ZONE_M
+                if r > 0.0:             # y - depth r^2, r' = -y'/zone, r'' = -y''/zone
+                    rate, curve = -velocities[i, 1] / LANDING_ZONE_M, \
+                        -accelerations[i, 1] / LANDING_ZONE_M
+                    targets[i, 1] -= depth * r * r
+                    velocities[i, 1] -= 2.0 * depth * r * rate
+                    accelerations[i, 1] -= 2.0 * depth * (rate * rate + r * curve)
+            elif weights[i] > 0.0 and not was[i]:
+                targets[i, 1] -= depth
+        return out
+
+    def lag(self, lag_s: float, was, on, t: float, gait_s: float) -> float:
+        """The clock's lag (s) after a tick at time t (s), the gait's clock at gait_s (s): each
+        foot that joined the support (was not, is on: (legs,) bool) within LATE_WINDOW of a
+        period after its scheduled touchdown adds TOUCHDOWN_LOCK_GAIN of its lateness, once the
+        tracking is in full."""
+        if not self._in_full(t):
+            return lag_s
+        u = cycle_phase(self._gait_params, gait_s - self._start_s, self._phases)
+        late = np.mod(u - self._stance_start, 1.0)
+        joined = on & ~was & (late < LATE_WINDOW)
+        return lag_s + TOUCHDOWN_LOCK_GAIN * float(late[joined].sum()) * self._plan.period
+
+    def stance_torques(self, plan, state, t: float, gait_s: float) -> tuple:
         """The foot/leg controller's until the takeover; then, blended in over one
         period (the virtual model's forces giving way to the tracking ones), the floor's forces
-        and the feedback on the stance feet."""
+        and the feedback on the stance feet, at the gait's clock gait_s (s)."""
         share = (t - self._takeover_s) / self._plan.period
         if share <= 0.0:
-            return super().stance_torques(plan, state, t)
-        forces_w, body = self._plan.at(t - self._start_s)
+            return super().stance_torques(plan, state, t, gait_s)
+        forces_w, body = self._plan.at(gait_s - self._start_s)
         forces = self._forces_plane(plan, np.asarray(state, dtype=float), forces_w, body)
         if share < 1.0:
-            forces = share * forces + (1.0 - share) * super().stance_torques(plan, state, t)[2]
+            forces = share * forces + (1.0 - share) * super().stance_torques(
+                plan, state, t, gait_s)[2]
         return plan.base, plan.jf, forces
 
     def _forces_plane(self, plan, state, forces_w, body) -> np.ndarray:
@@ -203,8 +298,8 @@ class JumpTrackingController(FootLegController):
         self._landing_q = params.fivebar_leg.inverse(      # the touchdown pose, the catch's top
             np.array([params.gait.x_center_m, -landing.u[-1]]), KNEES_OUT).q
 
-    def stance_torques(self, plan, state, t: float) -> tuple:
-        base, jf, forces = super().stance_torques(plan, state, t)
+    def stance_torques(self, plan, state, t: float, gait_s: float) -> tuple:
+        base, jf, forces = super().stance_torques(plan, state, t, gait_s)
         push, land, k = self._push, self._landing, self.constants
         landing = land.start_s <= t < land.end_s
         if not (landing or push is not None and push.onset_s <= t < push.end_s):
@@ -296,7 +391,8 @@ class Tracking(FootLeg):
         return builder.AddNamedSystem("leg_controller", TrackingController(
             params, layout, self.gains(params, layout), self, scenario.load_transfer_s, plan,
             path.start_s(scenario.stand_s),
-            path.start_s(scenario.stand_s) + self.takeover * scenario.ramp_s))
+            path.start_s(scenario.stand_s) + self.takeover * scenario.ramp_s,
+            builder.GetSubsystemByName("gait_source"), path))
 
     def _add_strokes(self, builder, params, layout, scenario) -> JumpTrackingController:
         """A jump's or a drop's controller: a jump's optimal push to the path's height (or the

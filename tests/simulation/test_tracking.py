@@ -35,58 +35,6 @@ def test_the_tracked_bound_asks_less_than_the_foot_leg_controllers():
 
 
 @pytest.mark.slow
-def test_the_bound_at_its_top_speed_is_tracked_to_85_percent_and_achieved():
-    """gait: {kind: bound, speed_m_s: max} with the tracking controller (issue 41): three whole
-    cycles after the ramp, achieved (a torque FAIL is the optimum's own: it rides the envelope),
-    its mean forward speed at least 85 % of the optimum's, no stance asking less than the floor;
-    the same at half the plant step."""
-    from fivebar_drake.pipeline import run_step_check
-
-    record = run_simulation(load_scenario(gait={"kind": "bound", "speed_m_s": "max"},
-                                          duration_s=2.8, controller={"kind": "tracking"}),
-                            progress=False)
-    half = run_step_check(record, progress=False)
-    summary = summarize_run(record, half)
-    assert summary["verdict"] not in ("not_achieved", "insufficient"), summary["answer"]
-    assert summary["mean_forward_speed_m_s"] >= 0.85 * summary["gait_speed_m_s"]
-    assert summary["step_check"]["achieved"] and not summary["step_check"]["marginal"]
-    a = summary["any_controller"]
-    assert a["floor_Nm"] <= a["asked_Nm"]
-
-
-@pytest.mark.slow
-def test_the_fastest_achieved_is_written_only_if_achieved_at_both_steps(tmp_path):
-    """optimal --simulate where a gait's optimum is not achieved (cli._fastest_achieved): the
-    top speeds at the longer duty factors are tracked in turn (from a stand-in optimum at 0.55
-    for the trot: 0.6, the search's longest, is the one left), and the one kept is written with
-    its step check, achieved at the plant step and at half of it, its record what its files
-    say; none kept: each duty factor tried, with what it missed, and nothing written."""
-    import json
-
-    from style_rules import report_violations
-
-    from fivebar_drake.cli import _fastest_achieved
-    from fivebar_drake.core.interrupts import Signals
-    from fivebar_drake.robots.quadruped.config import load_params
-    from fivebar_drake.verdicts.rules import ACHIEVED_VERDICTS
-
-    optimum = {"kind": "trot", "duty_factor": 0.55, "speed_m_s": 1.0}
-    row, files = _fastest_achieved(load_params(), optimum, 0.0, tmp_path, Signals())
-    if row["folder"] is None:
-        assert [t["duty_factor"] for t in row["tried"]] == [0.6] and row["tried"][0]["missed"]
-        assert not files and not any(tmp_path.iterdir())
-        return
-    assert row["duty_factor"] == 0.6 and not row["tried"]
-    summary = json.loads((tmp_path / row["folder"] / "summary.json").read_text())
-    assert tmp_path / row["folder"] / "summary.json" in files
-    assert summary["verdict"] in ACHIEVED_VERDICTS and row["verdict"] == summary["verdict"]
-    assert summary["step_check"]["achieved_at_half_step"]
-    assert row["speed_m_s"] == summary["mean_forward_speed_m_s"] == row["share_of_optimum"]
-    assert row["planned_m_s"] == pytest.approx(summary["gait_speed_m_s"], rel=1e-9)
-    assert not report_violations(tmp_path)      # the optimum's swing shape among the figures
-
-
-@pytest.mark.slow
 def test_the_tracked_trot_is_achieved_without_a_yaw_wrench():
     """The default trot, tracked: achieved, no motor at a limit more than 1 % of the time, and
     its worst demand p99 at most 2x the floor. On a diagonal pair a pitch moment has no other
