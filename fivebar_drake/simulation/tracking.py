@@ -17,13 +17,14 @@ pitch and pitch rate (towards the floor's), roll and roll rate (towards level), 
 controller's gains (FootLeg.gains). The swing legs, the support's memory, the links' weight and
 everything before the takeover are the foot/leg controller's (FootLegController), with two
 changes once the tracking is in full:
-- the gait's clock waits for late feet: a foot that lands after its scheduled touchdown moves
-  the clock the controller follows (the path's references and the floor's motion) back by
-  TOUCHDOWN_LOCK_GAIN of its lateness, so the floor's stance starts where the feet do (a pair
-  that lands late no longer starts its stance with the floor's force at its plateau, nor with
-  the body falling faster than the floor's: on the trot at 0.9 of its top speed this took the
-  time at the motors' limits from 12 % to under 5 %); an early foot is held where it lands (the
-  foot/leg controller's touchdown detection) and moves nothing;
+- the gait's clock waits for late feet: the feet that land together (a trot's diagonal, a
+  bound's pair, a pronk's four) move the clock the controller follows (the path's references
+  and the floor's motion) back by their mean lateness after their scheduled touchdown (an
+  early foot counting as on time: it is held where it lands, the foot/leg controller's
+  touchdown detection), so the floor's stance starts where the feet do: a pair that lands
+  late no longer starts its stance with the floor's force at its plateau and the body falling
+  faster than the floor's, the feedback's catch-up that put the A motors beyond their peak
+  current;
 - each swing lands where the floor's body puts the ground: the last LANDING_ZONE_M of its
   descent reaches the floor's hip height at its touchdown (Plan.touchdown_heights: the floor
   lets the body heave and pitch, the path ends each swing at y_home under the hip), and a foot
@@ -51,8 +52,6 @@ from fivebar_drake.robots.quadruped.sdf import body_height
 from fivebar_drake.simulation.systems import FootLeg, FootLegController, register_controller
 
 PUSH_WINDOW_SLACK = 0.25   # a tracked push may last this share longer than planned
-TOUCHDOWN_LOCK_GAIN = 0.5  # the gait's clock lags by this share of each late foot's lateness
-#                            (a trot's or a bound's touchdown is two feet: their mean)
 LATE_WINDOW = 0.3          # a foot landing within this share of a period after its schedule
 LANDING_ZONE_M = 0.01      # the last part of a swing's descent that reaches the floor's ground;
 #                            the reach is held within half of it, so the descent stays monotonic
@@ -122,6 +121,10 @@ class TrackingController(FootLegController):
         self.landing_m = np.clip(plan.touchdown_heights(k.hips_m[:, [0, 2]] - k.com_m[[0, 2]],
                                                         self._phases, self._stance_start),
                                  -LANDING_ZONE_M / 2, LANDING_ZONE_M / 2)
+        # each foot's share of the lag: 1 / the feet landing with it (their mean lateness)
+        together = np.isclose(np.mod(self._phases[:, None] - self._phases[None, :], 2 * math.pi),
+                              0.0).sum(1)
+        self._lag_share = 1.0 / together
         self._clock = self.DeclareDiscreteState(np.zeros(1 + len(layout.legs)))
 
     def _in_full(self, t: float) -> bool:
@@ -163,14 +166,14 @@ class TrackingController(FootLegController):
     def lag(self, lag_s: float, was, on, t: float, gait_s: float) -> float:
         """The clock's lag (s) after a tick at time t (s), the gait's clock at gait_s (s): each
         foot that joined the support (was not, is on: (legs,) bool) within LATE_WINDOW of a
-        period after its scheduled touchdown adds TOUCHDOWN_LOCK_GAIN of its lateness, once the
-        tracking is in full."""
+        period after its scheduled touchdown adds its lateness over the number of feet that land
+        with it (the clock follows their mean lateness), once the tracking is in full."""
         if not self._in_full(t):
             return lag_s
         u = cycle_phase(self._gait_params, gait_s - self._start_s, self._phases)
         late = np.mod(u - self._stance_start, 1.0)
         joined = on & ~was & (late < LATE_WINDOW)
-        return lag_s + TOUCHDOWN_LOCK_GAIN * float(late[joined].sum()) * self._plan.period
+        return lag_s + float((self._lag_share * late)[joined].sum()) * self._plan.period
 
     def stance_torques(self, plan, state, t: float, gait_s: float) -> tuple:
         """The foot/leg controller's until the takeover; then, blended in over one
