@@ -397,8 +397,8 @@ def _held(summary: dict) -> bool:
 def _fastest_achieved(params, optimum: dict, payload_kg: float, out,
                       signals) -> tuple[dict, list]:
     """Where a gait's optimum (its TopSpeed.row()) is not achieved when tracked: the optimum's
-    path at each of ACHIEVED_SHARES of its speed (its frequency; the optimum plans the swing at
-    the motors' limits, where no feedback fits), then the gait's top speed at each longer duty
+    own path at each of ACHIEVED_SHARES of its speed (its frequency; the optimum plans the swing
+    at the motors' limits, where no feedback fits), then the gait's top speed at each longer duty
     factor (ACHIEVED_DUTY_STEP apart, up to the search's longest: a longer stance asks each foot
     for less force and a duty factor of 0.5 or more has no flight), tracked as the optimum's;
     the first achieved at the plant step and at half of it is written, with its step check, to
@@ -414,12 +414,14 @@ def _fastest_achieved(params, optimum: dict, payload_kg: float, out,
     kind, stop, tried = optimum["kind"], (lambda: signals.name), []
     longer = np.arange(optimum["duty_factor"] + ACHIEVED_DUTY_STEP, max(DUTIES[kind]) + 1e-9,
                        ACHIEVED_DUTY_STEP)
-    plans = ([(optimum["duty_factor"], share) for share in ACHIEVED_SHARES]
+    # (the duty factor searched alone, None: the optimum itself; its share)
+    plans = ([(None, share) for share in ACHIEVED_SHARES]
              + [(duty, 1.0) for duty in np.round(longer, 3).tolist()])
-    for duty, share in plans:
+    for searched, share in plans:
+        duty = optimum["duty_factor"] if searched is None else searched
         try:
             with signals.gently():
-                record = run_simulation(top_speed_scenario(kind, payload_kg, duty, share),
+                record = run_simulation(top_speed_scenario(kind, payload_kg, searched, share),
                                         params, progress=True, stop=stop)
                 summary = summarize_run(record)
                 half = (run_step_check(record, progress=True, stop=stop)
@@ -435,7 +437,8 @@ def _fastest_achieved(params, optimum: dict, payload_kg: float, out,
                 folder = prepare_output_dir(out / f"top_speed_{kind}_achieved", "--out",
                                             SIMULATION_FILES)
                 summary, files = write_simulation(record, folder, half=half)
-                planned = share * top_speed(params, kind, payload_kg, duties=(duty,)).speed_m_s
+                planned = share * top_speed(params, kind, payload_kg, duties=(
+                    None if searched is None else (searched,))).speed_m_s
                 return {"folder": folder.name, "duty_factor": duty, "share": share,
                         "planned_m_s": planned,
                         "speed_m_s": summary["mean_forward_speed_m_s"],
