@@ -168,11 +168,12 @@ class TrackingController(FootLegController):
         foot that joined the support (was not, is on: (legs,) bool) within LATE_WINDOW of a
         period after its scheduled touchdown adds its lateness over the number of feet that land
         with it (the clock follows their mean lateness), once the tracking is in full."""
-        if not self._in_full(t):
+        joined = on & ~was
+        if not (joined.any() and self._in_full(t)):
             return lag_s
         u = cycle_phase(self._gait_params, gait_s - self._start_s, self._phases)
         late = np.mod(u - self._stance_start, 1.0)
-        joined = on & ~was & (late < LATE_WINDOW)
+        joined &= late < LATE_WINDOW
         return lag_s + float((self._lag_share * late)[joined].sum()) * self._plan.period
 
     def stance_torques(self, plan, state, t: float, gait_s: float) -> tuple:
