@@ -403,8 +403,8 @@ def _fastest_achieved(params, optimum: dict, payload_kg: float, out,
     for less force and a duty factor of 0.5 or more has no flight), tracked as the optimum's;
     the first achieved at the plant step and at half of it is written, with its step check, to
     out/top_speed_KIND_achieved: (its record for optimal.json: duty factor, share, planned and
-    tracked speed, share of the optimum, verdict; or the plans tried and what each missed,
-    files)."""
+    tracked speed, share of the optimum, verdict; or the plans tried, what each missed and
+    whether it was simulated (a plan with no floor is not), files)."""
     import numpy as np
 
     from fivebar_drake.optimal.top_speed import DUTIES, top_speed
@@ -428,7 +428,8 @@ def _fastest_achieved(params, optimum: dict, payload_kg: float, out,
                         if summary["verdict"] in ACHIEVED_VERDICTS and not signals.signum
                         else None)
         except ParameterError as err:
-            tried.append({"duty_factor": duty, "share": share, "missed": err.message})
+            tried.append({"duty_factor": duty, "share": share, "missed": err.message,
+                          "simulated": False})
             continue
         signals.raise_received()
         if half is not None:
@@ -445,7 +446,8 @@ def _fastest_achieved(params, optimum: dict, payload_kg: float, out,
                         "share_of_optimum": (summary["mean_forward_speed_m_s"]
                                              / optimum["speed_m_s"]),
                         "verdict": summary["verdict"], "tried": tried}, files
-        tried.append({"duty_factor": duty, "share": share, "missed": summary["answer"]})
+        tried.append({"duty_factor": duty, "share": share, "missed": summary["answer"],
+                      "simulated": True})
     return {"folder": None, "tried": tried}, []
 
 
@@ -629,8 +631,10 @@ def parser() -> argparse.ArgumentParser:
                         "top speed (the optimum's gait, the tracking controller following its "
                         "floor, with the step check) into DIR/top_speed_GAIT and report its "
                         "speed against the optimum's; where that is not achieved, the fastest "
-                        "top speed at a longer duty factor that is, at the step and at half "
-                        "of it, into DIR/top_speed_GAIT_achieved")
+                        "plan that is, at the step and at half of it (the optimum's path at "
+                        f"{', '.join(f'{s:.0%}' for s in ACHIEVED_SHARES)} of its speed, "
+                        "then the top speeds at longer duty factors), into "
+                        "DIR/top_speed_GAIT_achieved".replace("%", "%%"))
     o.add_argument("--out", metavar="DIR", help="output folder: optimal.md, optimal.json, "
                    "optimal_jump.png (default: out/optimal)")
     c = command("compare", _compare, "simulated runs side by side: each motor's verdict and torques (what a foot path or a design costs)")

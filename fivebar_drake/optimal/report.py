@@ -317,7 +317,7 @@ def fastest_achieved_text(kind: str, found: dict) -> str:
     """The sentence on the fastest top speed the tracking controller achieved where the
     optimum's was not (cli._fastest_achieved's record)."""
     if found["folder"] is None:
-        plans = ", ".join(_plan_name(t) for t in found["tried"])
+        plans = "; ".join(f"{_plan_name(t)}: {_missed(t)}" for t in found["tried"])
         return (f"Nor is a slower {kind} ({plans or 'none left'}): this controller achieves "
                 "none of them.")
     return (f"The fastest this controller achieves: the {kind}'s {_plan_name(found)} "
@@ -325,6 +325,14 @@ def fastest_achieved_text(kind: str, found: dict) -> str:
             f"{found['share_of_optimum']:.0%} of the top speed; verdict "
             f"{found['verdict'].upper()} (achieved, also at half the step), "
             f"`{found['folder']}/`.")
+
+
+def _missed(plan: dict) -> str:
+    """What a plan of the fastest-achieved search missed, short: the run's deciding check, or
+    why it was not simulated."""
+    if not plan.get("simulated", True):
+        return f"not simulated, {plan['missed'].rstrip('.')}"
+    return plan["missed"].removeprefix("NOT ACHIEVED, decided by the achieved check: ").rstrip(".")
 
 
 def _plan_name(plan: dict) -> str:

@@ -4,8 +4,9 @@ pronk), for any controller, and what limits it.
 The search. A gait's speed is its stance foot's speed relative to the hip, v = 2a f / beta
 (half stride a, frequency f, duty factor beta). Over a grid of duty factors (DUTIES) and half
 strides (STRIDE_SHARES of the longest the leg reaches at the gait's height and [limits]), the
-frequency is bisected (FREQUENCY_STEPS) for the fastest that passes every check below; the top
-speed is the fastest over the grid. It is the fastest the search found, a lower end: the true
+frequency is bisected (FREQUENCY_STEPS) for the fastest that passes every check below (a slow
+gait may fail where a faster one passes: _fastest_at); the top speed is the fastest over the
+grid. It is the fastest the search found, a lower end: the true
 top speed of the model lies between it and the no-load bound (speed_bound), and both are
 reported.
 
@@ -37,7 +38,7 @@ import dataclasses
 import math
 import pickle
 from collections import Counter
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.optimize import minimize
@@ -57,6 +58,8 @@ DUTIES = {"trot": (0.5, 0.4, 0.6), "bound": (0.5, 0.35, 0.65), "pronk": (0.5, 0.
 STRIDE_SHARES = (0.75, 0.5, 0.3, 1.0)   # half strides: these shares of the longest one
 LADDER_RATIO = 1.35                  # the frequencies tried first, this factor apart
 FREQUENCY_STEPS = 4                  # then bisection steps (resolution 0.35/16: 2 %)
+WINDOW_STEPS = 2                     # steps looking for a pass between too slow and too fast
+#                                      (a window narrower than a quarter of a rung may be missed)
 MIN_FREQUENCY_HZ = 0.25              # the slowest frequency tried
 SWING_SAMPLES = 121                  # samples of the swing
 SWING_EVALUATIONS = 150              # Nelder-Mead's evaluations of one swing at most
@@ -104,12 +107,15 @@ class Check:
     """One (beta, a, f) checked: passed, why not (the first check that failed), and where it
     passed the figures TopSpeed reports (figures: dict); hopeless where the swing's or the
     stance's torques lie more than HOPELESS_MARGIN beyond the envelope (a faster gait of the
-    same stride and duty factor asks more: the search climbs no further)."""
+    same stride and duty factor asks more: the search climbs no further); slow where the stance's
+    balance failed, which a faster gait of the same stride and duty factor may pass (a diagonal
+    pair or a pronk's four feet held long topple the body past the pitch bound)."""
 
     passed: bool
     why: str
     figures: dict | None = None
     hopeless: bool = False
+    slow: bool = False          # failed as a slow gait can (the stance's balance)
 
 
 def top_speed(params: Params, kind: str, payload_kg: float = 0.0, duties=None,
@@ -144,67 +150,112 @@ def _design_key(params: Params) -> tuple:
 
 
 def _search(params: Params, kind: str, payload_kg: float, duties, shares) -> TopSpeed:
-    """top_speed, computed: per (beta, a) the ladder of frequencies (LADDER_RATIO apart, from
-    MIN_FREQUENCY_HZ to the no-load bound's) upwards to the first failure after a pass (a slow
-    gait may fail where a faster one passes: a diagonal pair held long topples the body past
-    the pitch bound), then bisection between the last pass and that failure."""
+    """top_speed, computed: the fastest pass (_fastest_at) over the grid of duty factors and
+    half strides."""
     base = with_path_defaults(params, kind)
     bound = speed_bound(base)
-    best, failing, checks, reasons = None, "", 0, Counter()
+    best, tally = None, _Tally()
     for beta in duties:
-        path = foot_path(kind).at_duty(beta, base.gait)
-        longest = longest_half_stride(base, path)
+        longest = longest_half_stride(base, foot_path(kind).at_duty(beta, base.gait))
         for share in shares:
             a = share * longest
-            # no faster: the no-load bound, and the gait's own bound on the frequency
-            top = min(bound * beta / (2.0 * a), MAX_GAIT_FREQUENCY_HZ)
-            # from the best speed so far (a pair that fails there cannot beat it), else from
-            # the slowest frequency
-            start = MIN_FREQUENCY_HZ if best is None else min(best[0] * beta / (2.0 * a), top)
-            ladder = start * LADDER_RATIO ** np.arange(
-                max(1, math.ceil(math.log(top / start, LADDER_RATIO)) + 1))
-            low = passed = None
-            why = ("the no-load bound" if top < MAX_GAIT_FREQUENCY_HZ else
-                   f"the gaits' highest frequency, {MAX_GAIT_FREQUENCY_HZ:g} Hz")
-            for f in np.minimum(ladder, top):
-                result = check(base, kind, beta, a, float(f), payload_kg)
-                checks += 1
-                if result.passed:
-                    low, passed = float(f), result
-                elif passed is not None or best is not None:
-                    high, why = float(f), result.why
-                    break
-                else:
-                    reasons[result.why.split(" (")[0]] += 1
-                    if result.hopeless:
-                        break
-            if passed is None:
-                continue
-            if low < top:
-                for _ in range(FREQUENCY_STEPS):
-                    middle = 0.5 * (low + high)
-                    result = check(base, kind, beta, a, middle, payload_kg)
-                    checks += 1
-                    if result.passed:
-                        low, passed = middle, result
-                    else:
-                        high, why = middle, result.why
-            speed = 2.0 * a * low / beta
-            if best is None or speed > best[0]:
-                longest_used = share == 1.0
-                best, failing = (speed, beta, a, low, passed.figures), why + (
-                    "; and the longest stride the leg reaches" if longest_used else "")
+            found = _fastest_at(base, kind, beta, a, None if best is None else best[0], bound,
+                                payload_kg, tally)
+            if found is not None and (best is None or found[0] > best[0]):
+                best = (*found, beta, a, share)
     if best is None:          # what failed, the commonest first
         failing = "no duty factor, stride and frequency passes: " + ", ".join(
-            f"{why} ({n} of {checks} checks)" for why, n in reasons.most_common(3))
+            f"{why} ({n} of {tally.checks} checks)" for why, n in tally.reasons.most_common(3))
         return TopSpeed(kind, math.nan, math.nan, math.nan, math.nan, math.nan, math.nan,
                         (math.nan, math.nan), (math.nan, math.nan), failing, bound, None, {},
-                        checks)
-    speed, beta, a, f, figures = best
-    g = params.robot.gravity_m_s2
+                        tally.checks)
+    speed, f, passed, why, beta, a, share = best
+    failing = why + ("; and the longest stride the leg reaches" if share == 1.0 else "")
+    figures, g = passed.figures, params.robot.gravity_m_s2
     return TopSpeed(kind, speed, f, beta, 2.0 * a, speed**2 / (g * -base.gait.y_home_m),
                     figures["cost_of_transport"], figures["peak_Nm"], figures["rms_Nm"],
-                    failing, bound, figures["path"], figures["neglected"], checks)
+                    failing, bound, figures["path"], figures["neglected"], tally.checks)
+
+
+@dataclass
+class _Tally:
+    """The search's checks so far and what failed them."""
+
+    checks: int = 0
+    reasons: Counter = field(default_factory=Counter)
+
+    def check(self, base: Params, kind: str, beta: float, a: float, f: float,
+              payload_kg: float) -> Check:
+        self.checks += 1
+        result = check(base, kind, beta, a, f, payload_kg)
+        if not result.passed:
+            self.reasons[result.why.split(" (")[0]] += 1
+        return result
+
+
+def _fastest_at(base: Params, kind: str, beta: float, a: float, faster_than: float | None,
+                bound: float, payload_kg: float, tally: _Tally) -> tuple | None:
+    """(speed m/s, frequency Hz, its Check, what failed just faster) of the fastest pass at duty
+    factor beta and half stride a (m) faster than faster_than (m/s; None: any), or None: the
+    ladder of frequencies (LADDER_RATIO apart, from faster_than's or MIN_FREQUENCY_HZ, to the
+    no-load bound's and the gaits' highest) upwards to the first failure after a pass, then
+    bisection (FREQUENCY_STEPS) between the last pass and that failure. A slow gait may fail
+    where a faster one passes (Check.slow: the stance's balance), so the ladder climbs past
+    such failures; where it steps from one straight to a failure of a faster kind, the band
+    between them is bisected for a pass (_window: the pronk's passes lie between about 3.4 and
+    3.9 Hz at a half stride of 70 mm, narrower than a rung)."""
+    top = min(bound * beta / (2.0 * a), MAX_GAIT_FREQUENCY_HZ)
+    start = (MIN_FREQUENCY_HZ if faster_than is None
+             else min(faster_than * beta / (2.0 * a), top))
+    ladder = start * LADDER_RATIO ** np.arange(
+        max(1, math.ceil(math.log(top / start, LADDER_RATIO)) + 1))
+    low = passed = slow = None
+    why = ("the no-load bound" if top < MAX_GAIT_FREQUENCY_HZ else
+           f"the gaits' highest frequency, {MAX_GAIT_FREQUENCY_HZ:g} Hz")
+    for f in np.minimum(ladder, top):
+        result = tally.check(base, kind, beta, a, float(f), payload_kg)
+        if result.passed:
+            low, passed = float(f), result
+        elif passed is not None:
+            high, why = float(f), result.why
+            break
+        elif result.slow:
+            slow = float(f)
+        else:                   # too fast, nothing passed yet
+            high, why = float(f), result.why
+            if slow is not None:    # a band between too slow and too fast?
+                low, passed = _window(base, kind, beta, a, slow, high, payload_kg, tally)
+                slow = None
+            if passed is not None or faster_than is not None or result.hopeless:
+                break
+    if passed is None:
+        return None
+    if low < top:
+        for _ in range(FREQUENCY_STEPS):
+            middle = 0.5 * (low + high)
+            result = tally.check(base, kind, beta, a, middle, payload_kg)
+            if result.passed:
+                low, passed = middle, result
+            else:
+                high, why = middle, result.why
+    return 2.0 * a * low / beta, low, passed, why
+
+
+def _window(base: Params, kind: str, beta: float, a: float, slow: float, fast: float,
+            payload_kg: float, tally: _Tally) -> tuple:
+    """(a passing frequency (Hz), its Check) or (None, None): bisection (WINDOW_STEPS) between
+    a frequency too slow (the stance's balance failed) and one too fast (another check
+    failed) for a frequency that passes both."""
+    for _ in range(WINDOW_STEPS):
+        middle = 0.5 * (slow + fast)
+        result = tally.check(base, kind, beta, a, middle, payload_kg)
+        if result.passed:
+            return middle, result
+        if result.slow:
+            slow = middle
+        else:
+            fast = middle
+    return None, None
 
 
 def longest_half_stride(params: Params, path) -> float:
@@ -272,7 +323,7 @@ def check(base: Params, kind: str, beta: float, a: float, f: float,
         floor = gait_floor(params, dataclasses.replace(
             path, swing_reach_m=0.0, swing_skew_m=0.0, swing_lift_skew_m=0.0), payload_kg)
     except ParameterError as error:
-        return Check(False, f"the stance's balance ({error.message})")
+        return Check(False, f"the stance's balance ({error.message})", slow=True)
     held = _stance(params, path, floor)
     if held["margin"] < 0.0:
         return Check(False, f"the stance's {held['bind']}",

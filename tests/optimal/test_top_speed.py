@@ -14,8 +14,8 @@ import pytest
 from fivebar_drake.gaits import foot_path
 from fivebar_drake.mechanisms.fivebar import link_coms, mass_matrix
 from fivebar_drake.optimal.gait_floor import fastest_gait, gait_floor
-from fivebar_drake.optimal.top_speed import (_leg_motion, _swing_torques, check, speed_bound,
-                                             top_speed)
+from fivebar_drake.optimal.top_speed import (_leg_motion, _swing_torques, check,
+                                             longest_half_stride, speed_bound, top_speed)
 from fivebar_drake.robots.quadruped.closure import fixed_leg
 from fivebar_drake.robots.quadruped.config import with_changes, with_gait, with_path_defaults
 from fivebar_drake.robots.quadruped.inverse_dynamics import projected_inverse_dynamics
@@ -131,6 +131,21 @@ def test_the_pronk_flies_the_rest_of_its_period(params):
     stance_s = 0.4 * gait.period_s
     lift_off_speed = math.pi * path.dip_m / stance_s
     assert 2 * lift_off_speed / gait.gravity_m_s2 == pytest.approx(0.6 * gait.period_s)
+
+
+def test_the_search_finds_a_pass_between_too_slow_and_too_fast(params):
+    """The pronk at one duty factor and stride passes only in a band of frequencies: slower, its
+    four feet held long topple the body past the pitch bound; faster, the swing leaves the
+    voltage line. The search's top speed there is at or above every pass of an even scan of
+    the frequencies (within its bisection's 2 %), where one pass exists."""
+    cell = {"duties": (0.5,), "shares": (0.5,)}
+    found = top_speed(params, "pronk", **cell)
+    base = with_path_defaults(params, "pronk")
+    a = 0.5 * longest_half_stride(base, foot_path("pronk").at_duty(0.5, base.gait))
+    scan = [(f, check(base, "pronk", 0.5, a, f)) for f in np.arange(2.5, 6.01, 0.25)]
+    passes = [f for f, result in scan if result.passed]
+    assert passes and any(result.slow for f, result in scan if f < min(passes))
+    assert found.speed_m_s >= 0.98 * 2.0 * a * max(passes) / 0.5
 
 
 def test_the_tracked_run_is_the_optimums_gait(trot, params, monkeypatch):

@@ -102,3 +102,19 @@ def test_the_trot_near_its_top_speed_is_tracked_to_85_percent_at_both_steps(tmp_
     assert row["share_of_optimum"] >= 0.85
     assert row["planned_m_s"] == pytest.approx(summary["gait_speed_m_s"], rel=1e-9)
     assert not report_violations(tmp_path)      # the optimum's swing shape among the figures
+
+
+def test_a_plan_with_no_floor_is_reported_as_not_simulated():
+    """The fastest-achieved search's record, in words (optimal.md): each plan tried with what it
+    missed; one whose gait has no floor (cli._fastest_achieved catches its ParameterError) is
+    named as not simulated, with the floor's reason."""
+    from fivebar_drake.optimal.report import fastest_achieved_text
+
+    why = "no pronk motion found within the legs' reach and [limits]"
+    text = fastest_achieved_text("pronk", {"folder": None, "tried": [
+        {"duty_factor": 0.5, "share": 0.9, "simulated": True,
+         "missed": "NOT ACHIEVED, decided by the achieved check: the run stopped at 1.91 s."},
+        {"duty_factor": 0.5, "share": 0.85, "simulated": False, "missed": why}]})
+    assert "at 90% of its speed: the run stopped at 1.91 s;" in text
+    assert f"at 85% of its speed: not simulated, {why})" in text
+    assert "achieves none of them" in text
