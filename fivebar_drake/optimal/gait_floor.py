@@ -225,26 +225,13 @@ class Layout:
         return 2 * self.n + 6 * self.knots + 3 * np.asarray(k) + axis
 
 
-class Rows:
-    """Sparse rows built up entry by entry: add(row, columns, values), then matrix(columns)."""
-
-    def __init__(self):
-        self.r, self.c, self.v, self.count = [], [], [], 0
-
-    def add(self, row: int, columns, values):
-        columns = np.atleast_1d(columns)
-        self.r.append(np.full(columns.size, row))
-        self.c.append(columns)
-        self.v.append(np.broadcast_to(values, columns.shape).astype(float))
-
-    def new(self) -> int:
-        self.count += 1
-        return self.count - 1
-
-    def matrix(self, columns: int):
-        return sparse.csc_matrix((np.concatenate(self.v), (np.concatenate(self.r),
-                                                           np.concatenate(self.c))),
-                                 shape=(self.count, columns))
+def _rows(entries, count: int, columns: int):
+    """The sparse matrix (count, columns) of the entries (rows, columns, values), arrays that
+    broadcast against each other; repeated entries add up."""
+    r, c, v = (np.concatenate([np.broadcast_to(np.asarray(e[j], dtype=float if j == 2 else int),
+                                               np.broadcast_shapes(*(np.shape(x) for x in e))
+                                               ).ravel() for e in entries]) for j in range(3))
+    return sparse.csc_matrix((v, (r, c)), shape=(count, columns))
 
 
 def _program(body: Body, mass: float, inertia: float, g: float, state, forces, trust,
@@ -274,53 +261,45 @@ def _program(body: Body, mass: float, inertia: float, g: float, state, forces, t
     rx, rz = body.arms(state[0], state[1])
     lay = Layout(n, knots)
 
-    eq, rhs = Rows(), []
-    for k in range(knots):           # knot-wise constant accelerations, the motion periodic
-        nxt = (k + 1) % knots
-        for axis in range(3):
-            row = eq.new()
-            eq.add(row, [lay.p(nxt, axis), lay.p(k, axis), lay.v(k, axis), lay.a(k, axis)],
-                   [1.0, -1.0, -dt, -0.5 * dt * dt])
-            rhs.append(0.0)
-            row = eq.new()
-            eq.add(row, [lay.v(nxt, axis), lay.v(k, axis), lay.a(k, axis)], [1.0, -1.0, -dt])
-            rhs.append(0.0)
-    for axis in (0, 2) if free_height else range(3):   # on the course on average: the mean
-        row = eq.new()                                  # x offset and pitch zero (and height)
-        eq.add(row, lay.p(np.arange(knots), axis), 1.0 / knots)
-        rhs.append(0.0)
+    ks, nxt = np.arange(knots), (np.arange(knots) + 1) % knots
+    entries, rhs = [], [np.zeros(6 * knots)]
+    for axis in range(3):      # knot-wise constant accelerations, the motion periodic
+        pos, vel = 6 * ks + 2 * axis, 6 * ks + 2 * axis + 1
+        entries += [(pos, lay.p(nxt, axis), 1.0), (pos, lay.p(ks, axis), -1.0),
+                    (pos, lay.v(ks, axis), -dt), (pos, lay.a(ks, axis), -0.5 * dt * dt),
+                    (vel, lay.v(nxt, axis), 1.0), (vel, lay.v(ks, axis), -1.0),
+                    (vel, lay.a(ks, axis), -dt)]
+    means = (0, 2) if free_height else (0, 1, 2)   # on the course on average: the mean x
+    for j, axis in enumerate(means):                # offset and pitch zero (and height)
+        entries.append((6 * knots + j, lay.p(ks, axis), 1.0 / knots))
+    rhs.append(np.zeros(len(means)))
+    # per knot: sum F_x = m ddx, sum F_z = m (g + ddz); the pitch, linearised:
+    # sum (r_z F_x - r_x F_z) = I ddtheta, r = foot - com, about (state, forces); roll and yaw:
+    # sum y F_z = 0, sum y F_x = 0
+    row = 6 * knots + len(means) + 5 * ks                   # each knot's first row
+    at = row[body.knots]                                    # each stance sample's knot's
+    feet = np.arange(n)
+    fx_bar = np.bincount(body.knots, forces[:, 0], knots)
+    fz_bar = np.bincount(body.knots, forces[:, 1], knots)
     hip_y = st.hips[body.legs, 1]
-    for k in range(knots):
-        at = np.flatnonzero(body.knots == k)
-        fx, fz = lay.force(at, 0), lay.force(at, 1)
-        row = eq.new()                                   # sum F_x = m ddx
-        eq.add(row, np.append(fx, lay.a(k, 0)), np.append(np.ones(at.size), -mass))
-        rhs.append(0.0)
-        row = eq.new()                                   # sum F_z = m (g + ddz)
-        eq.add(row, np.append(fz, lay.a(k, 1)), np.append(np.ones(at.size), -mass))
-        rhs.append(mass * g)
-        # pitch, linearised: sum (r_z F_x - r_x F_z), r = foot - com, about (state, forces)
-        fx_bar, fz_bar = forces[at, 0].sum(), forces[at, 1].sum()
-        row = eq.new()
-        eq.add(row, np.concatenate([fx, fz, [lay.p(k, 0), lay.p(k, 1), lay.a(k, 2)]]),
-               np.concatenate([rz[at], -rx[at], [fz_bar, -fx_bar, -inertia]]))
-        rhs.append(fz_bar * state[0][k] - fx_bar * state[1][k])
-        row = eq.new()                                   # roll: sum y F_z = 0
-        eq.add(row, fz, hip_y[at])
-        rhs.append(0.0)
-        row = eq.new()                                   # yaw: sum y F_x = 0
-        eq.add(row, fx, hip_y[at])
-        rhs.append(0.0)
+    entries += [(at, lay.force(feet, 0), 1.0), (row, lay.a(ks, 0), -mass),
+                (at + 1, lay.force(feet, 1), 1.0), (row + 1, lay.a(ks, 1), -mass),
+                (at + 2, lay.force(feet, 0), rz), (at + 2, lay.force(feet, 1), -rx),
+                (row + 2, lay.p(ks, 0), fz_bar), (row + 2, lay.p(ks, 1), -fx_bar),
+                (row + 2, lay.a(ks, 2), -inertia),
+                (at + 3, lay.force(feet, 1), hip_y), (at + 4, lay.force(feet, 0), hip_y)]
+    rhs.append(np.stack([np.zeros(knots), np.full(knots, mass * g),
+                         fz_bar * state[0] - fx_bar * state[1], np.zeros(knots),
+                         np.zeros(knots)], -1).ravel())
+    rhs = np.concatenate(rhs)
     prog = MathematicalProgram()
     x = prog.NewContinuousVariables(lay.size, "x")
-    prog.AddLinearEqualityConstraint(eq.matrix(lay.size), np.array(rhs), x)
+    prog.AddLinearEqualityConstraint(_rows(entries, rhs.size, lay.size), rhs, x)
     mu = body.params.body.foot_friction
-    cone = Rows()                    # |F_x| <= mu F_z (so F_z >= 0)
-    for sign in (1.0, -1.0):
-        for i in range(n):
-            cone.add(cone.new(), [lay.force(i, 0), lay.force(i, 1)], [sign, -mu])
-    prog.AddLinearConstraint(cone.matrix(lay.size), np.full(cone.count, -np.inf),
-                             np.zeros(cone.count), x)
+    cone = _rows([(feet, lay.force(feet, 0), 1.0), (feet, lay.force(feet, 1), -mu),
+                  (n + feet, lay.force(feet, 0), -1.0), (n + feet, lay.force(feet, 1), -mu)],
+                 2 * n, lay.size)                    # |F_x| <= mu F_z (so F_z >= 0)
+    prog.AddLinearConstraint(cone, np.full(2 * n, -np.inf), np.zeros(2 * n), x)
     centre = np.stack(state, -1).ravel()                # the trust region about the last motion
     radius = np.tile([trust[0], trust[0], trust[1]], knots)
     pitch = np.tile([np.inf, np.inf, max_pitch_rad(body.params)], knots)   # the pitch's bound
@@ -328,16 +307,13 @@ def _program(body: Body, mass: float, inertia: float, g: float, state, forces, t
                                   np.minimum(centre + radius, pitch),
                                   x[lay.p(0, 0):lay.p(0, 0) + 3 * knots])
     # torques, linear: tau0 + d_tau (offset - state) + gain (F - forces)
-    tq, const = Rows(), np.zeros(2 * n)
-    for i in range(n):
-        k = body.knots[i]
-        for m in range(2):
-            row = tq.new()
-            tq.add(row, [lay.force(i, 0), lay.force(i, 1)], gain[i, m])
-            tq.add(row, [lay.p(k, 0), lay.p(k, 1), lay.p(k, 2)], d_tau[i, m])
-            const[row] = (tau0[i, m] - gain[i, m] @ forces[i]
-                          - d_tau[i, m] @ np.array([state[0][k], state[1][k], state[2][k]]))
-    torque = tq.matrix(lay.size)
+    motor_rows = (2 * feet[:, None] + np.arange(2))[..., None]     # (n, 2, 1)
+    at_state = np.stack(state, -1)[body.knots]                     # (n, 3)
+    torque = _rows([(motor_rows, lay.force(feet, np.arange(2)[:, None, None]).T, gain),
+                    (motor_rows, lay.p(body.knots[:, None, None], np.arange(3)), d_tau)],
+                   2 * n, lay.size)
+    const = np.array([tau0[i, m] - gain[i, m] @ forces[i] - d_tau[i, m] @ at_state[i]
+                      for i in range(n) for m in range(2)])
     peak = prog.NewContinuousVariables(1, "peak")
     if thermal:                      # each motor's RMS torque over the period <= peak
         for leg in range(len(LEGS)):

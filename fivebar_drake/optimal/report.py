@@ -292,9 +292,9 @@ def answer_details(r: dict, params: Params) -> list[str]:
         f"{t['pitch_swing_deg']:.0f} deg; "
         + ("no level body balances" if t["level_floor_Nm"] is None else
            f"{t['level_floor_Nm']:.2f} N·m held level")
-        + f"; {t['free_height_floor_Nm']:.2f} N·m with the body "
-        f"{abs(t['free_height_change_m']) * 1e3:.0f} mm "
-        f"{'higher' if t['free_height_change_m'] >= 0 else 'lower'})"
+        + f"; with the body {abs(t['free_height_change_m']) * 1e3:.0f} mm "
+        f"{'higher' if t['free_height_change_m'] >= 0 else 'lower'} a motion asks "
+        f"{t['free_height_floor_Nm']:.2f} N·m, the least found, not a bound)"
         + (f", beyond the motors' {params.motor.peak_torque_Nm:.2f} N·m (the least found)"
            if t["beyond_motors"] else "")
         + ("" if t["thermal_margin"] is None else
