@@ -623,7 +623,7 @@ def parser() -> argparse.ArgumentParser:
                    "default 0)")
     o.add_argument("--top-speed", metavar="GAITS", help="the gaits whose top speed is "
                    "searched, comma-separated from trot, bound and pronk, or none (default: all "
-                   "three, about 15 s each)")
+                   "three, about 10 to 30 s each)")
     o.add_argument("--simulate", action="store_const", const=True,
                    help="also simulate the highest jump (the jump maneuver planned at the "
                         "ceiling, the tracking controller pushing with the ceiling's torques) "
@@ -680,7 +680,7 @@ def options_markdown() -> str:
                 option += f" {action.metavar}"
             default = "" if action.default is None else f"`{action.default}`"
             text = action.help.replace("(default: %(default)s)", "").replace(
-                "%(default)s", str(action.default)).strip()
+                "%(default)s", str(action.default)).replace("%%", "%").strip()
             rows.append(f"| {name} | `{option}` | {default} | {text} |")
     return "\n".join(rows)
 

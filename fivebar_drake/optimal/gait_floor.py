@@ -225,6 +225,12 @@ class Layout:
         return 2 * self.n + 6 * self.knots + 3 * np.asarray(k) + axis
 
 
+class NoFloorMotion(ParameterError):
+    """No motion of the floor balances the gait within the legs' reach, [limits] and the pitch
+    bound (a stance held long can topple the body: a faster gait of the same path may
+    balance)."""
+
+
 def _rows(entries, count: int, columns: int):
     """The sparse matrix (count, columns) of the entries (rows, columns, values), arrays that
     broadcast against each other; repeated entries add up."""
@@ -402,7 +408,7 @@ def _solve(params: Params, path, payload_kg: float, free_height: bool,
             trust = trust * SHRINK           # converges on the last motion)
         last = min(last, cost)
     if not np.isfinite(last):
-        raise ParameterError(f"no {path.kind} motion found within the legs' reach and [limits] "
+        raise NoFloorMotion(f"no {path.kind} motion found within the legs' reach and [limits] "
                              f"(the body's pitch within {math.degrees(max_pitch_rad(params)):g} deg)",
                              "gait", "parameter file")
     torques = _grid(body, _torques(body, state, forces))

@@ -46,7 +46,7 @@ from scipy.optimize import minimize
 from fivebar_drake.core.validation import MAX_GAIT_FREQUENCY_HZ, ParameterError
 from fivebar_drake.gaits import evaluate, foot_path
 from fivebar_drake.mechanisms.fivebar import KNEES_OUT, limit_tests, past_any
-from fivebar_drake.optimal.gait_floor import gait_floor
+from fivebar_drake.optimal.gait_floor import NoFloorMotion, gait_floor
 from fivebar_drake.robots.quadruped.config import with_gait, with_path_defaults
 from fivebar_drake.robots.quadruped.leg_loads import full_model
 from fivebar_drake.robots.quadruped.legs import LEGS
@@ -115,7 +115,7 @@ class Check:
     why: str
     figures: dict | None = None
     hopeless: bool = False
-    slow: bool = False          # failed as a slow gait can (the stance's balance)
+    slow: bool = False          # failed as a slow gait can (no floor's motion balances it)
 
 
 def top_speed(params: Params, kind: str, payload_kg: float = 0.0, duties=None,
@@ -200,16 +200,19 @@ def _fastest_at(base: Params, kind: str, beta: float, a: float, faster_than: flo
     ladder of frequencies (LADDER_RATIO apart, from faster_than's or MIN_FREQUENCY_HZ, to the
     no-load bound's and the gaits' highest) upwards to the first failure after a pass, then
     bisection (FREQUENCY_STEPS) between the last pass and that failure. A slow gait may fail
-    where a faster one passes (Check.slow: the stance's balance), so the ladder climbs past
-    such failures; where it steps from one straight to a failure of a faster kind, the band
-    between them is bisected for a pass (_window: the pronk's passes lie between about 3.4 and
-    3.9 Hz at a half stride of 70 mm, narrower than a rung)."""
+    where a faster one passes (Check.slow: no floor's motion balances it), so the ladder
+    climbs past such failures; where it steps from one straight to a failure of a faster kind,
+    the band between them is bisected for a pass (_window: the pronk's passes lie between
+    about 3.4 and 3.9 Hz at a half stride of 70 mm, narrower than a rung), kept unless a higher
+    rung passes. Before any pass the climb stops at a faster kind's failure once faster_than
+    is set (a faster gait of this stride asks more) or where it is hopeless; with nothing in
+    hand it goes on."""
     top = min(bound * beta / (2.0 * a), MAX_GAIT_FREQUENCY_HZ)
     start = (MIN_FREQUENCY_HZ if faster_than is None
              else min(faster_than * beta / (2.0 * a), top))
     ladder = start * LADDER_RATIO ** np.arange(
         max(1, math.ceil(math.log(top / start, LADDER_RATIO)) + 1))
-    low = passed = slow = None
+    low = passed = slow = banded = None
     why = ("the no-load bound" if top < MAX_GAIT_FREQUENCY_HZ else
            f"the gaits' highest frequency, {MAX_GAIT_FREQUENCY_HZ:g} Hz")
     for f in np.minimum(ladder, top):
@@ -222,12 +225,15 @@ def _fastest_at(base: Params, kind: str, beta: float, a: float, faster_than: flo
         elif result.slow:
             slow = float(f)
         else:                   # too fast, nothing passed yet
-            high, why = float(f), result.why
             if slow is not None:    # a band between too slow and too fast?
-                low, passed = _window(base, kind, beta, a, slow, high, payload_kg, tally)
+                found = _window(base, kind, beta, a, slow, float(f), payload_kg, tally)
+                if found[0] is not None:    # kept unless a higher rung passes
+                    banded = (*found, float(f), result.why)
                 slow = None
-            if passed is not None or faster_than is not None or result.hopeless:
+            if faster_than is not None or result.hopeless:
                 break
+    if passed is None and banded is not None:
+        low, passed, high, why = banded
     if passed is None:
         return None
     if low < top:
@@ -323,7 +329,8 @@ def check(base: Params, kind: str, beta: float, a: float, f: float,
         floor = gait_floor(params, dataclasses.replace(
             path, swing_reach_m=0.0, swing_skew_m=0.0, swing_lift_skew_m=0.0), payload_kg)
     except ParameterError as error:
-        return Check(False, f"the stance's balance ({error.message})", slow=True)
+        return Check(False, f"the stance's balance ({error.message})",
+                     slow=isinstance(error, NoFloorMotion))
     held = _stance(params, path, floor)
     if held["margin"] < 0.0:
         return Check(False, f"the stance's {held['bind']}",

@@ -220,3 +220,28 @@ def test_a_top_speed_request_the_search_cannot_honour_is_refused(gait, extra, wh
 
     with pytest.raises(ParameterError, match=why):
         load_scenario(gait=gait, **extra)
+
+
+def test_the_ladder_keeps_climbing_past_a_band_with_nothing_in_hand(monkeypatch):
+    """The frequency search (top_speed._fastest_at) on a stand-in check: too slow below
+    0.5 Hz, a band of passes up to 0.6 Hz, too fast (not hopeless) up to 1.5 Hz, passing above.
+    With no speed in hand it climbs past the band to the top of its ladder (the no-load bound's
+    frequency, 5 Hz here) and blames that bound, not the failure it climbed past; with a speed
+    in hand it keeps the band's pass."""
+    import fivebar_drake.optimal.top_speed as ts
+    from fivebar_drake.optimal.top_speed import Check, _fastest_at, _Tally
+
+    def stand_in(base, kind, beta, a, f, payload_kg=0.0):
+        if f < 0.5:
+            return Check(False, "the stance's balance (stand-in)", slow=True)
+        if f < 0.52 or 0.6 <= f < 1.5:
+            return Check(False, "the stance's torque (stand-in)")
+        return Check(True, "")
+
+    monkeypatch.setattr(ts, "check", stand_in)
+    beta, a, bound = 0.5, 0.05, 1.0                 # the bound's frequency: 1.0 * 0.5 / 0.1
+    speed, f, _, why = _fastest_at(None, "pronk", beta, a, None, bound, 0.0, _Tally())
+    assert f == pytest.approx(5.0) and why == "the no-load bound"
+    in_hand = 2 * a * 0.45 / beta                          # a speed at 0.45 Hz
+    speed, f, _, why = _fastest_at(None, "pronk", beta, a, in_hand, bound, 0.0, _Tally())
+    assert 0.52 <= f < 0.6 and why.startswith("the stance's torque")
