@@ -226,25 +226,31 @@ class FootLegController(LeafSystem):
     def tick_inputs(self, context) -> tuple:
         """What a tick at the context's time computes from (the arguments of command): the
         foot references, the plant state, the feet's measured normal forces over the last
-        period (N) and a copy of the support memory."""
-        return self._tick(context)[:5]
+        period (N), a copy of the support memory and the time (s)."""
+        return (self._references.Eval(context), *self._tick(context)[:4])
 
     def _tick(self, context) -> tuple:
-        """tick_inputs, and the contact impulse now (nv,)."""
+        """What every tick reads but the references (a controller variant may take them at
+        another time): the plant state, the feet's measured normal forces over the last period
+        (N), a copy of the support memory, the time (s) and the contact impulse now (nv,)."""
         state = self._state.Eval(context)
         impulse = self._impulse.Eval(context)
         memory = context.get_discrete_state(self._memory).get_value()
         last = memory[self._support_size:]
-        return (self._references.Eval(context), state,
-                self._foot_loads(self.constants, state, (impulse - last) / self._period),
+        return (state, self._foot_loads(self.constants, state, (impulse - last) / self._period),
                 memory[:self._support_size].reshape(-1, SUPPORT_FIELDS).copy(),
                 context.get_time(), impulse)
 
     def _update(self, context, discrete_state):
-        references, state, loads, memory, t, impulse = self._tick(context)
-        new = self.command(references, state, loads, memory, t)
+        state, loads, memory, t, impulse = self._tick(context)
+        new = self.command(self._references.Eval(context), state, loads, memory, t)
+        self._store(discrete_state, memory, impulse, new)
+
+    def _store(self, discrete_state, memory, impulse, command) -> None:
+        """Keep a tick's support memory (as command updated it), the contact impulse now and
+        the command."""
         discrete_state.set_value(self._memory, np.concatenate([memory.ravel(), impulse]))
-        discrete_state.set_value(self._command, new)
+        discrete_state.set_value(self._command, command)
 
 
 @register_controller

@@ -133,11 +133,10 @@ class TrackingController(FootLegController):
 
     def _update(self, context, discrete_state):
         clock = context.get_discrete_state(self._clock).get_value()
-        _, state, loads, memory, t, impulse = self._tick(context)
+        state, loads, memory, t, impulse = self._tick(context)
         gait_s, was = t - clock[0], clock[1:] > 0.5
         new = self.command(self.references(gait_s, was, t), state, loads, memory, t, gait_s)
-        discrete_state.set_value(self._memory, np.concatenate([memory.ravel(), impulse]))
-        discrete_state.set_value(self._command, new)
+        self._store(discrete_state, memory, impulse, new)
         discrete_state.set_value(self._clock, np.append(
             self.lag(clock[0], was, memory[:, 0] > 0.5, t, gait_s), memory[:, 0]))
 
